@@ -1,0 +1,177 @@
+# svet - the build. `make` builds the library and every chapter program,
+# `make test` runs one check suite per module, `make chNN` one chapter with
+# only the modules it needs. `make REAL=double ...` builds everything with
+# double in place of the book's float (include/real.h); each REAL has its own
+# build directory, so both can coexist. `make help` lists every target.
+
+REAL     ?= float
+CC       ?= cc
+OPT      ?= -O2
+BUILD    ?= build/$(REAL)
+PREFIX   ?= /usr/local
+PKG_CONFIG ?= pkg-config
+
+ifeq ($(REAL),double)
+REALDEF  := -DSVET_DOUBLE
+else ifeq ($(REAL),float)
+REALDEF  :=
+else
+$(error REAL must be float or double, not '$(REAL)')
+endif
+
+# -ffp-contract=off: no fused multiply-add behind our back, so float results
+# are the same on every x86-64 compiler that honours it (docs: determinism).
+WARN     := -Wall -Wextra -Wpedantic -Wdouble-promotion -Wshadow \
+            -Wstrict-prototypes -Wmissing-prototypes -Wformat=2
+CFLAGS   ?= $(OPT) -g
+ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off $(WARN) \
+             $(REALDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
+
+PKG_CFLAGS := $(shell $(PKG_CONFIG) --cflags OpenEXR libpng 2>/dev/null)
+PKG_LIBS   := $(shell $(PKG_CONFIG) --libs OpenEXR libpng 2>/dev/null)
+CHECK_CFLAGS := $(shell $(PKG_CONFIG) --cflags check 2>/dev/null)
+CHECK_LIBS   := $(shell $(PKG_CONFIG) --libs check 2>/dev/null)
+# Only libOpenEXRCore (the C API) is used; --as-needed drops the C++ rest
+# that OpenEXR.pc lists.
+LDLIBS   = -Wl,--as-needed $(PKG_LIBS) -lm -fopenmp $(EXTRA_LDFLAGS)
+
+SRCS     := $(sort $(wildcard src/*.c))
+MODULES  := $(SRCS:src/%.c=%)
+OBJS     := $(MODULES:%=$(BUILD)/obj/%.o)
+LIB      := $(BUILD)/libsvet.a
+TESTSRCS := $(sort $(wildcard tests/test_*.c))
+TESTS    := $(TESTSRCS:tests/%.c=$(BUILD)/tests/%)
+BENCHSRCS := $(sort $(wildcard bench/bench_*.c))
+BENCHES  := $(BENCHSRCS:bench/bench_%.c=bench-%)
+VECSRCS  := $(sort $(wildcard tools/vectors_*.c))
+VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
+
+.SECONDARY:
+
+.PHONY: all lib test sanitize chapters vectors check-vectors cc-lines clean \
+        install uninstall help bench $(BENCHES)
+
+all: lib chapters $(BUILD)/svet
+
+lib: $(LIB)
+
+$(BUILD)/obj/%.o: src/%.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) -MMD -MP -c $< -o $@
+
+$(LIB): $(OBJS)
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+# --- the svet command (issue: renderer) -----------------------------------
+SVET_MAIN := $(wildcard cmd/svet.c)
+ifneq ($(SVET_MAIN),)
+$(BUILD)/svet: cmd/svet.c $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
+else
+$(BUILD)/svet:
+	@true
+endif
+
+# --- unit tests: one check suite per module --------------------------------
+$(BUILD)/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $(CHECK_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/tests/testutil.o: tests/testutil.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(CHECK_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(BUILD)/tests/testutil.o $(LIB)
+	$(CC) $(ALL_CFLAGS) $^ -o $@ $(CHECK_LIBS) $(LDLIBS)
+
+# Every suite runs from the top directory (they read tests/vectors/ and
+# scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
+test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
+	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
+
+# AddressSanitizer + UndefinedBehaviorSanitizer, any report is fatal.
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
+             -fno-omit-frame-pointer
+sanitize:
+	$(MAKE) BUILD=build/sanitize-$(REAL) OPT=-O1 \
+	    EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
+	    SVET_SANITIZE=1 test
+
+# --- chapter programs ------------------------------------------------------
+# Each chapters/chNN/chapter.mk names its program and the modules it needs:
+#   CHAPTERS += ch01
+#   ch01_SRC := chapters/ch01/ch01_geometry.c
+#   ch01_MODULES := vec frame ...
+#   ch01_LIBS := -lm
+# The program is linked from exactly those objects, not the library, so a
+# missing module shows up as a link error here rather than in a student's
+# single cc line.
+CHAPTERS :=
+-include $(sort $(wildcard chapters/*/chapter.mk))
+
+define chapter_rule
+$(1): $(BUILD)/$(1)
+$(BUILD)/$(1): $$($(1)_SRC) $$($(1)_MODULES:%=$(BUILD)/obj/%.o)
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) $$^ -o $$@ -Wl,--as-needed $$($(1)_LIBS) -fopenmp
+endef
+$(foreach c,$(CHAPTERS),$(eval $(call chapter_rule,$(c))))
+.PHONY: $(CHAPTERS)
+
+chapters: $(CHAPTERS:%=$(BUILD)/%)
+
+# Each chapter's first comment is the one cc line that builds it alone;
+# this runs every such line in a scratch directory to prove it.
+cc-lines:
+	@sh tools/check-cc-lines.sh $(foreach c,$(CHAPTERS),$($(c)_SRC))
+
+# --- test vectors for ports (tests/vectors/) -------------------------------
+$(BUILD)/tools/%: tools/%.c $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
+
+# Regenerate the CSV files from the code. Only for a deliberate change of
+# reference: the C tests check the code against the committed files.
+vectors: $(VECTOOLS)
+	@for t in $(VECTOOLS); do echo "$$t"; $$t tests/vectors || exit 1; done
+
+# --- benchmarks: bench/bench_NAME.c is `make bench-NAME` --------------------
+BENCH_OPT ?= -O2
+$(BUILD)/bench/bench_%: bench/bench_%.c $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
+
+$(BENCHES): bench-%: $(BUILD)/bench/bench_%
+	$(BUILD)/bench/bench_$* $(BENCH_ARGS)
+
+bench: $(BENCHES)
+
+# --- install ---------------------------------------------------------------
+install: all
+	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/svet \
+	    $(DESTDIR)$(PREFIX)/bin
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
+	install -m 644 include/*.h $(DESTDIR)$(PREFIX)/include/svet/
+	if [ -x $(BUILD)/svet ]; then install -m 755 $(BUILD)/svet $(DESTDIR)$(PREFIX)/bin/; fi
+
+uninstall:
+	rm -rf $(DESTDIR)$(PREFIX)/include/svet $(DESTDIR)$(PREFIX)/lib/libsvet.a \
+	    $(DESTDIR)$(PREFIX)/bin/svet
+
+clean:
+	rm -rf build
+
+help:
+	@echo "make                 library, chapter programs and the svet command"
+	@echo "make test            every unit suite (REAL=double for the double build)"
+	@echo "make sanitize        every suite under ASan and UBSan"
+	@echo "make chNN            one chapter program, e.g. make ch01"
+	@echo "make cc-lines        build each chapter from its own one-line cc command"
+	@echo "make vectors         regenerate tests/vectors/*.csv"
+	@echo "make bench-NAME      one benchmark: $(BENCHES)"
+	@echo "make install PREFIX=... DESTDIR=..."
+	@echo "chapters: $(CHAPTERS)"
+
+-include $(OBJS:.o=.d) $(TESTS:=.d)

@@ -1,0 +1,49 @@
+/*
+ * ray.c - spawning rays from surface points with a bound on the hit point's
+ * floating-point error (pbrt-v3 sec. 3.9.5, OffsetRayOrigin and SpawnRayTo).
+ * Tests: tests/test_ray.c
+ */
+#include "ray.h"
+
+void ray_offset_origin(VECTOR3 po, const VECTOR3 p, const VECTOR3 p_error,
+                       const VECTOR3 n, const VECTOR3 w)
+{
+    /* The smallest offset along n that leaves the box of possible true
+     * points: the support of that box in direction n. */
+    real d = fabs(n[X]) * p_error[X] + fabs(n[Y]) * p_error[Y] +
+             fabs(n[Z]) * p_error[Z];
+    VECTOR3 offset;
+    vec_scale(offset, n, d);
+    if (SVECTOR3(w, n) < 0)
+        vec_neg(offset, offset);
+    for (int i = 0; i < 3; i++) {
+        real q = p[i] + offset[i];
+        /* The sum was rounded; one more ulp away from the surface makes the
+         * offset at least what was asked. */
+        if (offset[i] > 0)
+            q = nextafter(q, (real)INFINITY);
+        else if (offset[i] < 0)
+            q = nextafter(q, -(real)INFINITY);
+        po[i] = q;
+    }
+}
+
+void ray_spawn(ray_t *r, const VECTOR3 p, const VECTOR3 p_error,
+               const VECTOR3 n, const VECTOR3 w)
+{
+    ray_offset_origin(r->o, p, p_error, n, w);
+    vec_copy(r->d, w);
+}
+
+real ray_spawn_to(ray_t *r, const VECTOR3 p0, const VECTOR3 p0_error,
+                  const VECTOR3 n0, const VECTOR3 p1, const VECTOR3 p1_error,
+                  const VECTOR3 n1)
+{
+    VECTOR3 d, back, q1;
+    vec_sub(d, p1, p0);
+    ray_offset_origin(r->o, p0, p0_error, n0, d);
+    vec_sub(back, r->o, p1);
+    ray_offset_origin(q1, p1, p1_error, n1, back);
+    vec_sub(r->d, q1, r->o);
+    return 1 - RAY_SHADOW_EPSILON;
+}
