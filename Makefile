@@ -79,11 +79,16 @@ $(BUILD)/tests/%.o: tests/%.c
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $(CHECK_CFLAGS) -MMD -MP -c $< -o $@
 
-$(BUILD)/tests/testutil.o: tests/testutil.c
-	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(CHECK_CFLAGS) -MMD -MP -c $< -o $@
+# Test support: every tests/*.c that is not a suite (testutil.c, geomcheck.c,
+# chi2.c, ...) goes into one archive linked to every suite.
+TESTSUP_SRCS := $(filter-out $(TESTSRCS),$(wildcard tests/*.c))
+TESTSUP_OBJS := $(TESTSUP_SRCS:tests/%.c=$(BUILD)/tests/%.o)
+TESTSUP      := $(BUILD)/tests/libtestsupport.a
+$(TESTSUP): $(TESTSUP_OBJS)
+	@rm -f $@
+	$(AR) rcs $@ $^
 
-$(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(BUILD)/tests/testutil.o $(LIB)
+$(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 	$(CC) $(ALL_CFLAGS) $^ -o $@ $(CHECK_LIBS) $(LDLIBS)
 
 # Every suite runs from the top directory (they read tests/vectors/ and
@@ -174,4 +179,4 @@ help:
 	@echo "make install PREFIX=... DESTDIR=..."
 	@echo "chapters: $(CHAPTERS)"
 
--include $(OBJS:.o=.d) $(TESTS:=.d)
+-include $(OBJS:.o=.d) $(TESTS:=.d) $(TESTSUP_OBJS:.o=.d)
