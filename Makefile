@@ -105,32 +105,39 @@ sanitize:
 	    SVET_SANITIZE=1 test
 
 # --- chapter programs ------------------------------------------------------
-# Each chapters/chNN/chapter.mk names its program and the modules it needs:
+# Each chapters/chNN/chapter.mk names the chapter, its programs, and for
+# each program its source and the modules it needs:
 #   CHAPTERS += ch01
-#   ch01_SRC := chapters/ch01/ch01_geometry.c
-#   ch01_MODULES := vec frame ...
-#   ch01_LIBS := -lm
-# The program is linked from exactly those objects, not the library, so a
+#   ch01_PROGS := ch01_geometry ch01_brdf
+#   ch01_geometry_SRC := chapters/ch01/ch01_geometry.c
+#   ch01_geometry_MODULES := vec frame ...
+#   ch01_geometry_LIBS := -lm
+# A program is linked from exactly those objects, not the library, so a
 # missing module shows up as a link error here rather than in a student's
-# single cc line.
+# single cc line. `make ch01` builds the chapter's programs into $(BUILD)/.
 CHAPTERS :=
 -include $(sort $(wildcard chapters/*/chapter.mk))
+CHAPTER_PROGS := $(foreach c,$(CHAPTERS),$($(c)_PROGS))
 
-define chapter_rule
-$(1): $(BUILD)/$(1)
+define program_rule
 $(BUILD)/$(1): $$($(1)_SRC) $$($(1)_MODULES:%=$(BUILD)/obj/%.o)
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) $$^ -o $$@ -Wl,--as-needed $$($(1)_LIBS) -fopenmp
 endef
+$(foreach p,$(CHAPTER_PROGS),$(eval $(call program_rule,$(p))))
+
+define chapter_rule
+$(1): $$($(1)_PROGS:%=$(BUILD)/%)
+endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rule,$(c))))
 .PHONY: $(CHAPTERS)
 
-chapters: $(CHAPTERS:%=$(BUILD)/%)
+chapters: $(CHAPTER_PROGS:%=$(BUILD)/%)
 
-# Each chapter's first comment is the one cc line that builds it alone;
-# this runs every such line in a scratch directory to prove it.
+# Each chapter program's first comment is the one cc line that builds it
+# alone; this runs every such line in a scratch directory to prove it.
 cc-lines:
-	@sh tools/check-cc-lines.sh $(foreach c,$(CHAPTERS),$($(c)_SRC))
+	@sh tools/check-cc-lines.sh $(foreach p,$(CHAPTER_PROGS),$($(p)_SRC))
 
 # --- test vectors for ports (tests/vectors/) -------------------------------
 $(BUILD)/tools/%: tools/%.c $(LIB)

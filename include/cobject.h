@@ -76,8 +76,10 @@ typedef struct {
                       real tmin, real tmax, hit_t *hit);
 
     /* Complete pp for a hit that intersect() returned for the same ray:
-     * cross_point, p_error, ng, the frame u v n, st, dpds, dpdt, prim. The
-     * caller (cobject_fill) sets r_dist, out, bout and IntersectObj. */
+     * cross_point, p_error, ng, the frame u v n, st, dpds, dpdt, and prim
+     * where it differs from hit->prim (which cobject_fill puts there first,
+     * e.g. a box sets the face it hit). The caller (cobject_fill) sets
+     * r_dist, out, bout and IntersectObj. */
     void (*surface)(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                     PATHPOINT *pp);
 

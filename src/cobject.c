@@ -44,13 +44,13 @@ void cobject_fill(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                   PATHPOINT *pp)
 {
     memset(pp, 0, sizeof *pp);
+    pp->prim = hit->prim; /* surface() may refine it, e.g. to a box face */
     obj->ops->surface(obj, r, hit, pp);
     real len = vec_length(r->d);
     pp->r_dist = hit->t * len;
     vec_scale(pp->out, r->d, -1 / len);
     pp->bout = SVECTOR3(pp->out, pp->n) > 0;
     pp->IntersectObj = obj;
-    pp->prim = hit->prim;
 }
 
 void pathpoint_set_in(PATHPOINT *pp, const VECTOR3 w)
