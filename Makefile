@@ -116,7 +116,7 @@ sanitize:
 # missing module shows up as a link error here rather than in a student's
 # single cc line. `make ch01` builds the chapter's programs into $(BUILD)/.
 CHAPTERS :=
--include $(sort $(wildcard chapters/*/chapter.mk))
+-include $(sort $(wildcard chapters/*/*.mk))
 CHAPTER_PROGS := $(foreach c,$(CHAPTERS),$($(c)_PROGS))
 
 define program_rule
