@@ -117,7 +117,8 @@ sanitize:
 # single cc line. `make ch01` builds the chapter's programs into $(BUILD)/.
 CHAPTERS :=
 -include $(sort $(wildcard chapters/*/*.mk))
-CHAPTER_PROGS := $(foreach c,$(CHAPTERS),$($(c)_PROGS))
+CHAPTERS := $(sort $(CHAPTERS))
+CHAPTER_PROGS := $(sort $(foreach c,$(CHAPTERS),$($(c)_PROGS)))
 
 define program_rule
 $(BUILD)/$(1): $$($(1)_SRC) $$($(1)_MODULES:%=$(BUILD)/obj/%.o)
