@@ -1,0 +1,95 @@
+/*
+ * test_ray.c - rounding-error bounds and spawned rays (pbrt-v3 sec. 3.9):
+ * gamma(n), the origin offset clears the error box on the requested side,
+ * and shadow rays aimed at a point stop short of it.
+ */
+#include "testutil.h"
+#include "geomcheck.h"
+#include "ray.h"
+
+#include <math.h>
+
+START_TEST(gamma_matches_its_definition)
+{
+    /* gamma(n) = n u / (1 - n u), u = eps/2 (Higham 2002, lemma 3.1) */
+    double u = (double)REAL_EPSILON / 2;
+    for (int n = 1; n <= 10; n++)
+        ck_assert_rel(ray_gamma(n), n * u / (1 - n * u), 4 * REAL_EPSILON, 0);
+    ck_assert(ray_gamma(3) > 3 * REAL_UNIT_ROUNDOFF);
+}
+END_TEST
+
+START_TEST(offset_origin_clears_the_error_box_on_the_side_of_w)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 21, 22);
+    long cases = 0;
+    for (int i = 0; i < 20000; i++, cases++) {
+        VECTOR3 p, err, n, w, po, d;
+        real scale = pow(REAL_C(10.0), (real)(pcg32_real(&g) * 8 - 3));
+        geomcheck_random_dir(p, &g);
+        vec_scale(p, p, scale);
+        for (int k = 0; k < 3; k++)
+            err[k] = fabs(p[k]) * 8 * REAL_EPSILON * pcg32_real(&g);
+        geomcheck_random_dir(n, &g);
+        geomcheck_random_dir(w, &g);
+        ray_offset_origin(po, p, err, n, w);
+        vec_sub(d, po, p);
+        /* the offset lies on the side of w ... */
+        real side = SVECTOR3(d, n) * (SVECTOR3(w, n) < 0 ? -1 : 1);
+        ck_assert(side >= 0);
+        /* ... and each moved component went at least as far as asked:
+         * |po_k - p_k| >= |n_k| (|n| . err), no rounding back. */
+        real dist = fabs(n[X]) * err[X] + fabs(n[Y]) * err[Y] +
+                    fabs(n[Z]) * err[Z];
+        for (int k = 0; k < 3; k++)
+            ck_assert(fabs(d[k]) >= fabs(n[k]) * dist * (1 - 4 * REAL_EPSILON));
+    }
+    test_report_cases("offset_origin_clears_the_error_box_on_the_side_of_w",
+                      cases);
+}
+END_TEST
+
+START_TEST(zero_error_still_moves_one_ulp)
+{
+    /* With p_error = 0 the offset is zero and the point is unchanged. */
+    VECTOR3 p = { 1, 2, 3 }, e = { 0, 0, 0 }, n = { 0, 0, 1 }, w = { 0, 0, 1 };
+    VECTOR3 po;
+    ray_offset_origin(po, p, e, n, w);
+    ck_assert(po[X] == 1 && po[Y] == 2 && po[Z] == 3);
+    /* A tiny error moves z up by at least one ulp, never x or y. */
+    vec_set(e, 0, 0, REAL_C(1e-30));
+    ray_offset_origin(po, p, e, n, w);
+    ck_assert(po[X] == 1 && po[Y] == 2);
+    ck_assert(po[Z] > 3);
+    vec_set(w, 0, 0, -1);
+    ray_offset_origin(po, p, e, n, w);
+    ck_assert(po[Z] < 3);
+}
+END_TEST
+
+START_TEST(spawn_to_stops_short_of_the_target)
+{
+    VECTOR3 p0 = { 0, 0, 0 }, p1 = { 0, 0, 10 }, e = { 0, 0, 0 };
+    VECTOR3 n0 = { 0, 0, 1 }, n1 = { 0, 0, -1 };
+    ray_t r;
+    real tmax = ray_spawn_to(&r, p0, e, n0, p1, e, n1);
+    VECTOR3 end;
+    ray_at(end, &r, tmax);
+    ck_assert(end[Z] < 10 && end[Z] > REAL_C(9.99));
+    ray_at(end, &r, 1);
+    ck_assert_near(end[Z], 10, 0);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("ray (" REAL_NAME ")");
+    TCase *tc = tcase_create("core");
+    tcase_add_test(tc, gamma_matches_its_definition);
+    tcase_add_test(tc, offset_origin_clears_the_error_box_on_the_side_of_w);
+    tcase_add_test(tc, zero_error_still_moves_one_ulp);
+    tcase_add_test(tc, spawn_to_stops_short_of_the_target);
+    suite_add_tcase(s, tc);
+    return s;
+}
