@@ -87,6 +87,33 @@ START_TEST(local_and_world_coordinates_round_trip)
 }
 END_TEST
 
+START_TEST(frames_match_the_vectors)
+{
+#ifdef SVET_DOUBLE
+    const char *tolname = "tol_double";
+#else
+    const char *tolname = "tol_float";
+#endif
+    testcsv_t c;
+    long cases = 0;
+    testcsv_open(&c, "frame.csv");
+    while (testcsv_next(&c)) {
+        VECTOR3 n = { (real)testcsv_num(&c, "nx"), (real)testcsv_num(&c, "ny"),
+                      (real)testcsv_num(&c, "nz") };
+        VECTOR3 u, v;
+        frame_from_normal(u, v, n);
+        const char *uc[3] = { "ux", "uy", "uz" }, *vc[3] = { "vx", "vy", "vz" };
+        for (int k = 0; k < 3; k++) {
+            ck_assert_near(u[k], testcsv_num(&c, uc[k]), testcsv_num(&c, tolname));
+            ck_assert_near(v[k], testcsv_num(&c, vc[k]), testcsv_num(&c, tolname));
+        }
+        cases++;
+    }
+    testcsv_close(&c);
+    test_report_cases("frames_match_the_vectors", cases);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("frame (" REAL_NAME ")");
@@ -94,6 +121,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, frame_is_orthonormal_at_the_poles_and_axes);
     tcase_add_test(tc, frame_is_orthonormal_for_random_normals);
     tcase_add_test(tc, local_and_world_coordinates_round_trip);
+    tcase_add_test(tc, frames_match_the_vectors);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -8,6 +8,7 @@
 #include "vec.h"
 
 #include <math.h>
+#include <string.h>
 
 static void random_unit(VECTOR3 w, pcg32_t *g)
 {
@@ -213,6 +214,104 @@ START_TEST(rodrigues_rotation_of_app_c)
 }
 END_TEST
 
+#ifdef SVET_DOUBLE
+#define TOL "tol_double"
+#else
+#define TOL "tol_float"
+#endif
+
+static void read3(testcsv_t *c, const char *p, VECTOR3 v)
+{
+    char name[16];
+    const char *xyz[3] = { "x", "y", "z" };
+    for (int k = 0; k < 3; k++) {
+        snprintf(name, sizeof name, "%s%s", p, xyz[k]);
+        v[k] = (real)testcsv_num(c, name);
+    }
+}
+
+START_TEST(operations_match_the_vectors)
+{
+    testcsv_t c;
+    long n = 0;
+    testcsv_open(&c, "vec_ops.csv");
+    while (testcsv_next(&c)) {
+        VECTOR3 a, b, e, r;
+        read3(&c, "a", a);
+        read3(&c, "b", b);
+        read3(&c, "e", e);
+        double tol = testcsv_num(&c, TOL);
+        const char *op = testcsv_str(&c, "op");
+        if (strcmp(op, "cross") == 0) {
+            VVECTOR3(r, a, b);
+        } else if (strcmp(op, "dot") == 0) {
+            vec_set(r, SVECTOR3(a, b), 0, 0);
+        } else if (strcmp(op, "length") == 0) {
+            vec_set(r, vec_length(a), 0, 0);
+        } else {
+            vec_normalize(r, a);
+        }
+        for (int k = 0; k < 3; k++)
+            ck_assert_msg(fabs((double)r[k] - (double)e[k]) <= tol,
+                          "vec_ops.csv:%d: %s component %d: %.9g vs %.9g",
+                          c.line, op, k, (double)r[k], (double)e[k]);
+        n++;
+    }
+    testcsv_close(&c);
+    test_report_cases("operations_match_the_vectors", n);
+}
+END_TEST
+
+START_TEST(reflection_refraction_rotation_match_the_vectors)
+{
+    testcsv_t c;
+    long n = 0;
+    testcsv_open(&c, "vec_reflect.csv");
+    while (testcsv_next(&c)) {
+        VECTOR3 w, m, e, r;
+        read3(&c, "w", w);
+        read3(&c, "n", m);
+        read3(&c, "r", e);
+        vec_reflect(r, w, m);
+        for (int k = 0; k < 3; k++)
+            ck_assert_near(r[k], e[k], testcsv_num(&c, TOL));
+        n++;
+    }
+    testcsv_close(&c);
+    testcsv_open(&c, "vec_refract.csv");
+    while (testcsv_next(&c)) {
+        VECTOR3 w, m, e, t;
+        read3(&c, "w", w);
+        read3(&c, "n", m);
+        read3(&c, "t", e);
+        bool ok = vec_refract(t, w, m, (real)testcsv_num(&c, "n1"),
+                              (real)testcsv_num(&c, "n2"));
+        ck_assert_msg(ok == (testcsv_num(&c, "tir") == 0),
+                      "vec_refract.csv:%d: TIR disagrees", c.line);
+        for (int k = 0; k < 3; k++)
+            ck_assert_msg(fabs((double)t[k] - (double)e[k]) <=
+                              testcsv_num(&c, TOL),
+                          "vec_refract.csv:%d: component %d: %.9g vs %.9g",
+                          c.line, k, (double)t[k], (double)e[k]);
+        n++;
+    }
+    testcsv_close(&c);
+    testcsv_open(&c, "vec_rotate.csv");
+    while (testcsv_next(&c)) {
+        VECTOR3 a, k, e, r;
+        read3(&c, "a", a);
+        read3(&c, "k", k);
+        read3(&c, "r", e);
+        vec_rotate(r, a, k, (real)testcsv_num(&c, "angle"));
+        for (int j = 0; j < 3; j++)
+            ck_assert_near(r[j], e[j], testcsv_num(&c, TOL));
+        n++;
+    }
+    testcsv_close(&c);
+    test_report_cases("reflection_refraction_rotation_match_the_vectors", n);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("vec (" REAL_NAME ")");
@@ -224,6 +323,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, refraction_obeys_snell_and_reports_tir);
     tcase_add_test(tc, refraction_at_the_critical_angle_and_normal_incidence);
     tcase_add_test(tc, rodrigues_rotation_of_app_c);
+    tcase_add_test(tc, operations_match_the_vectors);
+    tcase_add_test(tc, reflection_refraction_rotation_match_the_vectors);
     suite_add_tcase(s, tc);
     return s;
 }
