@@ -1,0 +1,84 @@
+/*
+ * triangle.h - the triangle of app. D, with the watertight ray/triangle test
+ * of Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1),
+ * 2013 (a departure from the book's plane-then-inside test: no ray slips
+ * through a shared edge or vertex of a closed mesh). The test and the
+ * surface completion are public so that triangle meshes reuse them.
+ * Tests: tests/test_triangle.c; vectors: tests/vectors/triangle.csv
+ */
+#ifndef SVET_TRIANGLE_H
+#define SVET_TRIANGLE_H
+
+#include <stdbool.h>
+#include "cobject.h"
+#include "error.h"
+
+/* Nearest-hit test of ray r against the triangle p0 p1 p2 in the open
+ * interval (tmin, tmax), either side of the triangle (no culling).
+ * Returns true and the ray parameter *t and the barycentrics b[0..2]
+ * (b >= 0, b[0] + b[1] + b[2] = 1 to rounding; the hit point is
+ * b[0] p0 + b[1] p1 + b[2] p2) on a hit; on a miss *t and b are untouched.
+ *
+ * Watertight (Woop et al. 2013): the ray is sheared so it runs along +z,
+ * and the edge functions of the projected vertices are evaluated so that
+ * an edge shared by two triangles gives exactly opposite values in both;
+ * a value that rounds to zero is recomputed exactly (the paper's fallback
+ * to double), and zero counts as inside. So a ray through a shared edge or
+ * vertex of a closed mesh hits at least one of the triangles around it.
+ * A hit whose t cannot be told from 0 by its rounding error is rejected
+ * (pbrt-v3 sec. 3.9.6), as is every hit of a triangle that
+ * triangle_is_degenerate() calls degenerate: a zero-area triangle never
+ * reports a hit. r->d may be any nonzero finite vector. Finite input never
+ * yields a NaN or infinite output. This function can't fail. */
+bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
+                                   const VECTOR3 p2, const ray_t *r,
+                                   real tmin, real tmax, real *t, real b[3]);
+
+/* True when the triangle's area cannot be told from zero at working
+ * precision: every component of the computed (p1 - p0) x (p2 - p0) lies
+ * within its own rounding-error bound. Repeated vertices, exactly
+ * collinear vertices and non-finite vertices are degenerate. This function
+ * can't fail. */
+bool triangle_is_degenerate(const VECTOR3 p0, const VECTOR3 p1,
+                            const VECTOR3 p2);
+
+/* Fill the geometric part of pp for the point with barycentrics b of the
+ * triangle p0 p1 p2 (as triangle_intersect_watertight returns them):
+ * cross_point = b0 p0 + b1 p1 + b2 p2 and its error bound p_error; ng =
+ * unit (p1 - p0) x (p2 - p0); the shading normal n = unit(b0 n0 + b1 n1 +
+ * b2 n2) when normals (an array of three unit vertex normals) is not NULL,
+ * else ng; st = (b1, b2), so that p = p0 + s (p1 - p0) + t (p2 - p0),
+ * dpds = p1 - p0, dpdt = p2 - p0; u = dpds made perpendicular to n,
+ * v = n x u. Does not touch pp->prim. A degenerate triangle gets a finite
+ * frame anyway (ng = +z). This function can't fail. */
+void triangle_fill_surface(const VECTOR3 p0, const VECTOR3 p1,
+                           const VECTOR3 p2, const VECTOR3 normals[3],
+                           const real b[3], PATHPOINT *pp);
+
+/* Uniform point of the triangle by area from u in [0,1)^2: pdf = 1/area,
+ * normal along (p1 - p0) x (p2 - p0), and the point's error bound. A
+ * degenerate triangle returns p0 with pdf 0 (it has no area to sample).
+ * This function can't fail. */
+void triangle_sample_point(const VECTOR3 p0, const VECTOR3 p1,
+                           const VECTOR3 p2, const real u[2],
+                           cobject_sample_t *s);
+
+/* A triangle COBJECT with corners p0 p1 p2; its geometric normal ng is
+ * along (p1 - p0) x (p2 - p0) (counter-clockwise seen from the front).
+ * A zero-area triangle may be constructed (meshes contain them): it has
+ * area 0, never reports a hit and samples with pdf 0.
+ * Returns NULL on a NaN or infinite coordinate (SVET_ERR_RANGE) or when
+ * memory runs out (SVET_ERR_NOMEM), with the reason in err. */
+COBJECT *triangle_new(const VECTOR3 p0, const VECTOR3 p1, const VECTOR3 p2,
+                      svet_error *err);
+
+/* Give a triangle per-vertex shading normals n0 n1 n2 (normalised here),
+ * interpolated by barycentrics into PATHPOINT.n; ng stays the geometric
+ * normal, and n is used as interpolated, not flipped toward ng. Returns
+ * SVET_OK, or SVET_ERR_RANGE when obj is not a triangle or a normal is
+ * zero, NaN or infinite (obj is then unchanged). */
+svet_status triangle_set_normals(COBJECT *obj, const VECTOR3 n0,
+                                 const VECTOR3 n1, const VECTOR3 n2,
+                                 svet_error *err);
+
+#endif
