@@ -1,0 +1,234 @@
+/*
+ * scene.h - the scene in memory: what a scene file (scenes/README.md,
+ * scenefile.h) describes and what the renderer of ch. 3 and 5 reads.
+ * Plain data (camera, render settings, point lights) plus the built objects
+ * and materials, all owned by the scene. "Model only what the scene
+ * requires": no acceleration structure and no light-sampling table lives
+ * here; the renderer builds them from this description when it needs them.
+ * Tests: tests/test_scene.c (and tests/test_scenefile.c for the parser)
+ */
+#ifndef SVET_SCENE_H
+#define SVET_SCENE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "cobject.h"
+#include "error.h"
+#include "radiance.h"
+#include "vec.h"
+
+/* --- limits (documented in scenes/README.md) ------------------------------ */
+#define SCENE_MAX_RESOLUTION 16384    /* pixels on either side of the image */
+#define SCENE_MAX_PIXELS (1L << 26)   /* width * height: 64 Mpixel */
+#define SCENE_MAX_SPP (1L << 24)      /* samples per pixel */
+#define SCENE_MAX_DEPTH 1024          /* scattering events per path */
+#define SCENE_MAX_NAME 64             /* bytes of a material name */
+
+/* --- the camera (ch. 5; its ray formula is in scenes/README.md) ----------- */
+
+/* Which extent of the image the field of view spans. */
+typedef enum {
+    SCENE_FOV_X = 0,        /* full horizontal angle */
+    SCENE_FOV_Y = 1,        /* full vertical angle */
+    SCENE_FOV_DIAGONAL = 2  /* full angle along the image diagonal */
+} scene_fov_axis;
+
+/* The pixel reconstruction filter. Only the box exists so far: each sample
+ * counts with weight 1 in the pixel it falls in. */
+typedef enum {
+    SCENE_FILTER_BOX = 0
+} scene_filter;
+
+/* A pinhole camera. */
+typedef struct {
+    VECTOR3 position;        /* the eye (pinhole) */
+    VECTOR3 target;          /* the point seen at the image centre */
+    VECTOR3 up;              /* roughly "up" on the image; not along the
+                                view direction */
+    real fov;                /* full field of view in degrees, in (0, 180) */
+    scene_fov_axis fov_axis; /* which image extent fov spans */
+    int width, height;       /* image size in pixels */
+    scene_filter filter;     /* pixel filter */
+    real filter_width;       /* filter support in pixels (box: 1 = the
+                                pixel itself) */
+} scene_camera_t;
+
+/* --- render settings ------------------------------------------------------ */
+
+typedef enum {
+    SCENE_INTEGRATOR_PATH = 0,   /* path tracing: NEE + BSDF sampling + MIS */
+    SCENE_INTEGRATOR_DIRECT = 1, /* direct lighting only (one bounce) */
+    SCENE_INTEGRATOR_BSDF = 2,   /* BSDF sampling only, no light sampling */
+    SCENE_INTEGRATOR_AO = 3      /* ambient occlusion within ao_distance */
+} scene_integrator;
+
+typedef enum {
+    SCENE_ACCEL_AUTO = 0,  /* the renderer chooses from the scene (ch. 7) */
+    SCENE_ACCEL_BRUTE = 1, /* test every object */
+    SCENE_ACCEL_GRID = 2,  /* uniform grid */
+    SCENE_ACCEL_HGRID = 3  /* hierarchical grid */
+} scene_accel;
+
+/* Tone-mapping operators of ch. 6 (tonemap.h implements them). */
+typedef enum {
+    SCENE_TONEMAP_LINEAR = 0,      /* exposure, then the sRGB curve */
+    SCENE_TONEMAP_GAMMA = 1,       /* exposure, then v^(1/gamma) */
+    SCENE_TONEMAP_EXPONENTIAL = 2, /* 1 - exp(-L/L_avg) */
+    SCENE_TONEMAP_REINHARD = 3,    /* Reinhard et al. 2002, global */
+    SCENE_TONEMAP_LOG = 4,         /* logarithmic, Drago et al. 2003 */
+    SCENE_TONEMAP_HISTOGRAM = 5    /* Ward Larson, Rushmeier, Piatko 1997 */
+} scene_tonemap_op;
+
+typedef struct {
+    scene_tonemap_op op;
+    real exposure; /* stops: the image is scaled by 2^exposure first */
+    real gamma;    /* SCENE_TONEMAP_GAMMA's exponent, > 0 */
+    real key;      /* Reinhard's key value a (0.18) */
+    real white;    /* Reinhard's white point L_white, in units of the
+                      scaled luminance; 0 = the image maximum */
+    real bias;     /* Drago's bias b (0.85) */
+} scene_tonemap_t;
+
+typedef struct {
+    long spp;              /* camera samples per pixel, >= 1 */
+    int max_depth;         /* the most scattering events on a path: a path
+                              has at most max_depth + 1 segments (camera
+                              ray included). 0 = emitters seen directly
+                              only; the Cornell box uses 7 */
+    bool roulette;         /* Russian roulette on (ch. 4) */
+    int roulette_depth;    /* scattering events before roulette may start */
+    uint64_t seed;         /* rng_for_sample's seed */
+    scene_integrator integrator;
+    real ao_distance;      /* AO: occluders farther than this are ignored;
+                              0 = unlimited */
+    int threads;           /* 0 = every core */
+    double time_limit;     /* seconds of rendering; 0 = none. The image
+                              stops after the pass that exceeds it */
+    int passes;            /* the spp are spread over this many passes */
+    bool checkpoint;       /* write the outputs after every pass */
+    char *output_exr;      /* linear output, or NULL: the renderer derives
+                              it from the scene file name. Owned */
+    char *output_png;      /* tone-mapped output, or NULL (as above). Owned */
+    scene_tonemap_t tonemap;
+    scene_accel accel;
+    /* -- later chapters put their settings below, each in its own
+     *    struct: photon maps (ch. 8), the irradiance cache (ch. 9). -- */
+} scene_render_t;
+
+/* --- lights (ch. 5) ------------------------------------------------------- */
+
+/* A point isotropic source: radiant intensity I (W/sr) in every direction,
+ * so its power is Phi = 4 pi I. */
+typedef struct {
+    VECTOR3 position;
+    RADIANCE intensity; /* W/sr per RGB channel */
+} scene_point_light_t;
+
+/* The emission of a surface: an area light is an object that emits. It is
+ * cobject.h's `struct light`, reached from the object as obj->light. */
+typedef struct light {
+    RADIANCE radiance;    /* emitted radiance L_e, W/(m^2 sr), the same in
+                             every direction (a Lambertian emitter) */
+    bool two_sided;       /* false: emits on the +ng (front) side only;
+                             true: on both sides */
+    const COBJECT *obj;   /* the emitting object */
+} scene_emission_t;
+
+/* A named material, owned by the scene. */
+typedef struct {
+    char *name;
+    struct material *material; /* material_t of material.h */
+} scene_material_t;
+
+/* --- the scene ------------------------------------------------------------ */
+
+typedef struct {
+    char *path;                 /* the file it was read from, or NULL. Owned */
+    scene_camera_t camera;
+    scene_render_t render;
+
+    scene_material_t *materials; /* named materials, in order of definition */
+    int nmaterials, cap_materials;
+    /* Materials no name refers to (e.g. the defaults an OBJ file needs),
+     * freed with the scene. */
+    struct material **anon_materials;
+    int nanon_materials, cap_anon_materials;
+
+    COBJECT **objects;          /* every surface; objects[i]->id == i.
+                                   Each has ->material set (never NULL) and
+                                   ->light when it emits. Owned */
+    int nobjects, cap_objects;
+
+    scene_emission_t **emitters; /* the emitting objects' records. Owned */
+    int nemitters, cap_emitters;
+
+    scene_point_light_t *point_lights;
+    int npoint_lights, cap_point_lights;
+
+    bool has_environment;       /* a uniform environment surrounds the scene */
+    RADIANCE environment;       /* its radiance, W/(m^2 sr) (the furnace) */
+
+    /* -- later chapters add their parts below: textures (ch. 10), media
+     *    (ch. 11), sky and sun (ch. 12), smoke grids (ch. 13). The scene
+     *    file parser rejects their keywords until they exist. -- */
+} scene_t;
+
+/* Set s to an empty scene with the defaults of scenes/README.md: camera at
+ * the origin looking down -z, up +y, 40 degrees along y, 256 x 256, box
+ * filter; 16 spp, max_depth 5, roulette from depth 3, seed 0, path
+ * integrator, all threads, tone mapping LINEAR at exposure 0, accel AUTO.
+ * This function can't fail. */
+void scene_init(scene_t *s);
+
+/* Free everything the scene owns (objects, materials, emission records,
+ * strings) and leave s as scene_init() does. Safe on a half-built scene
+ * and on one already freed. NULL is allowed. */
+void scene_free(scene_t *s);
+
+/* Add material m (from material.h, owned by the scene from now on) under
+ * name. On failure m is freed too, so the caller never has to. Fails with
+ * SVET_ERR_PARSE when the name is already defined, SVET_ERR_RANGE when it
+ * is empty or longer than SCENE_MAX_NAME, SVET_ERR_NOMEM. */
+svet_status scene_add_material(scene_t *s, const char *name,
+                               struct material *m, svet_error *err);
+
+/* Keep an unnamed material m; same ownership rule as scene_add_material.
+ * Fails only with SVET_ERR_NOMEM. */
+svet_status scene_add_anon_material(scene_t *s, struct material *m,
+                                    svet_error *err);
+
+/* The material defined under name, or NULL. This function can't fail. */
+struct material *scene_find_material(const scene_t *s, const char *name);
+
+/* The defined material name nearest to name by edit distance (for "did you
+ * mean" messages), or NULL when none is close. This function can't fail. */
+const char *scene_suggest_material(const scene_t *s, const char *name);
+
+/* Append obj (owned by the scene from now on, freed on failure) with
+ * material m (not NULL; owned by the scene already) and set obj->id.
+ * Fails with SVET_ERR_RANGE when m is NULL, SVET_ERR_NOMEM. */
+svet_status scene_add_object(scene_t *s, COBJECT *obj,
+                             const struct material *m, svet_error *err);
+
+/* Make obj (already in s) an area light of radiance L, on its front side
+ * only or on both; sets obj->light. Fails with SVET_ERR_RANGE on a
+ * negative or non-finite L or when obj already emits, SVET_ERR_NOMEM. */
+svet_status scene_set_emission(scene_t *s, COBJECT *obj, RADIANCE L,
+                               bool two_sided, svet_error *err);
+
+/* Append a point isotropic source of the given intensity (W/sr) at p. Fails with
+ * SVET_ERR_RANGE on a non-finite p or a negative or non-finite intensity,
+ * SVET_ERR_NOMEM. */
+svet_status scene_add_point_light(scene_t *s, const VECTOR3 p, RADIANCE intensity,
+                                  svet_error *err);
+
+/* Check what only the whole scene can tell: the camera's target differs
+ * from its position and up is not along the view direction. Returns
+ * SVET_OK or SVET_ERR_RANGE with the reason. */
+svet_status scene_validate(const scene_t *s, svet_error *err);
+
+/* True when something can emit light: a point light, an emitting object or
+ * the environment. This function can't fail. */
+bool scene_has_lights(const scene_t *s);
+
+#endif
