@@ -96,7 +96,7 @@ static double gamma_q_fraction(double a, double x, double gln)
 double chi2_gamma_q(double a, double x)
 {
     if (!(a > 0) || !(x >= 0) || isinf(a))
-        return NAN;
+        return (double)NAN;
     if (x == 0)
         return 1.0;
     if (isinf(x))
@@ -144,8 +144,8 @@ chi2_result chi2_from_counts(const double *observed, const double *expected,
     chi2_config_defaults(&cfg);
     chi2_result r;
     memset(&r, 0, sizeof r);
-    r.p_value = NAN;
-    r.pdf_integral = NAN;
+    r.p_value = (double)NAN;
+    r.pdf_integral = (double)NAN;
 
     cell_t *c = malloc((size_t)(n > 0 ? n : 1) * sizeof *c);
     if (!c) {
@@ -383,7 +383,7 @@ chi2_result chi2_test(const chi2_config *cfg_in, chi2_sample_fn sample,
     double *expc = calloc((size_t)ncell, sizeof *expc);
     chi2_result r;
     memset(&r, 0, sizeof r);
-    r.p_value = NAN;
+    r.p_value = (double)NAN;
     if (!obs || !expc) {
         free(obs);
         free(expc);
@@ -405,7 +405,7 @@ chi2_result chi2_test(const chi2_config *cfg_in, chi2_sample_fn sample,
             obs[nbins + 1] += 1;
             continue;
         }
-        double x = w[X], y = w[Y], z = w[Z];
+        double x = (double)w[X], y = (double)w[Y], z = (double)w[Z];
         double len = sqrt(x * x + y * y + z * z);
         if (!isfinite(len) || fabs(len - 1) > 1e-4) {
             if (r.invalid++ == 0) {
