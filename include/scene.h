@@ -17,14 +17,14 @@
 #include "radiance.h"
 #include "vec.h"
 
-/* --- limits (documented in scenes/README.md) ------------------------------ */
+/* --- limits (documented in scenes/README.md) -----------------------------*/
 #define SCENE_MAX_RESOLUTION 16384    /* pixels on either side of the image */
 #define SCENE_MAX_PIXELS (1L << 26)   /* width * height: 64 Mpixel */
 #define SCENE_MAX_SPP (1L << 24)      /* samples per pixel */
 #define SCENE_MAX_DEPTH 1024          /* scattering events per path */
 #define SCENE_MAX_NAME 64             /* bytes of a material name */
 
-/* --- the camera (ch. 5; its ray formula is in scenes/README.md) ----------- */
+/* --- the camera (ch. 5; its ray formula is in scenes/README.md) ----------*/
 
 /* Which extent of the image the field of view spans. */
 typedef enum {
@@ -53,7 +53,7 @@ typedef struct {
                                 pixel itself) */
 } scene_camera_t;
 
-/* --- render settings ------------------------------------------------------ */
+/* --- render settings -----------------------------------------------------*/
 
 typedef enum {
     SCENE_INTEGRATOR_PATH = 0,   /* path tracing: NEE + BSDF sampling + MIS */
@@ -115,7 +115,7 @@ typedef struct {
      *    struct: photon maps (ch. 8), the irradiance cache (ch. 9). -- */
 } scene_render_t;
 
-/* --- lights (ch. 5) ------------------------------------------------------- */
+/* --- lights (ch. 5) ------------------------------------------------------*/
 
 /* A point isotropic source: radiant intensity I (W/sr) in every direction,
  * so its power is Phi = 4 pi I. */
@@ -140,7 +140,7 @@ typedef struct {
     struct material *material; /* material_t of material.h */
 } scene_material_t;
 
-/* --- the scene ------------------------------------------------------------ */
+/* --- the scene -----------------------------------------------------------*/
 
 typedef struct {
     char *path;                 /* the file it was read from, or NULL. Owned */
@@ -200,9 +200,16 @@ svet_status scene_add_anon_material(scene_t *s, struct material *m,
 /* The material defined under name, or NULL. This function can't fail. */
 struct material *scene_find_material(const scene_t *s, const char *name);
 
-/* The defined material name nearest to name by edit distance (for "did you
- * mean" messages), or NULL when none is close. This function can't fail. */
+/* The defined material name nearest to name, as scene_nearest_name()
+ * chooses, or NULL when none is close. This function can't fail. */
 const char *scene_suggest_material(const scene_t *s, const char *name);
+
+/* Of the n names, the one nearest to name by edit distance (Levenshtein),
+ * if it is close enough to be a typo (at most 2 edits, and at most about a
+ * third of name's length); else NULL. For "did you mean" messages. This
+ * function can't fail. */
+const char *scene_nearest_name(const char *name, const char *const *names,
+                               int n);
 
 /* Append obj (owned by the scene from now on, freed on failure) with
  * material m (not NULL; owned by the scene already) and set obj->id.
@@ -216,11 +223,11 @@ svet_status scene_add_object(scene_t *s, COBJECT *obj,
 svet_status scene_set_emission(scene_t *s, COBJECT *obj, RADIANCE L,
                                bool two_sided, svet_error *err);
 
-/* Append a point isotropic source of the given intensity (W/sr) at p. Fails with
- * SVET_ERR_RANGE on a non-finite p or a negative or non-finite intensity,
- * SVET_ERR_NOMEM. */
-svet_status scene_add_point_light(scene_t *s, const VECTOR3 p, RADIANCE intensity,
-                                  svet_error *err);
+/* Append a point isotropic source of the given intensity (W/sr) at p.
+ * Fails with SVET_ERR_RANGE on a non-finite p or a negative or non-finite
+ * intensity, SVET_ERR_NOMEM. */
+svet_status scene_add_point_light(scene_t *s, const VECTOR3 p,
+                                  RADIANCE intensity, svet_error *err);
 
 /* Check what only the whole scene can tell: the camera's target differs
  * from its position and up is not along the view direction. Returns
