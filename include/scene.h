@@ -22,6 +22,7 @@
 #define SCENE_MAX_PIXELS (1L << 26)   /* width * height: 64 Mpixel */
 #define SCENE_MAX_SPP (1L << 24)      /* samples per pixel */
 #define SCENE_MAX_DEPTH 1024          /* scattering events per path */
+#define SCENE_MAX_THREADS 1024        /* render threads */
 #define SCENE_MAX_NAME 64             /* bytes of a material name */
 
 /* --- the camera (ch. 5; its ray formula is in scenes/README.md) ----------*/
@@ -69,24 +70,34 @@ typedef enum {
     SCENE_ACCEL_HGRID = 3  /* hierarchical grid */
 } scene_accel;
 
-/* Tone-mapping operators of ch. 6 (tonemap.h implements them). */
+/* Tone-mapping operators of ch. 6, in the order of tonemap.h's
+ * tonemap_op_t (the values are equal, so a cast converts). */
 typedef enum {
-    SCENE_TONEMAP_LINEAR = 0,      /* exposure, then the sRGB curve */
-    SCENE_TONEMAP_GAMMA = 1,       /* exposure, then v^(1/gamma) */
-    SCENE_TONEMAP_EXPONENTIAL = 2, /* 1 - exp(-L/L_avg) */
-    SCENE_TONEMAP_REINHARD = 3,    /* Reinhard et al. 2002, global */
-    SCENE_TONEMAP_LOG = 4,         /* logarithmic, Drago et al. 2003 */
-    SCENE_TONEMAP_HISTOGRAM = 5    /* Ward Larson, Rushmeier, Piatko 1997 */
+    SCENE_TONEMAP_LINEAR = 0,      /* exposure only: clips the highlights */
+    SCENE_TONEMAP_EXPONENTIAL = 1, /* 1 - exp(-L/L_avg) */
+    SCENE_TONEMAP_REINHARD = 2,    /* Reinhard et al. 2002, global */
+    SCENE_TONEMAP_DRAGO = 3,       /* logarithmic, Drago et al. 2003 */
+    SCENE_TONEMAP_HISTOGRAM = 4    /* Ward Larson, Rushmeier, Piatko 1997 */
 } scene_tonemap_op;
+
+/* The display curve after the operator, in the order of tonemap.h's
+ * tonemap_curve_t. */
+typedef enum {
+    SCENE_CURVE_SRGB = 0,  /* IEC 61966-2-1 */
+    SCENE_CURVE_GAMMA = 1, /* v^(1/gamma) */
+    SCENE_CURVE_NONE = 2   /* display-linear */
+} scene_tonemap_curve;
 
 typedef struct {
     scene_tonemap_op op;
-    real exposure; /* stops: the image is scaled by 2^exposure first */
-    real gamma;    /* SCENE_TONEMAP_GAMMA's exponent, > 0 */
-    real key;      /* Reinhard's key value a (0.18) */
-    real white;    /* Reinhard's white point L_white, in units of the
-                      scaled luminance; 0 = the image maximum */
-    real bias;     /* Drago's bias b (0.85) */
+    real exposure;             /* stops: the image is scaled by 2^exposure
+                                  first */
+    real key;                  /* Reinhard's key value a (0.18) */
+    real white;                /* Reinhard's L_white, in units of the scaled
+                                  luminance; 0 = the image maximum */
+    real bias;                 /* Drago's bias b, in (0, 1] (0.85) */
+    scene_tonemap_curve curve; /* the display curve (sRGB) */
+    real gamma;                /* SCENE_CURVE_GAMMA's exponent, > 0 (2.2) */
 } scene_tonemap_t;
 
 typedef struct {
