@@ -11,6 +11,11 @@
 /* Type-generic maths: sqrt(x) is sqrtf for float x and sqrt for double,
  * so one source serves both builds. */
 #include <tgmath.h>
+/* <tgmath.h> includes <complex.h>, whose macros `I` and `complex` would
+ * take the book's symbol for intensity (I = Phi / (4 pi)); svet uses no
+ * complex numbers. */
+#undef I
+#undef complex
 
 #ifdef SVET_DOUBLE
 typedef double real;
