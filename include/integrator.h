@@ -1,0 +1,68 @@
+/*
+ * integrator.h - the estimators of the rendering equation (ch. 3, eq. of
+ * Kajiya 1986) by the Monte Carlo method of ch. 4, in the cases ch. 5 walks
+ * through: a path tracer with next-event estimation (light sampling) and
+ * BSDF sampling combined by multiple importance sampling with the power
+ * heuristic (Veach 1997, sec. 9.2), Russian roulette, and the reduced
+ * strategies ch. 5 compares: direct lighting only, BSDF sampling only, and
+ * ambient occlusion.
+ * Tests: tests/test_integrator.c (analytic scenes with exact answers)
+ */
+#ifndef SVET_INTEGRATOR_H
+#define SVET_INTEGRATOR_H
+
+#include <stdint.h>
+#include "cobject.h"
+#include "light.h"
+#include "radiance.h"
+#include "rng.h"
+#include "scene.h"
+
+/* How rays find surfaces: brute force over the scene's objects, or an
+ * acceleration structure (ch. 7). */
+typedef struct {
+    /* Nearest hit in (tmin, tmax): fills *hit and *obj. */
+    bool (*intersect)(const void *ctx, const ray_t *r, real tmin, real tmax,
+                      hit_t *hit, const COBJECT **obj);
+    /* Any hit in (tmin, tmax) (shadow rays). */
+    bool (*occluded)(const void *ctx, const ray_t *r, real tmin, real tmax);
+    const void *ctx;
+} tracer_t;
+
+/* A tracer that tests every object of s (ch. 7 starts from this). */
+tracer_t tracer_brute(const scene_t *s);
+
+typedef struct {
+    const scene_t *scene;
+    const lightset_t *lights;   /* NULL or empty when the scene has none */
+    tracer_t tracer;
+    scene_integrator mode;      /* path, direct, bsdf, ao */
+    int max_depth;              /* scattering events (scene.h) */
+    bool roulette;
+    int roulette_depth;
+    real ao_distance;           /* 0 = unlimited */
+} integrator_t;
+
+/* Per-thread counters. */
+typedef struct {
+    uint64_t rays;        /* every ray traced: camera, bounce and shadow */
+    uint64_t paths;
+} integrator_stats_t;
+
+/* Set up from a scene's render settings. `lights` may be NULL when the
+ * scene has none. This function can't fail. */
+void integrator_init(integrator_t *it, const scene_t *s,
+                     const lightset_t *lights, tracer_t tracer);
+
+/* The radiance arriving at the camera along -r.d, estimated from one path
+ * whose random numbers are drawn from g in a fixed order. Never negative;
+ * may be NaN only if the scene's data is (the caller counts those). */
+RADIANCE integrator_li(const integrator_t *it, const ray_t *r, pcg32_t *g,
+                       integrator_stats_t *st);
+
+/* The power heuristic with beta = 2 for two strategies with densities a
+ * (the one used) and b: a^2 / (a^2 + b^2), computed without overflow;
+ * 0 when a is 0. */
+real integrator_mis_weight(real a, real b);
+
+#endif

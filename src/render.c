@@ -1,0 +1,153 @@
+/*
+ * render.c - tiles, passes and threads around the integrator (ch. 5).
+ * Tests: tests/test_render.c
+ */
+#include "render.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->scene = s;
+    const scene_camera_t *c = &s->camera;
+    camera_fov_axis axis = c->fov_axis == SCENE_FOV_Y ? CAMERA_FOV_Y
+                           : c->fov_axis == SCENE_FOV_DIAGONAL
+                               ? CAMERA_FOV_DIAGONAL
+                               : CAMERA_FOV_X;
+    svet_status st = camera_init(&r->camera, c->position, c->target, c->up,
+                                 c->fov, axis, c->width, c->height, err);
+    if (st != SVET_OK)
+        return st;
+    /* "Model only what the scene requires": no light table without lights */
+    if (scene_has_lights(s)) {
+        st = lightset_build(&r->lights, s, err);
+        if (st != SVET_OK)
+            return st;
+    }
+    r->tracer = tracer_brute(s);
+    snprintf(r->accel_choice, sizeof r->accel_choice,
+             "brute force over %d objects", s->nobjects);
+    integrator_init(&r->integrator, s, &r->lights, r->tracer);
+    st = image_accum_alloc(&r->acc, c->width, c->height, err);
+    if (st != SVET_OK) {
+        render_free(r);
+        return st;
+    }
+    r->sum2 = calloc((size_t)c->width * (size_t)c->height * 3, sizeof *r->sum2);
+    if (!r->sum2) {
+        render_free(r);
+        return svet_error_set(err, SVET_ERR_NOMEM, "render: out of memory");
+    }
+    return SVET_OK;
+}
+
+void render_free(render_t *r)
+{
+    lightset_free(&r->lights);
+    if (r->accel && r->accel_free)
+        r->accel_free(r->accel);
+    image_accum_free(&r->acc);
+    free(r->sum2);
+    memset(r, 0, sizeof *r);
+}
+
+RADIANCE render_sample(const render_t *r, int x, int y, long sample,
+                       integrator_stats_t *st)
+{
+    uint64_t pixel = (uint64_t)y * (uint64_t)r->camera.width + (uint64_t)x;
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed, pixel, (uint64_t)sample);
+    /* dimensions 0, 1: the position in the pixel (box filter) */
+    real jx = pcg32_real(&g), jy = pcg32_real(&g);
+    ray_t ray;
+    camera_ray(&r->camera, (real)x + jx, (real)y + jy, &ray);
+    return integrator_li(&r->integrator, &ray, &g, st);
+}
+
+void render_pass(render_t *r, long spp_end, int threads,
+                 render_progress_fn progress, void *ctx)
+{
+    const int W = r->camera.width, H = r->camera.height;
+    const int tx = (W + RENDER_TILE - 1) / RENDER_TILE;
+    const int ty = (H + RENDER_TILE - 1) / RENDER_TILE;
+    const long ntiles = (long)tx * ty;
+    const long s0 = r->spp_done;
+    long done = 0;
+    uint64_t rays = 0, paths = 0;
+#ifdef _OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) \
+    reduction(+ : rays, paths)
+#else
+    (void)threads;
+#endif
+    for (long t = 0; t < ntiles; t++) {
+        integrator_stats_t st = { 0, 0 };
+        int x0 = (int)(t % tx) * RENDER_TILE, y0 = (int)(t / tx) * RENDER_TILE;
+        int x1 = x0 + RENDER_TILE < W ? x0 + RENDER_TILE : W;
+        int y1 = y0 + RENDER_TILE < H ? y0 + RENDER_TILE : H;
+        for (int y = y0; y < y1; y++)
+            for (int x = x0; x < x1; x++)
+                for (long s = s0; s < spp_end; s++) {
+                    RADIANCE L = render_sample(r, x, y, s, &st);
+                    image_accum_add(&r->acc, x, y, L);
+                    if (rad_is_finite(L)) {
+                        double *q = r->sum2 + 3 * ((size_t)y * (size_t)W + (size_t)x);
+                        q[0] += (double)L.r * (double)L.r;
+                        q[1] += (double)L.g * (double)L.g;
+                        q[2] += (double)L.b * (double)L.b;
+                    }
+                }
+        rays += st.rays;
+        paths += st.paths;
+        if (progress) {
+#ifdef _OPENMP
+#pragma omp critical(svet_render_progress)
+#endif
+            {
+                done++;
+                progress(ctx, done, ntiles);
+            }
+        }
+    }
+    r->stats.rays += rays;
+    r->stats.paths += paths;
+    r->spp_done = spp_end > s0 ? spp_end : s0;
+}
+
+svet_status render_image(const render_t *r, image_t *out, svet_error *err)
+{
+    uint64_t empty;
+    return image_accum_resolve(&r->acc, out, &empty, err);
+}
+
+svet_status render_variance(const render_t *r, image_t *out, svet_error *err)
+{
+    const int W = r->camera.width, H = r->camera.height;
+    svet_status st = image_alloc(out, W, H, 3, err);
+    if (st != SVET_OK)
+        return st;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * (size_t)W + (size_t)x;
+            double n = (double)r->acc.count[i];
+            float *p = image_at(out, x, y);
+            for (int c = 0; c < 3; c++) {
+                if (n < 2) {
+                    p[c] = 0;
+                    continue;
+                }
+                double mean = r->acc.sum[3 * i + c] / n;
+                double s2 = (r->sum2[3 * i + c] - n * mean * mean) / (n - 1);
+                p[c] = (float)(s2 > 0 ? s2 / n : 0);
+            }
+        }
+    return SVET_OK;
+}
