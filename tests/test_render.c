@@ -1,0 +1,128 @@
+/*
+ * test_render.c - the image loop: bit-identical images for any thread count
+ * and pass split (the numbers of a sample depend only on seed, pixel and
+ * sample index), two half renders merging into the full one, and the
+ * variance image against the spread of the samples.
+ */
+#include "testutil.h"
+#include "disk.h"
+#include "material.h"
+#include "render.h"
+#include "sphere.h"
+
+#include <string.h>
+
+static void small_scene(scene_t *s)
+{
+    scene_init(s);
+    material_params p;
+    material_params_default(&p);
+    p.rho_d = rad_make(0.7, 0.5, 0.3);
+    material_t *m;
+    ck_assert_int_eq(material_new(&p, &m, NULL), SVET_OK);
+    ck_assert_int_eq(scene_add_anon_material(s, m, NULL), SVET_OK);
+    VECTOR3 c = { 0, 0, 0 }, up = { 0, 1, 0 }, floor_c = { 0, -1, 0 };
+    VECTOR3 lc = { 0, 3, 0 }, down = { 0, -1, 0 };
+    ck_assert_int_eq(scene_add_object(s, sphere_new(c, 1, NULL), m, NULL), SVET_OK);
+    ck_assert_int_eq(scene_add_object(s, disk_new(floor_c, up, 5, NULL), m, NULL),
+                     SVET_OK);
+    COBJECT *l = disk_new(lc, down, 1, NULL);
+    ck_assert_int_eq(scene_add_object(s, l, m, NULL), SVET_OK);
+    ck_assert_int_eq(scene_set_emission(s, l, rad_grey(5), false, NULL), SVET_OK);
+    VECTOR3 pl = { 2, 2, 2 };
+    ck_assert_int_eq(scene_add_point_light(s, pl, rad_grey(3), NULL), SVET_OK);
+    vec_set(s->camera.position, 0, 1, 5);
+    vec_set(s->camera.target, 0, 0, 0);
+    s->camera.width = 24;
+    s->camera.height = 20;
+    s->render.max_depth = 5;
+    s->render.seed = 42;
+}
+
+START_TEST(image_is_identical_for_any_threads_and_passes)
+{
+    scene_t s;
+    small_scene(&s);
+    render_t a, b;
+    ck_assert_int_eq(render_init(&a, &s, NULL), SVET_OK);
+    ck_assert_int_eq(render_init(&b, &s, NULL), SVET_OK);
+    render_pass(&a, 8, 1, NULL, NULL);             /* one thread, one pass */
+    render_pass(&b, 3, 2, NULL, NULL);             /* two threads, 3 passes */
+    render_pass(&b, 5, 2, NULL, NULL);
+    render_pass(&b, 8, 2, NULL, NULL);
+    size_t n = (size_t)s.camera.width * (size_t)s.camera.height;
+    ck_assert(memcmp(a.acc.sum, b.acc.sum, 3 * n * sizeof(double)) == 0);
+    ck_assert(memcmp(a.acc.count, b.acc.count, n * sizeof(uint64_t)) == 0);
+    ck_assert(memcmp(a.sum2, b.sum2, 3 * n * sizeof(double)) == 0);
+    ck_assert(a.stats.rays == b.stats.rays && a.stats.rays > 0);
+    ck_assert(image_accum_samples(&a.acc) == 8 * n);
+    render_free(&a);
+    render_free(&b);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(two_half_renders_merge_into_the_full_one)
+{
+    scene_t s;
+    small_scene(&s);
+    render_t full, h1, h2;
+    ck_assert_int_eq(render_init(&full, &s, NULL), SVET_OK);
+    ck_assert_int_eq(render_init(&h1, &s, NULL), SVET_OK);
+    ck_assert_int_eq(render_init(&h2, &s, NULL), SVET_OK);
+    render_pass(&full, 10, 2, NULL, NULL);
+    render_pass(&h1, 5, 1, NULL, NULL);
+    h2.spp_done = 5; /* the second machine renders samples 5..9 */
+    render_pass(&h2, 10, 2, NULL, NULL);
+    ck_assert_int_eq(image_accum_merge(&h1.acc, &h2.acc, NULL), SVET_OK);
+    size_t n = (size_t)s.camera.width * (size_t)s.camera.height;
+    ck_assert(memcmp(full.acc.count, h1.acc.count, n * sizeof(uint64_t)) == 0);
+    /* The same samples, summed in another grouping: equal up to the
+     * rounding of 10 additions in double */
+    for (size_t i = 0; i < 3 * n; i++)
+        ck_assert_rel(h1.acc.sum[i], full.acc.sum[i], 16 * 0x1p-52, 1e-300);
+    render_free(&full);
+    render_free(&h1);
+    render_free(&h2);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(variance_image_matches_the_spread_of_the_samples)
+{
+    scene_t s;
+    small_scene(&s);
+    render_t r;
+    ck_assert_int_eq(render_init(&r, &s, NULL), SVET_OK);
+    const long spp = 16;
+    render_pass(&r, spp, 0, NULL, NULL);
+    image_t var;
+    ck_assert_int_eq(render_variance(&r, &var, NULL), SVET_OK);
+    /* recompute pixel (12, 10) from its samples by the two-pass formula */
+    double v[16], mean = 0;
+    integrator_stats_t st = { 0, 0 };
+    for (long k = 0; k < spp; k++) {
+        v[k] = (double)render_sample(&r, 12, 10, k, &st).g;
+        mean += v[k] / spp;
+    }
+    double s2 = 0;
+    for (long k = 0; k < spp; k++)
+        s2 += (v[k] - mean) * (v[k] - mean) / (spp - 1);
+    ck_assert_rel(image_at(&var, 12, 10)[1], s2 / spp, 1e-5, 1e-12);
+    image_free(&var);
+    render_free(&r);
+    scene_free(&s);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("render (" REAL_NAME ")");
+    TCase *tc = tcase_create("loop");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, image_is_identical_for_any_threads_and_passes);
+    tcase_add_test(tc, two_half_renders_merge_into_the_full_one);
+    tcase_add_test(tc, variance_image_matches_the_spread_of_the_samples);
+    suite_add_tcase(s, tc);
+    return s;
+}
