@@ -42,6 +42,14 @@ bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
 bool triangle_is_degenerate(const VECTOR3 p0, const VECTOR3 p1,
                             const VECTOR3 p2);
 
+/* The point p = b0 p0 + b1 p1 + b2 p2 of the triangle at barycentrics b
+ * (b as triangle_intersect_watertight or a sampler computed them, so their
+ * sum is 1 only to rounding) and p_error, a bound per axis on its distance
+ * from the triangle: gamma(7) sum_i |b_i p_i| (pbrt-v3 sec. 3.9.5). This
+ * function can't fail. */
+void triangle_point(VECTOR3 p, VECTOR3 p_error, const VECTOR3 p0,
+                    const VECTOR3 p1, const VECTOR3 p2, const real b[3]);
+
 /* Fill the geometric part of pp for the point with barycentrics b of the
  * triangle p0 p1 p2 (as triangle_intersect_watertight returns them):
  * cross_point = b0 p0 + b1 p1 + b2 p2 and its error bound p_error; ng =

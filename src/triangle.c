@@ -5,7 +5,7 @@
  * Tests: tests/test_triangle.c; vectors: tests/vectors/triangle.csv
  */
 #include "triangle.h"
-#include "frame.h"
+#include "shape.h"
 
 #include <stdlib.h>
 
@@ -93,20 +93,24 @@ bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
     if (!isfinite(tt))
         return false;
 
-    /* pbrt-v3 sec. 3.9.6: a conservative bound deltaT on the error of tt.
-     * z's: one product after one subtraction, gamma(3)... as derived there:
-     * the sheared x, y carry gamma(5) (max|x| + max|z|), the edge functions
-     * deltaE, and t = sum e_i z_i / det carries deltaT. A hit that may
-     * truly lie at t <= 0 is rejected, so a ray leaving the triangle never
-     * finds it again at t ~ 0. Applied when tmin >= 0 only, so a caller
-     * asking for t < 0 still gets it. */
+    /* pbrt-v3 sec. 3.9.6: a conservative bound dt on the error of tt.
+     * The sheared x, y carry gamma(5) (max|x| + max|a_z|), the edge
+     * functions de, the scaled z's gamma(3) max|z|, and t = sum e_i z_i /
+     * det carries dt. One departure: pbrt-v3 uses the scaled z's (in units
+     * of t) in the x and y terms (in units of length), which is right only
+     * for |d| near 1; here the unscaled a_z keep the units apart, so the
+     * bound holds for any length of d. A hit that may truly lie at t <= 0
+     * is rejected, so a ray leaving the triangle never finds it again at
+     * t ~ 0. Applied when tmin >= 0 only, so a caller asking for t < 0
+     * still gets it. */
     if (tmin >= 0) {
         real max_z = fmax(fabs(z0), fmax(fabs(z1), fabs(z2)));
+        real max_az = fmax(fabs(a0[kz]), fmax(fabs(a1[kz]), fabs(a2[kz])));
         real max_x = fmax(fabs(x0), fmax(fabs(x1), fabs(x2)));
         real max_y = fmax(fabs(y0), fmax(fabs(y1), fabs(y2)));
         real dz = ray_gamma(3) * max_z;
-        real dx = ray_gamma(5) * (max_x + max_z);
-        real dy = ray_gamma(5) * (max_y + max_z);
+        real dx = ray_gamma(5) * (max_x + max_az);
+        real dy = ray_gamma(5) * (max_y + max_az);
         real de = 2 * (ray_gamma(2) * max_x * max_y + dy * max_x +
                        dx * max_y);
         real max_e = fmax(fabs(e0), fmax(fabs(e1), fabs(e2)));
@@ -152,4 +156,182 @@ bool triangle_is_degenerate(const VECTOR3 p0, const VECTOR3 p1,
             return false;
     }
     return true;
+}
+
+void triangle_point(VECTOR3 p, VECTOR3 p_error, const VECTOR3 p0,
+                    const VECTOR3 p1, const VECTOR3 p2, const real b[3])
+{
+    /* Reconstructing the point from barycentrics instead of o + t d keeps
+     * it on the triangle's plane (pbrt-v3 sec. 3.9.5). Error: the real
+     * numbers b_i sum to 1 + eps with |eps| <= gamma(4) (each b_i = e_i/det
+     * carries one division, det two additions; a sampler's b2 = 1 - b0 - b1
+     * two subtractions), so the exact sum_i b_i p_i lies within
+     * gamma(4) sum|b_i p_i| of the affine combination sum_i b_i p_i /
+     * sum_j b_j, a point of the triangle's plane; evaluating the sum costs
+     * one product and two additions, gamma(3) sum|b_i p_i| more:
+     * gamma(4) + gamma(3) <= gamma(7). */
+    for (int k = 0; k < 3; k++) {
+        real a = b[0] * p0[k], c = b[1] * p1[k], d = b[2] * p2[k];
+        p[k] = a + c + d;
+        p_error[k] = ray_gamma(7) * (fabs(a) + fabs(c) + fabs(d));
+    }
+}
+
+void triangle_fill_surface(const VECTOR3 p0, const VECTOR3 p1,
+                           const VECTOR3 p2, const VECTOR3 normals[3],
+                           const real b[3], PATHPOINT *pp)
+{
+    triangle_point(pp->cross_point, pp->p_error, p0, p1, p2, b);
+    /* app. D: the parameterisation p = p0 + s (p1 - p0) + t (p2 - p0),
+     * s = b1, t = b2 */
+    vec_sub(pp->dpds, p1, p0);
+    vec_sub(pp->dpdt, p2, p0);
+    pp->st[0] = fmin(fmax(b[1], REAL_C(0.0)), REAL_C(1.0));
+    pp->st[1] = fmin(fmax(b[2], REAL_C(0.0)), REAL_C(1.0));
+    if (!shape_unit_cross(pp->ng, pp->dpds, pp->dpdt))
+        vec_set(pp->ng, 0, 0, 1);
+    vec_copy(pp->n, pp->ng);
+    if (normals) {
+        /* Phong's interpolated shading normal */
+        VECTOR3 ns;
+        for (int k = 0; k < 3; k++)
+            ns[k] = b[0] * normals[0][k] + b[1] * normals[1][k] +
+                    b[2] * normals[2][k];
+        if (vec_normalize(ns, ns) > 0)
+            vec_copy(pp->n, ns);
+    }
+    shape_frame(pp->u, pp->v, pp->n, pp->dpds);
+}
+
+void triangle_sample_point(const VECTOR3 p0, const VECTOR3 p1,
+                           const VECTOR3 p2, const real u[2],
+                           cobject_sample_t *s)
+{
+    VECTOR3 e1, e2;
+    vec_sub(e1, p1, p0);
+    vec_sub(e2, p2, p0);
+    real area = REAL_C(0.5) * shape_cross_length(e1, e2);
+    if (triangle_is_degenerate(p0, p1, p2) || !isfinite(area)) {
+        vec_copy(s->p, p0);
+        vec_set(s->n, 0, 0, 1);
+        vec_set(s->p_error, 0, 0, 0);
+        s->pdf = 0;
+        return;
+    }
+    /* Uniform barycentrics by the square-root map, b0 = 1 - sqrt(u0),
+     * b1 = u1 sqrt(u0) (Shirley & Chiu; pbrt-v3 sec. 13.6.5). */
+    real su = sqrt(u[0]);
+    real b[3] = { 1 - su, u[1] * su, 0 };
+    b[2] = fmax(1 - b[0] - b[1], REAL_C(0.0));
+    triangle_point(s->p, s->p_error, p0, p1, p2, b);
+    shape_unit_cross(s->n, e1, e2);
+    s->pdf = 1 / area;
+}
+
+/* --- the triangle COBJECT ------------------------------------------------ */
+
+typedef struct {
+    VECTOR3 p[3];       /* corners */
+    VECTOR3 normals[3]; /* unit vertex normals when has_normals */
+    bool has_normals;
+    bool degenerate;    /* triangle_is_degenerate(): never hit */
+    real area;
+} triangle_shape;
+
+static bool tri_intersect(const COBJECT *obj, int prim, const ray_t *r,
+                          real tmin, real tmax, hit_t *hit)
+{
+    const triangle_shape *s = obj->shape;
+    if (s->degenerate)
+        return false;
+    if (!triangle_intersect_watertight(s->p[0], s->p[1], s->p[2], r, tmin,
+                                       tmax, &hit->t, hit->b))
+        return false;
+    hit->prim = prim;
+    return true;
+}
+
+static void tri_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
+                        PATHPOINT *pp)
+{
+    (void)r;
+    const triangle_shape *s = obj->shape;
+    triangle_fill_surface(s->p[0], s->p[1], s->p[2],
+                          s->has_normals ? s->normals : NULL, hit->b, pp);
+}
+
+static void tri_bounds(const COBJECT *obj, int prim, bbox_t *b)
+{
+    (void)prim;
+    const triangle_shape *s = obj->shape;
+    bbox_empty(b);
+    for (int i = 0; i < 3; i++)
+        bbox_add_point(b, s->p[i]);
+}
+
+static real tri_area(const COBJECT *obj)
+{
+    return ((const triangle_shape *)obj->shape)->area;
+}
+
+static void tri_sample(const COBJECT *obj, const real u[2],
+                       cobject_sample_t *smp)
+{
+    const triangle_shape *s = obj->shape;
+    triangle_sample_point(s->p[0], s->p[1], s->p[2], u, smp);
+}
+
+static const cobject_ops triangle_ops = {
+    "triangle", tri_intersect, tri_surface, tri_bounds, tri_area, tri_sample,
+    NULL
+};
+
+COBJECT *triangle_new(const VECTOR3 p0, const VECTOR3 p1, const VECTOR3 p2,
+                      svet_error *err)
+{
+    if (shape_check_finite("triangle", "p0", p0, err) ||
+        shape_check_finite("triangle", "p1", p1, err) ||
+        shape_check_finite("triangle", "p2", p2, err))
+        return NULL;
+    VECTOR3 e1, e2;
+    vec_sub(e1, p1, p0);
+    vec_sub(e2, p2, p0);
+    real area = REAL_C(0.5) * shape_cross_length(e1, e2);
+    if (!vec_is_finite(e1) || !vec_is_finite(e2) || !isfinite(area)) {
+        svet_error_set(err, SVET_ERR_RANGE, "triangle: edges or area exceed "
+                       "the largest %s", REAL_NAME);
+        return NULL;
+    }
+    COBJECT *obj = shape_alloc(&triangle_ops, sizeof(triangle_shape), err);
+    if (!obj)
+        return NULL;
+    triangle_shape *s = obj->shape;
+    vec_copy(s->p[0], p0);
+    vec_copy(s->p[1], p1);
+    vec_copy(s->p[2], p2);
+    s->degenerate = triangle_is_degenerate(p0, p1, p2);
+    s->area = s->degenerate ? 0 : area;
+    return obj;
+}
+
+svet_status triangle_set_normals(COBJECT *obj, const VECTOR3 n0,
+                                 const VECTOR3 n1, const VECTOR3 n2,
+                                 svet_error *err)
+{
+    if (!obj || obj->ops != &triangle_ops)
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "triangle_set_normals: not a triangle");
+    const real *n[3] = { n0, n1, n2 };
+    VECTOR3 unit[3];
+    for (int i = 0; i < 3; i++)
+        if (vec_normalize(unit[i], n[i]) == 0)
+            return svet_error_set(err, SVET_ERR_RANGE,
+                                  "triangle: vertex normal %d (%g, %g, %g) is "
+                                  "zero or not finite", i, (double)n[i][X],
+                                  (double)n[i][Y], (double)n[i][Z]);
+    triangle_shape *s = obj->shape;
+    for (int i = 0; i < 3; i++)
+        vec_copy(s->normals[i], unit[i]);
+    s->has_normals = true;
+    return SVET_OK;
 }

@@ -1,0 +1,264 @@
+/*
+ * vectors_flat.c - writes the test vectors of the flat primitives of app. D
+ * and of affine transforms: DIR/triangle.csv, plane.csv, parallelogram.csv,
+ * box.csv, xform.csv (make vectors; usage: vectors_flat DIR).
+ * Inputs are floats (printed with 17 digits: exact in float and double).
+ * Expected values are computed in long double by the textbook formula of
+ * each shape, independent of the robust code under test: Moller-Trumbore
+ * for the triangle, the plane equation and Cramer's rule for planes and
+ * parallelograms, the Kay-Kajiya slab test for the box, and for transforms
+ * the 4x4 matrix of scale, Rodrigues rotation and translation with the
+ * inverse built from the inverse factors, applied to the same formulas.
+ * Cases stay clear of edges (barycentric or (s, t) margins of at least
+ * 0.05), so that a float and a double port agree on hit or miss.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "rng.h"
+
+typedef long double ld;
+
+#define U_FLOAT 0x1p-24 /* unit roundoff of float */
+#define U_DOUBLE 0x1p-53
+
+static FILE *open_csv(const char *dir, const char *name, const char *what,
+                      const char *header)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s.tmp", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        perror(path);
+        exit(1);
+    }
+    fprintf(f, "# %s\n# Written by tools/vectors_flat.c (make vectors). "
+               "Inputs are floats (exact decimal); expected values long "
+               "double.\n%s\n", what, header);
+    return f;
+}
+
+/* Close and move NAME.tmp over NAME, so a failed run leaves the old file. */
+static void close_csv(FILE *f, const char *dir, const char *name)
+{
+    char tmp[1024], path[1024];
+    snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, name);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (fclose(f) != 0 || rename(tmp, path) != 0) {
+        perror(path);
+        exit(1);
+    }
+}
+
+/* A float uniform in [lo, hi): 24 random bits, the same in every build. */
+static float rnd(pcg32_t *g, float lo, float hi)
+{
+    float u = (float)(pcg32_next(g) >> 8) * 0x1p-24f;
+    return lo + (hi - lo) * u;
+}
+
+static ld dotl(const ld a[3], const ld b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void crossl(ld c[3], const ld a[3], const ld b[3])
+{
+    ld x = a[1] * b[2] - a[2] * b[1];
+    ld y = a[2] * b[0] - a[0] * b[2];
+    ld z = a[0] * b[1] - a[1] * b[0];
+    c[0] = x; c[1] = y; c[2] = z;
+}
+
+static ld lenl(const ld a[3])
+{
+    return sqrtl(dotl(a, a));
+}
+
+static void subl(ld c[3], const ld a[3], const ld b[3])
+{
+    for (int k = 0; k < 3; k++)
+        c[k] = a[k] - b[k];
+}
+
+/* a random unit vector, long double */
+static void unitl(ld w[3], pcg32_t *g)
+{
+    ld len;
+    do {
+        for (int k = 0; k < 3; k++)
+            w[k] = rnd(g, -1, 1);
+        len = lenl(w);
+    } while (len < 0.1L || len > 1);
+    for (int k = 0; k < 3; k++)
+        w[k] /= len;
+}
+
+/* round a long double vector to floats, and read it back exactly */
+static void tofloat(ld a[3])
+{
+    for (int k = 0; k < 3; k++)
+        a[k] = (float)a[k];
+}
+
+static void put3(FILE *f, const ld a[3])
+{
+    fprintf(f, "%.17g,%.17g,%.17g,", (double)a[0], (double)a[1],
+            (double)a[2]);
+}
+
+static void put3e(FILE *f, const ld a[3])
+{
+    fprintf(f, "%.17Lg,%.17Lg,%.17Lg,", a[0], a[1], a[2]);
+}
+
+static ld max_abs3(const ld a[3])
+{
+    return fmaxl(fabsl(a[0]), fmaxl(fabsl(a[1]), fabsl(a[2])));
+}
+
+/* The tolerances of a row: 32 u kappa, where kappa is the condition of
+ * the hit: the size of the coordinates against the distance travelled
+ * across the surface's normal (a grazing hit or one far from the origin
+ * amplifies rounding), or the shape's thinness |e1||e2| / |e1 x e2| for
+ * its normal; plus one. */
+static void put_tol(FILE *f, ld kappa)
+{
+    fprintf(f, "%.3Lg,%.3Lg,", 32 * (kappa + 1) * U_FLOAT,
+            32 * (kappa + 1) * U_DOUBLE);
+}
+
+/* A ray from a random point at distance [0.5, 3) s of `target`, at least
+ * 0.3 away from the plane of unit normal n in cosine, aimed at target,
+ * with a direction of random length in [0.1, 10) times the distance.
+ * o and d are rounded to floats. Returns |cos| of the ray to n. */
+static ld aim(ld o[3], ld d[3], const ld target[3], const ld n[3], ld s,
+              pcg32_t *g)
+{
+    ld w[3];
+    do
+        unitl(w, g);
+    while (fabsl(dotl(w, n)) < 0.3L);
+    ld dist = s * rnd(g, 0.5f, 3);
+    for (int k = 0; k < 3; k++)
+        o[k] = target[k] + dist * w[k];
+    tofloat(o);
+    ld len = rnd(g, 0.1f, 10);
+    for (int k = 0; k < 3; k++)
+        d[k] = (target[k] - o[k]) * len;
+    tofloat(d);
+    return fabsl(dotl(w, n));
+}
+
+/* --- triangle --------------------------------------------------------------- */
+
+/* Moller & Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection",
+ * JGT 2(1), 1997, in long double: t and barycentrics by Cramer's rule. */
+static int moller_trumbore(ld p[3][3], const ld o[3], const ld d[3],
+                           ld *t, ld b[2])
+{
+    ld e1[3], e2[3], P[3], T[3], Q[3];
+    subl(e1, p[1], p[0]);
+    subl(e2, p[2], p[0]);
+    crossl(P, d, e2);
+    ld det = dotl(e1, P);
+    if (fabsl(det) < 1e-30L * lenl(e1) * lenl(e2) * lenl(d))
+        return 0;
+    subl(T, o, p[0]);
+    b[0] = dotl(T, P) / det;
+    crossl(Q, T, e1);
+    b[1] = dotl(d, Q) / det;
+    *t = dotl(e2, Q) / det;
+    return b[0] >= 0 && b[1] >= 0 && b[0] + b[1] <= 1 && *t > 0;
+}
+
+static void triangles(const char *dir, pcg32_t *g)
+{
+    FILE *f = open_csv(dir, "triangle.csv",
+                       "Ray/triangle hits (app. D) over t in (0, inf): "
+                       "corners p0 p1 p2, ray o + t d (d not unit).\n# "
+                       "hit = 1 or 0; t, the point p = o + t d and the unit "
+                       "normal n along (p1 - p0) x (p2 - p0) by Moller-"
+                       "Trumbore (1997) in long double.\n# Tolerances: t "
+                       "relative, p relative to `scale` (the largest input "
+                       "coordinate), n absolute.",
+                       "case,p0x,p0y,p0z,p1x,p1y,p1z,p2x,p2y,p2z,ox,oy,oz,"
+                       "dx,dy,dz,hit,t,px,py,pz,nx,ny,nz,scale,tol_float,"
+                       "tol_double,source");
+    const float scales[] = { 1e-3f, 1, 1e3f };
+    for (int i = 0; i < 90; i++) {
+        ld s = scales[i % 3], p[3][3], c[3], e1[3], e2[3], N[3], n[3];
+        for (int k = 0; k < 3; k++)
+            c[k] = s * rnd(g, -3, 3);
+        do {
+            for (int j = 0; j < 3; j++) {
+                for (int k = 0; k < 3; k++)
+                    p[j][k] = c[k] + s * rnd(g, -1, 1);
+                tofloat(p[j]);
+            }
+            subl(e1, p[1], p[0]);
+            subl(e2, p[2], p[0]);
+            crossl(N, e1, e2);
+        } while (lenl(N) < 0.3L * lenl(e1) * lenl(e2));
+        for (int k = 0; k < 3; k++)
+            n[k] = N[k] / lenl(N);
+        /* aim: inside with margin 0.1 (kind 0, 1), outside beyond an edge
+         * by 0.2 or more (2), or along the plane from 0.5 s off it (3) */
+        int kind = i % 4;
+        ld b1 = rnd(g, 0.1f, 0.8f), b2 = rnd(g, 0.1f, 0.9f - (float)b1);
+        if (kind == 2)
+            b1 = -rnd(g, 0.2f, 0.7f);
+        ld target[3], o[3], d[3], cosv = 1;
+        for (int k = 0; k < 3; k++)
+            target[k] = p[0][k] + b1 * e1[k] + b2 * e2[k];
+        if (kind < 3) {
+            cosv = aim(o, d, target, n, s, g);
+        } else {
+            ld w[3], side[3];
+            unitl(w, g);
+            crossl(side, n, w); /* in the plane */
+            for (int k = 0; k < 3; k++) {
+                o[k] = target[k] + 0.5L * s * n[k] - s * side[k];
+                d[k] = side[k];
+            }
+            tofloat(o);
+            tofloat(d);
+        }
+        ld t = 0, b[2], pt[3] = { 0, 0, 0 };
+        int hit = moller_trumbore(p, o, d, &t, b);
+        if (!hit)
+            t = 0;
+        else
+            for (int k = 0; k < 3; k++)
+                pt[k] = o[k] + t * d[k];
+        ld scale = fmaxl(max_abs3(o), fmaxl(max_abs3(p[0]),
+                         fmaxl(max_abs3(p[1]), max_abs3(p[2]))));
+        ld kappa = fmaxl(scale / (lenl(e1) * cosv),
+                         lenl(e1) * lenl(e2) / lenl(N));
+        fprintf(f, "%d,", i);
+        for (int j = 0; j < 3; j++)
+            put3(f, p[j]);
+        put3(f, o);
+        put3(f, d);
+        fprintf(f, "%d,%.17Lg,", hit, t);
+        put3e(f, pt);
+        put3e(f, n);
+        fprintf(f, "%.17Lg,", scale);
+        put_tol(f, kappa);
+        fprintf(f, "Moller-Trumbore 1997 in long double\n");
+    }
+    close_csv(f, dir, "triangle.csv");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s DIR\n", argv[0]);
+        return 2;
+    }
+    pcg32_t g;
+    pcg32_seed(&g, 2024, 2);
+    triangles(argv[1], &g);
+    return 0;
+}
