@@ -64,11 +64,14 @@ $(LIB): $(OBJS)
 	$(AR) rcs $@ $^
 
 # --- the svet command (issue: renderer) -----------------------------------
+# cmd/svet.c holds main() and the table of subcommands; each other
+# cmd/*.c is one subcommand.
 SVET_MAIN := $(wildcard cmd/svet.c)
+CMD_SRCS  := $(sort $(wildcard cmd/*.c))
 ifneq ($(SVET_MAIN),)
-$(BUILD)/svet: cmd/svet.c $(LIB)
+$(BUILD)/svet: $(CMD_SRCS) $(wildcard cmd/*.h) $(LIB)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) -Icmd $(CMD_SRCS) -o $@ $(LIB) $(LDLIBS)
 else
 $(BUILD)/svet:
 	@true

@@ -1,0 +1,24 @@
+/*
+ * cmd.h - the subcommands of the svet command (cmd/svet.c dispatches) and
+ * their exit codes, which `svet --help` documents.
+ */
+#ifndef SVET_CMD_H
+#define SVET_CMD_H
+
+#include <stdio.h>
+
+/* Exit codes of every subcommand. */
+enum {
+    SVET_EXIT_OK = 0,          /* done */
+    SVET_EXIT_USAGE = 1,       /* bad command line */
+    SVET_EXIT_INPUT = 2,       /* an input file is missing or malformed */
+    SVET_EXIT_OUTPUT = 3,      /* an output could not be written */
+    SVET_EXIT_INTERRUPTED = 4  /* stopped by SIGINT/SIGTERM; what was
+                                  rendered so far was written */
+};
+
+/* svet render SCENE [options]: see cmd_render_help. */
+int cmd_render(int argc, char **argv);
+void cmd_render_help(FILE *f);
+
+#endif
