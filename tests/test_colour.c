@@ -519,7 +519,7 @@ START_TEST(matrices_match_the_vectors)
                                                colour_white_xyz(to)));
         }
         double tol = testcsv_num(&c, TOL);
-        char col[8];
+        char col[32];
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++) {
                 snprintf(col, sizeof col, "m%d%d", i, j);
