@@ -169,6 +169,8 @@ void imgtest_check_bad_file(imgtest_reader_fn reader, const char *path,
     svet_error err;
     svet_error_clear(&err);
     svet_status st = reader(path, &img, &err);
+    if (getenv("SVET_SHOW_ERRORS"))
+        printf("    [%s]\n", err.msg);
     ck_assert_msg(st == status, "%s: expected %s, got %s: %s", path,
                   svet_status_name(status), svet_status_name(st), err.msg);
     ck_assert_msg(strncmp(err.msg, path, strlen(path)) == 0,

@@ -48,7 +48,8 @@ void imgtest_check_failed_write_keeps_old(imgtest_writer_fn writer,
 
 /* The bad-file check of every reader: reader(path) must fail with `status`
  * and a message that starts with the path and contains `words` (NULL: any
- * message); the image must come back zeroed. */
+ * message); the image must come back zeroed. With SVET_SHOW_ERRORS set in
+ * the environment each message is printed, to read them over. */
 typedef svet_status (*imgtest_reader_fn)(const char *path, image_t *img,
                                          svet_error *err);
 void imgtest_check_bad_file(imgtest_reader_fn reader, const char *path,
