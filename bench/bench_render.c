@@ -1,0 +1,140 @@
+/*
+ * bench_render.c - `make bench-render`: the Cornell box (scenes/cbox.scn) at
+ * 256 x 256 in camera samples per second and rays per second at 1 and 2
+ * threads, and its RMSE at 16, 64 and 256 spp against a converged render
+ * (ch. 5). The converged render is tests/reference/cbox.exr when it exists
+ * (make reference), else one rendered here at REF_SPP samples per pixel and
+ * kept in out/bench/cbox-ref.exr for the next run.
+ * usage: bench_render [scene] [ref_spp]
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "exrio.h"
+#include "imgcompare.h"
+#include "render.h"
+#include "scenefile.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void die(const char *what, const svet_error *e)
+{
+    fprintf(stderr, "bench_render: %s: %s\n", what, e->msg);
+    exit(1);
+}
+
+/* Render s at spp with threads; the image in *img (if not NULL). */
+static void run(const scene_t *s, long spp, int threads, image_t *img,
+                double *secs, double *rays)
+{
+    svet_error e;
+    render_t r;
+    if (render_init(&r, s, &e) != SVET_OK)
+        die("render_init", &e);
+    double t0 = now();
+    render_pass(&r, spp, threads, NULL, NULL);
+    *secs = now() - t0;
+    *rays = (double)r.stats.rays;
+    if (img && render_image(&r, img, &e) != SVET_OK)
+        die("render_image", &e);
+    render_free(&r);
+}
+
+static void cpu_model(char *out, size_t n)
+{
+    snprintf(out, n, "unknown CPU");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, "model name", 10) == 0) {
+            char *c = strchr(line, ':');
+            if (c) {
+                snprintf(out, n, "%s", c + 2);
+                out[strcspn(out, "\n")] = '\0';
+            }
+            break;
+        }
+    fclose(f);
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = argc > 1 ? argv[1] : "scenes/cbox.scn";
+    long ref_spp = argc > 2 ? atol(argv[2]) : 4096;
+    svet_error e;
+    scene_t s;
+    scene_init(&s);
+    if (scenefile_read(&s, path, &e) != SVET_OK)
+        die(path, &e);
+    char cpu[256];
+    cpu_model(cpu, sizeof cpu);
+    long px = (long)s.camera.width * s.camera.height;
+
+    printf("## Rendering: %s (%dx%d, max depth %d, %s)\n\n", path,
+           s.camera.width, s.camera.height, s.render.max_depth, REAL_NAME);
+    printf("Machine: %s, %d cores; compiler %s; command `make bench-render`.\n\n",
+           cpu, (int)sysconf(_SC_NPROCESSORS_ONLN), __VERSION__);
+    printf("| threads | spp | seconds | camera samples/s | rays/s |\n");
+    printf("|---:|---:|---:|---:|---:|\n");
+    const long spp_speed = 16;
+    for (int t = 1; t <= 2; t++) {
+        double secs, rays;
+        run(&s, spp_speed, t, NULL, &secs, &rays);
+        printf("| %d | %ld | %.2f | %.3g | %.3g |\n", t, spp_speed, secs,
+               (double)(px * spp_speed) / secs, rays / secs);
+        fflush(stdout);
+    }
+
+    /* the converged reference */
+    image_t ref;
+    const char *refpath = "tests/reference/cbox.exr";
+    char cached[] = "out/bench/cbox-ref.exr";
+    double ref_secs = 0;
+    if (strcmp(path, "scenes/cbox.scn") == 0 && exrio_read(refpath, &ref, &e) == SVET_OK) {
+        printf("\nReference: %s.\n", refpath);
+    } else if (exrio_read(cached, &ref, &e) == SVET_OK) {
+        printf("\nReference: %s (from an earlier run).\n", cached);
+    } else {
+        double rays;
+        run(&s, ref_spp, 0, &ref, &ref_secs, &rays);
+        mkdir("out", 0777);
+        mkdir("out/bench", 0777);
+        if (exrio_write(cached, &ref, EXRIO_FLOAT, EXRIO_ZIP, &e) != SVET_OK)
+            fprintf(stderr, "bench_render: %s\n", e.msg);
+        printf("\nReference: %ld spp rendered here in %.1f s (kept in %s).\n",
+               ref_spp, ref_secs, cached);
+    }
+    printf("\n| spp | seconds (2 threads) | RMSE | relMSE | RMSE x sqrt(spp) |\n");
+    printf("|---:|---:|---:|---:|---:|\n");
+    const long spps[3] = { 16, 64, 256 };
+    for (int i = 0; i < 3; i++) {
+        image_t img;
+        double secs, rays;
+        /* a seed other than the reference's, so the errors are independent */
+        s.render.seed += 1000;
+        run(&s, spps[i], 2, &img, &secs, &rays);
+        imgcompare_t c;
+        if (imgcompare(&img, &ref, 0, IMGCOMPARE_EPS, &c, &e) != SVET_OK)
+            die("imgcompare", &e);
+        printf("| %ld | %.2f | %.5f | %.5f | %.4f |\n", spps[i], secs, c.rmse,
+               c.relmse, c.rmse * sqrt((double)spps[i]));
+        fflush(stdout);
+        image_free(&img);
+    }
+    printf("\nRMSE x sqrt(spp) stays constant when the error falls as "
+           "1/sqrt(spp) (no bias).\n");
+    image_free(&ref);
+    scene_free(&s);
+    return 0;
+}
