@@ -202,9 +202,10 @@ START_TEST(merge_refuses_a_different_size_and_leaves_dst_alone)
     ck_assert_ptr_nonnull(strstr(err.msg, "4 x 5"));
     ck_assert_uint_eq(a.count[0], 1);
     ck_assert(a.sum[0] == 1.0);
-    ck_assert_int_eq(image_accum_alloc(&b, 0, 5, &err), SVET_ERR_RANGE);
     image_accum_free(&a);
     image_accum_free(&b);
+    ck_assert_int_eq(image_accum_alloc(&b, 0, 5, &err), SVET_ERR_RANGE);
+    ck_assert_ptr_null(b.sum);
 }
 END_TEST
 
