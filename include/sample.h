@@ -27,8 +27,10 @@ real sample_uniform_sphere_pdf(void);
 void sample_uniform_hemisphere(VECTOR3 w, const real u[2]);
 real sample_uniform_hemisphere_pdf(void);
 
-/* Cosine-weighted hemisphere z >= 0 (Malley's method: a concentric disk
- * sample lifted to the hemisphere); pdf cos(theta)/pi. */
+/* Cosine-weighted hemisphere z > 0 (Malley's method: a concentric disk
+ * sample lifted to the hemisphere); pdf cos(theta)/pi (0 for cos <= 0).
+ * The sample's z is at least 2^-12: u within 2^-26 of the square's edge
+ * (u0 = 0 or u1 = 0) would map to the horizon, where the pdf is 0. */
 void sample_cosine_hemisphere(VECTOR3 w, const real u[2]);
 real sample_cosine_hemisphere_pdf(real cos_theta);
 

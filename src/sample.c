@@ -51,14 +51,55 @@ real sample_uniform_hemisphere_pdf(void)
     return INV_2PI;
 }
 
+/* The concentric map (Shirley & Chiu 1997; pbrt-v3 sec. 13.6.2): each of
+ * the four triangles of the square [-1,1]^2 cut by its diagonals maps to a
+ * quarter of the disk, the square of half-side r to the circle of radius r.
+ * Also returns 1 - r exactly: r = |2 u - 1| for the u of the dominant axis,
+ * so 1 - r = 2 min(u, 1 - u) (2u is exact, and so is 1 - u for u >= 1/2). */
+static void concentric(real d[2], real *one_minus_r, const real u[2])
+{
+    real ox = 2 * u[0] - 1, oy = 2 * u[1] - 1;
+    if (ox == 0 && oy == 0) {
+        d[0] = d[1] = 0;
+        *one_minus_r = 1;
+        return;
+    }
+    real r, theta, m;
+    if (fabs(ox) > fabs(oy)) {
+        r = ox;
+        theta = (REAL_PI / 4) * (oy / ox);
+        m = u[0];
+    } else {
+        r = oy;
+        theta = REAL_PI / 2 - (REAL_PI / 4) * (ox / oy);
+        m = u[1];
+    }
+    d[0] = r * cos(theta);
+    d[1] = r * sin(theta);
+    *one_minus_r = 2 * fmin(m, 1 - m);
+}
+
+#define COSINE_Z_MIN REAL_C(0x1p-12)
+
 void sample_cosine_hemisphere(VECTOR3 w, const real u[2])
 {
     /* Malley's method (pbrt-v3 sec. 13.6.3): points uniform on the unit
      * disk, projected up onto the hemisphere, have density cos(theta)/pi
-     * per solid angle. */
-    real d[2];
-    sample_concentric_disk(d, u);
-    real z = sqrt(fmax(REAL_C(0.0), 1 - d[0] * d[0] - d[1] * d[1]));
+     * per solid angle. z = sqrt(1 - r^2) = sqrt((1 - r)(1 + r)) from the
+     * exact 1 - r: near the rim 1 - x^2 - y^2 would lose every digit. */
+    real d[2], omr;
+    concentric(d, &omr, u);
+    real z = sqrt(omr * (2 - omr));
+    if (z < COSINE_Z_MIN) {
+        /* u within 2^-25 of the square's edge (u = 0 included) maps to
+         * the disk's rim, i.e. the horizon, where the pdf is 0 and a weight
+         * f cos / pdf is 0/0. Lift such samples to z = 2^-12: |w| stays 1
+         * to within 3e-8. */
+        real s = sqrt(1 - COSINE_Z_MIN * COSINE_Z_MIN) /
+                 fmax(hypot(d[0], d[1]), REAL_MIN);
+        vec_set(w, d[0] * s, d[1] * s, COSINE_Z_MIN);
+        return;
+    }
     vec_set(w, d[0], d[1], z);
 }
 
@@ -187,25 +228,8 @@ real sample_ward_half_pdf(const VECTOR3 h, real alpha_x, real alpha_y)
 
 void sample_concentric_disk(real d[2], const real u[2])
 {
-    /* Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square"
-     * (pbrt-v3 sec. 13.6.2): each of the four triangles of the square
-     * [-1,1]^2 cut by its diagonals maps to a quarter of the disk, the
-     * square of half-side r to the circle of radius r. */
-    real ox = 2 * u[0] - 1, oy = 2 * u[1] - 1;
-    if (ox == 0 && oy == 0) {
-        d[0] = d[1] = 0;
-        return;
-    }
-    real r, theta;
-    if (fabs(ox) > fabs(oy)) {
-        r = ox;
-        theta = (REAL_PI / 4) * (oy / ox);
-    } else {
-        r = oy;
-        theta = REAL_PI / 2 - (REAL_PI / 4) * (ox / oy);
-    }
-    d[0] = r * cos(theta);
-    d[1] = r * sin(theta);
+    real omr;
+    concentric(d, &omr, u);
 }
 
 void sample_triangle(real b[2], const real u[2])
@@ -239,25 +263,29 @@ void sample_sphere_area(VECTOR3 p, VECTOR3 n, const VECTOR3 c, real r,
 real sample_sphere_solid_angle_pdf(const VECTOR3 w, const VECTOR3 x,
                                    const VECTOR3 c, real r)
 {
-    VECTOR3 xc; /* x - c */
-    vec_sub(xc, x, c);
-    real d = vec_length(xc);
+    VECTOR3 cx; /* c - x (not -(x - c): a zero component stays +0, which
+                 * picks the frame branch of frame_from_normal) */
+    vec_sub(cx, c, x);
+    real d = vec_length(cx);
     if (!(r > 0) || !(d == d))
         return 0;
     if (d >= r) {
         /* The cone of the sphere (Shirley, Wang, Zimmerman 1996; pbrt-v3
          * sec. 14.2.2): sin^2(theta_max) = r^2/d^2, and
          * h = 1 - cos(theta_max) = sin^2 / (1 + cos) without cancellation.
-         * w is inside when 1 - cos(w, axis) = |w - axis|^2 / 2 <= h; the
-         * slack is the rounding of |w - axis|^2 (components of error eps). */
+         * w is inside when 1 - cos(w, axis) = |w - axis|^2 / 2 <= h. The
+         * slack allows for the rounding of w and axis (components of error
+         * ~eps, so |w - axis| is off by up to ~4 eps): a sample drawn at the
+         * edge of a tiny cone (h = 5e-13 at 1e6 radii) must not get pdf 0. */
         real s = r / d;
         real s2 = s * s;
         real h = s2 / (1 + sqrt(fmax(REAL_C(0.0), (1 - s) * (1 + s))));
         VECTOR3 axis, diff;
-        vec_scale(axis, xc, -1 / d);
+        vec_scale(axis, cx, 1 / d);
         vec_sub(diff, w, axis);
         real omc = REAL_C(0.5) * vec_length2(diff);
-        if (omc > h * (1 + 8 * REAL_EPSILON) + 8 * REAL_EPSILON * REAL_EPSILON)
+        real slack = 4 * REAL_EPSILON * sqrt(2 * h) + 8 * REAL_EPSILON * REAL_EPSILON;
+        if (omc > h + slack)
             return 0;
         return cone_pdf_by_height(h);
     }
@@ -266,7 +294,7 @@ real sample_sphere_solid_angle_pdf(const VECTOR3 w, const VECTOR3 x,
      * < 0; there cos = n.w = sqrt(b^2 - cc)/r, and the area density
      * 1/(4 pi r^2) becomes t^2 / (4 pi r^2 cos) per solid angle
      * (pbrt-v3 sec. 5.5.1, dw = cos dA / t^2). */
-    real b = SVECTOR3(xc, w);
+    real b = -SVECTOR3(cx, w); /* (x - c).w */
     real cc = (d - r) * (d + r);
     real disc = sqrt(b * b - cc);
     /* For b > 0, -b + disc cancels; -cc / (b + disc) is the same root. */
@@ -278,9 +306,9 @@ real sample_sphere_solid_angle_pdf(const VECTOR3 w, const VECTOR3 x,
 real sample_sphere_solid_angle(VECTOR3 w, const VECTOR3 x, const VECTOR3 c,
                                real r, const real u[2])
 {
-    VECTOR3 xc;
-    vec_sub(xc, x, c);
-    real d = vec_length(xc);
+    VECTOR3 cx;
+    vec_sub(cx, c, x);
+    real d = vec_length(cx);
     if (!(r > 0) || !(d == d)) {
         vec_set(w, 0, 0, 1);
         return 0;
@@ -289,7 +317,7 @@ real sample_sphere_solid_angle(VECTOR3 w, const VECTOR3 x, const VECTOR3 c,
         real s = r / d;
         real h = s * s / (1 + sqrt(fmax(REAL_C(0.0), (1 - s) * (1 + s))));
         VECTOR3 axis, e1, e2, l;
-        vec_scale(axis, xc, -1 / d);
+        vec_scale(axis, cx, 1 / d);
         frame_from_normal(e1, e2, axis);
         cone_by_height(l, u, h);
         frame_to_world(w, l, e1, e2, axis);
