@@ -102,7 +102,7 @@ colour_lab_t colour_xyz_to_lab(colour_xyz_t c, colour_xyz_t white);
 colour_xyz_t colour_lab_to_xyz(colour_lab_t c, colour_xyz_t white);
 
 /* The CIE 1976 colour difference Delta E*_ab: Euclidean distance in L*a*b*;
- * 1 is about a just-noticeable difference. Can't fail. */
+ * about 2 is just noticeable side by side. Can't fail. */
 real colour_delta_e76(colour_lab_t a, colour_lab_t b);
 
 /* --- 3x3 matrices ------------------------------------------------------------ */
