@@ -1,0 +1,149 @@
+/*
+ * quadcheck.c - the checks shared by the suites of the quadric primitives;
+ * see quadcheck.h. Every random number comes from a seeded PCG32, so a
+ * failure reproduces exactly; messages name the shape, scale and case.
+ */
+#include "quadcheck.h"
+#include "chi2.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static double identity(void *ctx, double x)
+{
+    (void)ctx;
+    return x;
+}
+
+void quadcheck_ks(const COBJECT *obj, int n, uint64_t seed,
+                  quadcheck_cdf_fn cdf, void *ctx, const char *test)
+{
+    double *x = malloc((size_t)n * sizeof *x);
+    ck_assert(x != NULL);
+    pcg32_t g;
+    pcg32_seed(&g, seed, 0x4b53);
+    for (int i = 0; i < n; i++) {
+        real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+        cobject_sample_t s;
+        obj->ops->sample(obj, u, &s);
+        x[i] = cdf(&s, ctx);
+    }
+    /* the values are already F(x): compare them with U(0,1) */
+    double d = chi2_ks_statistic(x, n, identity, NULL);
+    free(x);
+    const double alpha = 1e-6;
+    double eps = sqrt(log(2 / alpha) / (2.0 * n));
+    ck_assert_msg(d <= eps, "%s: Kolmogorov-Smirnov D = %g > %g (n = %d)",
+                  test, d, eps, n);
+    test_report_cases(test, n);
+}
+
+bool quadcheck_trace(const COBJECT *obj, const ray_t *r, real tmin, real tmax,
+                     PATHPOINT *pp)
+{
+    hit_t h;
+    if (!cobject_intersect(obj, r, tmin, tmax, &h))
+        return false;
+    ck_assert_msg(h.t > tmin && h.t < tmax && isfinite(h.t),
+                  "%s: t = %g outside (%g, %g)", obj->ops->name, (double)h.t,
+                  (double)tmin, (double)tmax);
+    cobject_fill(obj, r, &h, pp);
+    return true;
+}
+
+void quadcheck_assert_finite(const PATHPOINT *pp, const char *what)
+{
+    ck_assert_msg(vec_is_finite(pp->cross_point) && vec_is_finite(pp->p_error)
+                      && vec_is_finite(pp->ng) && vec_is_finite(pp->n) &&
+                      vec_is_finite(pp->u) && vec_is_finite(pp->v) &&
+                      vec_is_finite(pp->dpds) && vec_is_finite(pp->dpdt),
+                  "%s: a vector of the PATHPOINT is not finite", what);
+    ck_assert_msg(pp->st[0] >= 0 && pp->st[0] <= 1 && pp->st[1] >= 0 &&
+                      pp->st[1] <= 1,
+                  "%s: st = (%g, %g) outside [0,1]^2", what,
+                  (double)pp->st[0], (double)pp->st[1]);
+    ck_assert_msg(fabs(vec_length(pp->ng) - 1) <= 64 * REAL_EPSILON,
+                  "%s: |ng| = %g", what, (double)vec_length(pp->ng));
+}
+
+long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed)
+{
+    int ns;
+    const real *sc = primcheck_scales(&ns);
+    long cases = 0;
+    for (int i = 0; i < ns; i++)
+        for (int away = 0; away < 2; away++) {
+            VECTOR3 c = { 10 * sc[i] * away, -6 * sc[i] * away,
+                          3 * sc[i] * away };
+            COBJECT *obj = make(sc[i], c, ctx);
+            cases += primcheck_sweep_finite(obj, n, seed++);
+            cobject_free(obj);
+        }
+    return cases;
+}
+
+void quadcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v)
+{
+    const char *axis[] = { "x", "y", "z" };
+    for (int i = 0; i < 3; i++) {
+        char col[32];
+        snprintf(col, sizeof col, "%s%s", prefix, axis[i]);
+        v[i] = (real)testcsv_num(c, col);
+    }
+}
+
+void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
+                       const char *test)
+{
+    testcsv_t c;
+    testcsv_open(&c, file);
+    long rows = 0;
+#ifdef SVET_DOUBLE
+    const char *tol_col = "tol_double", *ntol_col = "ntol_double";
+#else
+    const char *tol_col = "tol_float", *ntol_col = "ntol_float";
+#endif
+    while (testcsv_next(&c)) {
+        rows++;
+        const char *name = testcsv_str(&c, "case");
+        COBJECT *obj = make_row(&c);
+        ck_assert_msg(obj != NULL, "%s:%d (%s): cannot build the shape", file,
+                      c.line, name);
+        ray_t r;
+        quadcheck_csv_vec(&c, "o", r.o);
+        quadcheck_csv_vec(&c, "d", r.d);
+        bool expect = testcsv_num(&c, "hit") != 0;
+        PATHPOINT pp;
+        bool got = quadcheck_trace(obj, &r, 0, (real)INFINITY, &pp);
+        ck_assert_msg(got == expect, "%s:%d (%s): hit = %d, expected %d",
+                      file, c.line, name, got, expect);
+        if (expect) {
+            double tol = testcsv_num(&c, tol_col);
+            double ntol = testcsv_num(&c, ntol_col);
+            double len = (double)vec_length(r.d);
+            VECTOR3 p, n;
+            quadcheck_csv_vec(&c, "p", p);
+            quadcheck_csv_vec(&c, "n", n);
+            ck_assert_msg(fabs((double)pp.r_dist - testcsv_num(&c, "t") * len)
+                              <= tol,
+                          "%s:%d (%s): t = %.9g, expected %.9g (tol %g)", file,
+                          c.line, name, (double)pp.r_dist / len,
+                          testcsv_num(&c, "t"), tol / len);
+            for (int k = 0; k < 3; k++) {
+                ck_assert_msg(fabs((double)pp.cross_point[k] - (double)p[k])
+                                  <= tol,
+                              "%s:%d (%s): p[%d] = %.9g, expected %.9g (tol "
+                              "%g)", file, c.line, name, k,
+                              (double)pp.cross_point[k], (double)p[k], tol);
+                ck_assert_msg(fabs((double)pp.ng[k] - (double)n[k]) <= ntol,
+                              "%s:%d (%s): n[%d] = %.9g, expected %.9g (tol "
+                              "%g)", file, c.line, name, k, (double)pp.ng[k],
+                              (double)n[k], ntol);
+            }
+        }
+        cobject_free(obj);
+    }
+    testcsv_close(&c);
+    ck_assert_msg(rows > 0, "%s: no rows", file);
+    test_report_cases(test, rows);
+}

@@ -1,0 +1,55 @@
+/*
+ * quadcheck.h - checks that the suites of the quadric primitives of app. D
+ * (test_sphere.c, test_disk.c, test_cylinder.c, test_cone.c) share beside
+ * primcheck.h: a Kolmogorov-Smirnov test of a sampled coordinate, the
+ * reading of tests/vectors/<m>.csv, and checks of a whole PATHPOINT.
+ */
+#ifndef SVET_QUADCHECK_H
+#define SVET_QUADCHECK_H
+
+#include "cobject.h"
+#include "geomcheck.h"
+#include "primcheck.h"
+#include "testutil.h"
+
+/* pi in double (M_PI is not C11). */
+#define QUADCHECK_PI 3.14159265358979323846
+
+/* A coordinate of a sample, mapped through its known CDF to [0, 1]. */
+typedef double (*quadcheck_cdf_fn)(const cobject_sample_t *s, void *ctx);
+
+/* Draw n samples of obj from a seeded PCG32 and compare the CDF values
+ * cdf(sample) with U(0,1) by the Kolmogorov-Smirnov distance D_n. By the
+ * Dvoretzky-Kiefer-Wolfowitz inequality with Massart's constant (Ann.
+ * Probab. 18, 1990), P(D_n > eps) <= 2 exp(-2 n eps^2) for every n, so
+ * eps = sqrt(ln(2 / alpha) / (2 n)) is a threshold that a correct sampler
+ * exceeds with probability at most alpha; alpha = 1e-6 here. Reports n
+ * cases under `test`. */
+void quadcheck_ks(const COBJECT *obj, int n, uint64_t seed,
+                  quadcheck_cdf_fn cdf, void *ctx, const char *test);
+
+/* primcheck_sweep_finite (n rays) on make(scale, centre, ctx) at every
+ * scale of primcheck_scales, centred at the origin and 10 scale away.
+ * Returns the rays traced. */
+long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed);
+
+/* Check every row of tests/vectors/<file>: build the shape from the row
+ * with make_row, trace the row's ray over (0, inf), and compare hit, t,
+ * point and normal with the row's tolerances for this build (tol_float or
+ * tol_double for t |d| and the point, ntol_float or ntol_double for the
+ * normal). Reports the rows under `test`. */
+void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
+                       const char *test);
+
+/* A point column triple of the current row: <prefix>x, <prefix>y, ... */
+void quadcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v);
+
+/* Fill pp for the first hit of r over (tmin, tmax); false on a miss. */
+bool quadcheck_trace(const COBJECT *obj, const ray_t *r, real tmin, real tmax,
+                     PATHPOINT *pp);
+
+/* The whole PATHPOINT is finite: point, error, normals, frame, st in
+ * [0, 1], dP/ds, dP/dt. */
+void quadcheck_assert_finite(const PATHPOINT *pp, const char *what);
+
+#endif
