@@ -123,7 +123,8 @@ real spectrum_planck(real lambda, real T);
 real spectrum_planck_normalised(real lambda, real T);
 
 /* Wien's displacement law: the wavelength (nm) of the peak of
- * spectrum_planck(., T), b / T. Can't fail (T <= 0 gives infinity). */
+ * spectrum_planck(., T), b / T. Can't fail (T <= 0 or NaN gives
+ * infinity). */
 real spectrum_wien_peak(real T);
 
 /* Total radiance of a blackbody over all wavelengths, sigma T^4 / pi,

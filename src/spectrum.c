@@ -673,6 +673,8 @@ real spectrum_planck(real lambda, real T)
 
 real spectrum_wien_peak(real T)
 {
+    if (!(T > 0))
+        return (real)INFINITY;
     return (real)(SPECTRUM_WIEN_B_NM / (double)T);
 }
 

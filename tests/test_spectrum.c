@@ -302,6 +302,8 @@ START_TEST(planck_survives_extreme_input)
     colour_xyz_t black = spectrum_blackbody_xyz(NAN);
     ck_assert(black.Y == 0);
     ck_assert(spectrum_blackbody_efficacy(0) == 0);
+    ck_assert(isinf(spectrum_wien_peak(0)) && isinf(spectrum_wien_peak(-3)));
+    ck_assert(spectrum_planck_normalised(500, -1) == 0);
 }
 END_TEST
 
