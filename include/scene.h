@@ -215,7 +215,7 @@ struct material *scene_find_material(const scene_t *s, const char *name);
  * chooses, or NULL when none is close. This function can't fail. */
 const char *scene_suggest_material(const scene_t *s, const char *name);
 
-/* Of the n names, the one nearest to name by edit distance (Levenshtein),
+/* Of the n names, the one nearest to name by edit distance (Damerau),
  * if it is close enough to be a typo (at most 2 edits, and at most about a
  * third of name's length); else NULL. For "did you mean" messages. This
  * function can't fail. */

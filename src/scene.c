@@ -138,30 +138,33 @@ struct material *scene_find_material(const scene_t *s, const char *name)
     return NULL;
 }
 
-/* Levenshtein distance of a and b, each cut to 63 bytes (a suggestion for
- * a longer name is no help). */
+/* Edit distance of a and b, each cut to 63 bytes (a suggestion for a
+ * longer name is no help): the fewest insertions, deletions, substitutions
+ * and swaps of two neighbouring bytes that turn one into the other (the
+ * "optimal string alignment" form of the Damerau-Levenshtein distance, so
+ * that the common typo "dsik" is one edit from "disk"). */
 static int edit_distance(const char *a, const char *b)
 {
     enum { N = 64 };
     size_t la = strnlen(a, N - 1), lb = strnlen(b, N - 1);
-    int row[N];
+    int d[N][N];
+    for (size_t i = 0; i <= la; i++)
+        d[i][0] = (int)i;
     for (size_t j = 0; j <= lb; j++)
-        row[j] = (int)j;
-    for (size_t i = 1; i <= la; i++) {
-        int diag = row[0];
-        row[0] = (int)i;
+        d[0][j] = (int)j;
+    for (size_t i = 1; i <= la; i++)
         for (size_t j = 1; j <= lb; j++) {
-            int up = row[j];
-            int best = diag + (a[i - 1] != b[j - 1]);
-            if (up + 1 < best)
-                best = up + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            row[j] = best;
-            diag = up;
+            int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            if (d[i - 1][j] + 1 < best)
+                best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best)
+                best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] &&
+                a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
         }
-    }
-    return row[lb];
+    return d[la][lb];
 }
 
 /* Nearest candidate so far in *best (distance *dbest), if close enough to
