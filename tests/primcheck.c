@@ -136,7 +136,15 @@ long primcheck_sweep_finite(const COBJECT *obj, int n, uint64_t seed)
                           vec_is_finite(pp.p_error) &&
                           vec_is_finite(pp.dpds) && vec_is_finite(pp.dpdt) &&
                           isfinite(pp.st[0]) && isfinite(pp.st[1]),
-                      "%s: ray %ld: PATHPOINT not finite", nm, i);
+                      "%s: ray %ld: PATHPOINT not finite: p (%g %g %g) "
+                      "p_error (%g %g %g) st (%g %g), t = %g, o = (%g %g "
+                      "%g), d = (%g %g %g)", nm, i, (double)pp.cross_point[X],
+                      (double)pp.cross_point[Y], (double)pp.cross_point[Z],
+                      (double)pp.p_error[X], (double)pp.p_error[Y],
+                      (double)pp.p_error[Z], (double)pp.st[0],
+                      (double)pp.st[1], (double)h.t, (double)r.o[X],
+                      (double)r.o[Y], (double)r.o[Z], (double)r.d[X],
+                      (double)r.d[Y], (double)r.d[Z]);
         check_finite_unit(nm, "n", pp.n, i);
         check_finite_unit(nm, "ng", pp.ng, i);
         check_finite_unit(nm, "u", pp.u, i);

@@ -130,16 +130,20 @@ static void put_tol(FILE *f, ld kappa)
 }
 
 /* A ray from a random point at distance [0.5, 3) s of `target`, at least
- * 0.3 away from the plane of unit normal n in cosine, aimed at target,
- * with a direction of random length in [0.1, 10) times the distance.
- * o and d are rounded to floats. Returns |cos| of the ray to n. */
-static ld aim(ld o[3], ld d[3], const ld target[3], const ld n[3], ld s,
-              pcg32_t *g)
+ * 0.3 away from the plane of unit normal n in cosine (on the side n points
+ * to when `front`), aimed at target, with a direction of random length in
+ * [0.1, 10) times the distance. o and d are rounded to floats. Returns
+ * |cos| of the ray to n. */
+static ld aim_side(ld o[3], ld d[3], const ld target[3], const ld n[3],
+                   ld s, int front, pcg32_t *g)
 {
     ld w[3];
     do
         unitl(w, g);
     while (fabsl(dotl(w, n)) < 0.3L);
+    if (front && dotl(w, n) < 0)
+        for (int k = 0; k < 3; k++)
+            w[k] = -w[k];
     ld dist = s * rnd(g, 0.5f, 3);
     for (int k = 0; k < 3; k++)
         o[k] = target[k] + dist * w[k];
@@ -149,6 +153,12 @@ static ld aim(ld o[3], ld d[3], const ld target[3], const ld n[3], ld s,
         d[k] = (target[k] - o[k]) * len;
     tofloat(d);
     return fabsl(dotl(w, n));
+}
+
+static ld aim(ld o[3], ld d[3], const ld target[3], const ld n[3], ld s,
+              pcg32_t *g)
+{
+    return aim_side(o, d, target, n, s, 0, g);
 }
 
 /* --- triangle --------------------------------------------------------------- */
@@ -251,6 +261,291 @@ static void triangles(const char *dir, pcg32_t *g)
     close_csv(f, dir, "triangle.csv");
 }
 
+/* --- plane ------------------------------------------------------------------ */
+
+static void planes(const char *dir, pcg32_t *g)
+{
+    FILE *f = open_csv(dir, "plane.csv",
+                       "Ray/plane hits (app. D) over t in (0, inf): the plane "
+                       "through p with normal n (not unit), ray o + t d.\n# "
+                       "hit = 1 or 0; t = (p - o) . n / (d . n), the point q "
+                       "= o + t d and the unit normal e = n / |n|, in long "
+                       "double.\n# A ray parallel to the plane (d . n = 0 "
+                       "exactly) misses. Tolerances: t relative, q relative "
+                       "to `scale`, e absolute.",
+                       "case,px,py,pz,nx,ny,nz,ox,oy,oz,dx,dy,dz,hit,t,qx,qy,"
+                       "qz,ex,ey,ez,scale,tol_float,tol_double,source");
+    const float scales[] = { 1e-3f, 1, 1e3f };
+    for (int i = 0; i < 60; i++) {
+        ld s = scales[i % 3], p[3], n[3], e[3], o[3], d[3], target[3];
+        int kind = i % 4; /* 0, 1 hit; 2 pointing away; 3 parallel */
+        for (int k = 0; k < 3; k++)
+            p[k] = s * rnd(g, -3, 3);
+        tofloat(p);
+        unitl(n, g);
+        ld len = rnd(g, 0.5f, 4);
+        for (int k = 0; k < 3; k++)
+            n[k] *= len;
+        if (kind == 3) { /* an axis normal, so the ray is exactly parallel */
+            for (int k = 0; k < 3; k++)
+                n[k] = 0;
+            n[i % 3] = len;
+        }
+        tofloat(n);
+        for (int k = 0; k < 3; k++)
+            e[k] = n[k] / lenl(n);
+        /* a target in the plane, within 2 s of p */
+        ld w[3], side[3];
+        unitl(w, g);
+        crossl(side, e, w);
+        ld r = s * rnd(g, 0, 2) / fmaxl(lenl(side), 1e-3L);
+        for (int k = 0; k < 3; k++)
+            target[k] = p[k] + r * side[k];
+        ld cosv = 1;
+        if (kind < 3) {
+            cosv = aim(o, d, target, e, s, g);
+            if (kind == 2)
+                for (int k = 0; k < 3; k++)
+                    d[k] = -d[k];
+        } else {
+            for (int k = 0; k < 3; k++) {
+                o[k] = target[k] + s * e[k];
+                d[k] = side[k];
+            }
+            tofloat(o);
+            d[i % 3] = 0;
+            tofloat(d);
+        }
+        ld den = dotl(d, e), t = 0, q[3] = { 0, 0, 0 }, po[3];
+        subl(po, p, o);
+        int hit = 0;
+        if (den != 0) {
+            t = dotl(po, e) / den;
+            hit = t > 0;
+        }
+        if (!hit)
+            t = 0;
+        else
+            for (int k = 0; k < 3; k++)
+                q[k] = o[k] + t * d[k];
+        ld scale = fmaxl(max_abs3(p), fmaxl(max_abs3(o), max_abs3(target)));
+        fprintf(f, "%d,", i);
+        put3(f, p);
+        put3(f, n);
+        put3(f, o);
+        put3(f, d);
+        fprintf(f, "%d,%.17Lg,", hit, t);
+        put3e(f, q);
+        put3e(f, e);
+        fprintf(f, "%.17Lg,", scale);
+        put_tol(f, scale / (s * cosv));
+        fprintf(f, "plane equation in long double\n");
+    }
+    close_csv(f, dir, "plane.csv");
+}
+
+/* --- parallelogram --------------------------------------------------------- */
+
+static void parallelograms(const char *dir, pcg32_t *g)
+{
+    FILE *f = open_csv(dir, "parallelogram.csv",
+                       "Ray/parallelogram hits (app. D) over t in (0, inf): "
+                       "corners c0, c1, c2 = c1 + c3 - c0, c3; ray o + t d."
+                       "\n# hit = 1 or 0; t from the plane of N = (c1 - c0) "
+                       "x (c3 - c0), then (s, t_param) of q - c0 = s (c1 - "
+                       "c0) + t_param (c3 - c0) by Cramer's rule, in long "
+                       "double; the point p = o + t d, the unit normal n = "
+                       "N / |N|.\n# Tolerances: t relative, p relative to "
+                       "`scale`, n, s and t_param absolute.",
+                       "case,c0x,c0y,c0z,c1x,c1y,c1z,c3x,c3y,c3z,ox,oy,oz,"
+                       "dx,dy,dz,hit,t,px,py,pz,nx,ny,nz,s,t_param,scale,"
+                       "tol_float,tol_double,source");
+    const float scales[] = { 1e-3f, 1, 1e3f };
+    for (int i = 0; i < 60; i++) {
+        ld s = scales[i % 3], c[3], c0[3], c1[3], c3[3], e1[3], e2[3], N[3];
+        for (int k = 0; k < 3; k++)
+            c[k] = s * rnd(g, -3, 3);
+        do {
+            for (int k = 0; k < 3; k++) {
+                c0[k] = c[k] + s * rnd(g, -1, 1);
+                c1[k] = c[k] + s * rnd(g, -1, 1);
+                c3[k] = c[k] + s * rnd(g, -1, 1);
+            }
+            tofloat(c0);
+            tofloat(c1);
+            tofloat(c3);
+            subl(e1, c1, c0);
+            subl(e2, c3, c0);
+            crossl(N, e1, e2);
+        } while (lenl(N) < 0.3L * lenl(e1) * lenl(e2));
+        ld n[3];
+        for (int k = 0; k < 3; k++)
+            n[k] = N[k] / lenl(N);
+        /* inside with margin 0.05 (kinds 0, 1) or outside by 0.1 (2, 3) */
+        int kind = i % 4;
+        ld a = rnd(g, 0.05f, 0.95f), b = rnd(g, 0.05f, 0.95f);
+        if (kind == 2)
+            a = rnd(g, 1.1f, 1.6f);
+        if (kind == 3)
+            b = -rnd(g, 0.1f, 0.6f);
+        ld target[3], o[3], d[3];
+        for (int k = 0; k < 3; k++)
+            target[k] = c0[k] + a * e1[k] + b * e2[k];
+        ld cosv = aim(o, d, target, n, s, g);
+        /* the textbook test: the plane, then (s, t) inside [0, 1]^2 */
+        ld oc[3], q[3], w[3], wx[3], xw[3];
+        subl(oc, c0, o);
+        ld t = dotl(oc, N) / dotl(d, N);
+        for (int k = 0; k < 3; k++)
+            q[k] = o[k] + t * d[k];
+        subl(w, q, c0);
+        crossl(wx, w, e2);
+        crossl(xw, e1, w);
+        ld ss = dotl(wx, N) / dotl(N, N), tt = dotl(xw, N) / dotl(N, N);
+        int hit = t > 0 && ss >= 0 && ss <= 1 && tt >= 0 && tt <= 1;
+        if (!hit) {
+            t = ss = tt = 0;
+            q[0] = q[1] = q[2] = 0;
+        }
+        ld scale = fmaxl(max_abs3(o), fmaxl(max_abs3(c0),
+                         fmaxl(max_abs3(c1), max_abs3(c3))));
+        fprintf(f, "%d,", i);
+        put3(f, c0);
+        put3(f, c1);
+        put3(f, c3);
+        put3(f, o);
+        put3(f, d);
+        fprintf(f, "%d,%.17Lg,", hit, t);
+        put3e(f, q);
+        put3e(f, n);
+        fprintf(f, "%.17Lg,%.17Lg,%.17Lg,", ss, tt, scale);
+        put_tol(f, fmaxl(scale / (lenl(e1) * cosv),
+                         lenl(e1) * lenl(e2) / lenl(N)));
+        fprintf(f, "plane and Cramer's rule in long double\n");
+    }
+    close_csv(f, dir, "parallelogram.csv");
+}
+
+/* --- box ------------------------------------------------------------------------ */
+
+/* Kay & Kajiya's slab test, "Ray Tracing Complex Scenes", SIGGRAPH 1986,
+ * in long double: the nearest of entry and exit with t > 0, and its face
+ * 2 axis + (1 on the max side). */
+static int slab(const ld lo[3], const ld hi[3], const ld o[3], const ld d[3],
+                ld *t, int *face)
+{
+    ld tn = -INFINITY, tf = INFINITY;
+    int fn = -1, ff = -1;
+    for (int k = 0; k < 3; k++) {
+        if (d[k] == 0) {
+            if (o[k] < lo[k] || o[k] > hi[k])
+                return 0;
+            continue;
+        }
+        ld t0 = (lo[k] - o[k]) / d[k], t1 = (hi[k] - o[k]) / d[k];
+        int f0 = 2 * k, f1 = 2 * k + 1;
+        if (t0 > t1) {
+            ld x = t0; t0 = t1; t1 = x;
+            int y = f0; f0 = f1; f1 = y;
+        }
+        if (t0 > tn) { tn = t0; fn = f0; }
+        if (t1 < tf) { tf = t1; ff = f1; }
+    }
+    if (tn > tf)
+        return 0;
+    if (tn > 0) { *t = tn; *face = fn; return 1; }
+    if (tf > 0) { *t = tf; *face = ff; return 1; }
+    return 0;
+}
+
+static void boxes(const char *dir, pcg32_t *g)
+{
+    FILE *f = open_csv(dir, "box.csv",
+                       "Ray/box hits (app. D) over t in (0, inf): the "
+                       "axis-aligned box [min, max], ray o + t d.\n# hit = 1 "
+                       "or 0; t and face (0..5 = -x +x -y +y -z +z) by the "
+                       "slab test of Kay & Kajiya (1986) in long double; "
+                       "the point p = o + t d with its face coordinate "
+                       "exact; n the outward axis normal (exact).\n# "
+                       "Tolerances: t relative, p relative to `scale`.",
+                       "case,minx,miny,minz,maxx,maxy,maxz,ox,oy,oz,dx,dy,"
+                       "dz,hit,t,face,px,py,pz,nx,ny,nz,scale,tol_float,"
+                       "tol_double,source");
+    const float scales[] = { 1e-3f, 1, 1e3f };
+    for (int i = 0; i < 60; i++) {
+        ld s = scales[i % 3], lo[3], hi[3], ext[3], c[3];
+        for (int k = 0; k < 3; k++) {
+            c[k] = s * rnd(g, -3, 3);
+            lo[k] = c[k] - s * rnd(g, 0.2f, 1);
+            hi[k] = c[k] + s * rnd(g, 0.2f, 1);
+        }
+        tofloat(lo);
+        tofloat(hi);
+        subl(ext, hi, lo);
+        /* kinds: 0, 1 from outside at a face point (margin 0.05 of the
+         * extent); 2 from inside (exit, margin 0.05); 3 pointing away */
+        int kind = i % 4, fc = (int)pcg32_bounded(g, 6), ka = fc / 2;
+        ld o[3], d[3], target[3], n[3] = { 0, 0, 0 }, cosv = 1;
+        n[ka] = (fc & 1) ? 1 : -1;
+        if (kind == 2) {
+            ld t, p[3];
+            int face;
+            do {
+                for (int k = 0; k < 3; k++)
+                    o[k] = lo[k] + ext[k] * rnd(g, 0.1f, 0.9f);
+                tofloat(o);
+                unitl(d, g);
+                tofloat(d);
+                slab(lo, hi, o, d, &t, &face);
+                for (int k = 0; k < 3; k++)
+                    p[k] = (o[k] + t * d[k] - lo[k]) / ext[k];
+            } while (fminl(p[0], fminl(p[1], p[2])) < -1e-9L ||
+                     fmaxl(p[0], fmaxl(p[1], p[2])) > 1 + 1e-9L ||
+                     /* away from the edges of the exit face */
+                     (p[(face / 2 + 1) % 3] < 0.05L ||
+                      p[(face / 2 + 1) % 3] > 0.95L ||
+                      p[(face / 2 + 2) % 3] < 0.05L ||
+                      p[(face / 2 + 2) % 3] > 0.95L));
+        } else {
+            for (int k = 0; k < 3; k++)
+                target[k] = lo[k] + ext[k] * rnd(g, 0.05f, 0.95f);
+            target[ka] = (fc & 1) ? hi[ka] : lo[ka];
+            cosv = aim_side(o, d, target, n, s, 1, g);
+            if (kind == 3) {
+                /* from a point outside, away from the box's centre */
+                for (int k = 0; k < 3; k++)
+                    d[k] = o[k] - c[k];
+                tofloat(d);
+            }
+        }
+        ld t = 0, p[3] = { 0, 0, 0 };
+        int face = -1, hit = slab(lo, hi, o, d, &t, &face);
+        if (hit) {
+            for (int k = 0; k < 3; k++)
+                p[k] = o[k] + t * d[k];
+            p[face / 2] = (face & 1) ? hi[face / 2] : lo[face / 2];
+            for (int k = 0; k < 3; k++)
+                n[k] = k == face / 2 ? ((face & 1) ? 1 : -1) : 0;
+        } else {
+            t = 0;
+            n[0] = n[1] = n[2] = 0;
+        }
+        ld scale = fmaxl(max_abs3(o), fmaxl(max_abs3(lo), max_abs3(hi)));
+        fprintf(f, "%d,", i);
+        put3(f, lo);
+        put3(f, hi);
+        put3(f, o);
+        put3(f, d);
+        fprintf(f, "%d,%.17Lg,%d,", hit, t, face);
+        put3e(f, p);
+        put3e(f, n);
+        fprintf(f, "%.17Lg,", scale);
+        put_tol(f, scale / (s * 0.2L * cosv));
+        fprintf(f, "Kay-Kajiya slab test in long double\n");
+    }
+    close_csv(f, dir, "box.csv");
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -260,5 +555,8 @@ int main(int argc, char **argv)
     pcg32_t g;
     pcg32_seed(&g, 2024, 2);
     triangles(argv[1], &g);
+    planes(argv[1], &g);
+    parallelograms(argv[1], &g);
+    boxes(argv[1], &g);
     return 0;
 }
