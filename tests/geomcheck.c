@@ -113,8 +113,16 @@ long geomcheck_sampled_points_are_hit(const COBJECT *obj, geomcheck_kind kind,
             geomcheck_random_hemisphere(w, s.n, &g);
         while (SVECTOR3(w, s.n) < REAL_C(0.05));
         real dist = scale * (REAL_C(0.01) + pcg32_real(&g));
-        if (kind == GEOMCHECK_OPEN)
+        if (kind == GEOMCHECK_OPEN) {
             dist *= REAL_C(0.01);
+            /* ... but off the surface by more than the sample's own error
+             * box (8 times its half-width along n), or which side of the
+             * surface the origin lies on is decided by rounding. */
+            real box = fabs(s.n[X]) * s.p_error[X] +
+                       fabs(s.n[Y]) * s.p_error[Y] +
+                       fabs(s.n[Z]) * s.p_error[Z];
+            dist = fmax(dist, 8 * box / SVECTOR3(w, s.n));
+        }
         ray_t r;
         vec_add_scaled(r.o, s.p, dist, w);
         vec_sub(r.d, s.p, r.o);
