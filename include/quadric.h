@@ -150,7 +150,8 @@ void quadric_disk_surface(const quadric_frame_t *f, const VECTOR3 centre,
                           PATHPOINT *pp);
 
 /* A point of that disk, uniform by area: rho = R sqrt(u0), phi = 2 pi u1
- * (the inverse of the radial CDF rho^2 / R^2). Sets s->p, s->n, s->p_error;
+ * (the inverse of the radial CDF rho^2 / R^2), rho kept within
+ * quadric_sample_margin of the rim. Sets s->p, s->n, s->p_error;
  * the caller sets s->pdf. This function can't fail. */
 void quadric_disk_sample(const quadric_frame_t *f, const VECTOR3 centre,
                          real zc, real R, real sign, const real u[2],
@@ -167,6 +168,20 @@ void quadric_disk_bounds(bbox_t *b, const VECTOR3 centre, const VECTOR3 w,
  * and hi were computed with one rounding, and a bound must contain the
  * exact surface. This function can't fail. */
 void quadric_bounds_add(bbox_t *b, const VECTOR3 lo, const VECTOR3 hi);
+
+/* How far inside a rim (or an end of a lateral face) of size `size` near
+ * the point `at` a sampled point is kept. A point drawn on the exact rim
+ * rounds to either side of it, by up to its error bound, and a ray aimed
+ * at it from outside then misses by rounding; kept this far inside, the
+ * sample, the aimed ray (rounded at |at| too) and the local coordinates of
+ * its hit stay on the surface:
+ *     margin = 4 (gamma(4) (max_i |at_i| + 2 size) + 2 delta size),
+ * delta = QUADRIC_FRAME_DELTA: twice the in-plane error of a rim point (sqrt(3) times its per-axis
+ * bound) to cover the ray's own rounding. Samples in that band move onto
+ * its inner edge: a band of relative width ~1e-5 (float, a shape at the
+ * origin), which no test of the distribution can see, while the pdf stays
+ * 1/area. This function can't fail. */
+real quadric_sample_margin(const VECTOR3 at, real size);
 
 /* Choose face i of n with probability area[i] / (sum of the areas) by u0,
  * and stretch the part of [0, 1) that chose it back to [0, 1] in *u0, so

@@ -180,7 +180,8 @@ void quadric_disk_sample(const quadric_frame_t *f, const VECTOR3 centre,
                          real zc, real R, real sign, const real u[2],
                          cobject_sample_t *s)
 {
-    real rho = R * sqrt(u[0]), phi = 2 * REAL_PI * u[1];
+    real rim = fmax(R - quadric_sample_margin(centre, R), REAL_C(0.0));
+    real rho = fmin(R * sqrt(u[0]), rim), phi = 2 * REAL_PI * u[1];
     quadric_frame_point(f, centre, rho * cos(phi), rho * sin(phi), 0,
                         QUADRIC_FRAME_DELTA * fabs(zc), s->p, s->p_error);
     vec_scale(s->n, f->w, sign);
@@ -205,6 +206,13 @@ void quadric_disk_bounds(bbox_t *b, const VECTOR3 centre, const VECTOR3 w,
         hi[i] = centre[i] + e;
     }
     quadric_bounds_add(b, lo, hi);
+}
+
+real quadric_sample_margin(const VECTOR3 at, real size)
+{
+    real m = fmax(fabs(at[X]), fmax(fabs(at[Y]), fabs(at[Z])));
+    return 4 * (ray_gamma(4) * (m + 2 * size) +
+                2 * QUADRIC_FRAME_DELTA * size);
 }
 
 int quadric_pick_face(real *u0, const real area[], int n)

@@ -66,6 +66,72 @@ void quadcheck_assert_finite(const PATHPOINT *pp, const char *what)
                   "%s: |ng| = %g", what, (double)vec_length(pp->ng));
 }
 
+/* The centres of quadcheck_error_bound and quadcheck_sweep: the origin,
+ * and 10 scale away, where the coordinates dwarf the shape. */
+static void centre_at(VECTOR3 c, real scale, int away)
+{
+    vec_set(c, 10 * scale * away, -6 * scale * away, 3 * scale * away);
+}
+
+static long double support(const VECTOR3 n, const VECTOR3 e)
+{
+    return fabsl(n[X]) * e[X] + fabsl(n[Y]) * e[Y] + fabsl(n[Z]) * e[Z];
+}
+
+long quadcheck_error_bound(primcheck_make_fn make, quadcheck_dist_fn dist,
+                           void *ctx, int n, uint64_t seed)
+{
+    int ns;
+    const real *sc = primcheck_scales(&ns);
+    pcg32_t g;
+    pcg32_seed(&g, seed, 0xe770);
+    long cases = 0;
+    long double worst = 0;
+    for (int i = 0; i < ns; i++)
+        for (int away = 0; away < 2; away++) {
+            VECTOR3 c, bc, dir;
+            centre_at(c, sc[i], away);
+            COBJECT *obj = make(sc[i], c, ctx);
+            bbox_t b;
+            obj->ops->bounds(obj, -1, &b);
+            bbox_centroid(bc, &b);
+            real R = vec_distance(b.max, b.min);
+            for (int k = 0; k < n; k++) {
+                ray_t r;
+                VECTOR3 target;
+                geomcheck_random_dir(dir, &g);
+                vec_add_scaled(r.o, bc, 2 * R, dir);
+                for (int j = 0; j < 3; j++)
+                    target[j] = b.min[j] +
+                                pcg32_real(&g) * (b.max[j] - b.min[j]);
+                vec_sub(r.d, target, r.o);
+                PATHPOINT pp;
+                if (quadcheck_trace(obj, &r, 0, (real)INFINITY, &pp)) {
+                    long double d = dist(pp.cross_point, sc[i], c, ctx);
+                    long double e = support(pp.ng, pp.p_error);
+                    ck_assert_msg(d <= e, "%s, scale %g: hit %Lg off the "
+                                  "surface, bound %Lg", obj->ops->name,
+                                  (double)sc[i], d, e);
+                    worst = fmaxl(worst, d / e);
+                    cases++;
+                }
+                real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+                cobject_sample_t s;
+                obj->ops->sample(obj, u, &s);
+                long double d = dist(s.p, sc[i], c, ctx);
+                long double e = support(s.n, s.p_error);
+                ck_assert_msg(d <= e, "%s, scale %g: sample %Lg off the "
+                              "surface, bound %Lg", obj->ops->name,
+                              (double)sc[i], d, e);
+                worst = fmaxl(worst, d / e);
+                cases++;
+            }
+            cobject_free(obj);
+        }
+    printf("  largest distance / bound: %.3g\n", (double)worst);
+    return cases;
+}
+
 long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed)
 {
     int ns;
@@ -73,8 +139,8 @@ long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed)
     long cases = 0;
     for (int i = 0; i < ns; i++)
         for (int away = 0; away < 2; away++) {
-            VECTOR3 c = { 10 * sc[i] * away, -6 * sc[i] * away,
-                          3 * sc[i] * away };
+            VECTOR3 c;
+            centre_at(c, sc[i], away);
             COBJECT *obj = make(sc[i], c, ctx);
             cases += primcheck_sweep_finite(obj, n, seed++);
             cobject_free(obj);

@@ -28,6 +28,19 @@ typedef double (*quadcheck_cdf_fn)(const cobject_sample_t *s, void *ctx);
 void quadcheck_ks(const COBJECT *obj, int n, uint64_t seed,
                   quadcheck_cdf_fn cdf, void *ctx, const char *test);
 
+/* Distance in long double from p to the exact surface of the shape that
+ * make(scale, centre, ctx) builds. */
+typedef long double (*quadcheck_dist_fn)(const VECTOR3 p, real scale,
+                                         const VECTOR3 centre, void *ctx);
+
+/* The exact surface passes through the error box of every hit point and
+ * every sampled point: dist(p) <= sum_i |n_i| p_error_i, the half-width of
+ * the box along the normal n, which is what ray_offset_origin moves past.
+ * n rays per shape at every scale, centred at the origin and 10 scale
+ * away; prints the largest dist / bound seen. Returns the points checked. */
+long quadcheck_error_bound(primcheck_make_fn make, quadcheck_dist_fn dist,
+                           void *ctx, int n, uint64_t seed);
+
 /* primcheck_sweep_finite (n rays) on make(scale, centre, ctx) at every
  * scale of primcheck_scales, centred at the origin and 10 scale away.
  * Returns the rays traced. */

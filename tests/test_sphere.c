@@ -171,9 +171,11 @@ START_TEST(rays_tangent_to_the_sphere_give_no_nan)
 }
 END_TEST
 
-/* Distance of p from the exact sphere, in long double. */
-static long double sphere_distance(const VECTOR3 p, const VECTOR3 c, real r)
+/* Distance of p from the exact sphere of make_sphere, in long double. */
+static long double sphere_distance(const VECTOR3 p, real r,
+                                   const VECTOR3 c, void *ctx)
 {
+    (void)ctx;
     long double d2 = 0;
     for (int k = 0; k < 3; k++) {
         long double d = (long double)p[k] - (long double)c[k];
@@ -182,52 +184,11 @@ static long double sphere_distance(const VECTOR3 p, const VECTOR3 c, real r)
     return fabsl(sqrtl(d2) - (long double)r);
 }
 
-static long double box_radius(const VECTOR3 e)
-{
-    return sqrtl((long double)e[X] * e[X] + (long double)e[Y] * e[Y] +
-                 (long double)e[Z] * e[Z]);
-}
-
 START_TEST(hit_and_sampled_points_are_within_their_error_bound)
 {
-    pcg32_t g;
-    pcg32_seed(&g, 31, 32);
-    const real *scales;
-    int ns;
-    scales = primcheck_scales(&ns);
-    long cases = 0;
-    long double worst = 0;
-    for (int i = 0; i < ns; i++)
-        for (int pl = 0; pl < 2; pl++) {
-            real sc = scales[i];
-            VECTOR3 c = { pl * 10 * sc, pl * -6 * sc, pl * 3 * sc };
-            COBJECT *s = make_sphere(sc, c, NULL);
-            for (int k = 0; k < 2000; k++, cases++) {
-                ray_t r;
-                VECTOR3 dir, target;
-                geomcheck_random_dir(dir, &g);
-                vec_add_scaled(r.o, c, 4 * sc, dir);
-                geomcheck_random_dir(dir, &g);
-                vec_add_scaled(target, c, sc * pcg32_real(&g), dir);
-                vec_sub(r.d, target, r.o);
-                PATHPOINT pp;
-                ck_assert(quadcheck_trace(s, &r, 0, (real)INFINITY, &pp));
-                long double d = sphere_distance(pp.cross_point, c, sc);
-                long double e = box_radius(pp.p_error);
-                ck_assert_msg(d <= e, "hit %g from the sphere, bound %g",
-                              (double)d, (double)e);
-                worst = fmaxl(worst, d / e);
-                real u[2] = { pcg32_real(&g), pcg32_real(&g) };
-                cobject_sample_t smp;
-                s->ops->sample(s, u, &smp);
-                d = sphere_distance(smp.p, c, sc);
-                ck_assert(d <= box_radius(smp.p_error));
-            }
-            cobject_free(s);
-        }
-    printf("  largest distance / bound: %.3g\n", (double)worst);
     test_report_cases("hit_and_sampled_points_are_within_their_error_bound",
-                      cases);
+                      quadcheck_error_bound(make_sphere, sphere_distance,
+                                            NULL, 2000, 31));
 }
 END_TEST
 
