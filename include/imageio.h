@@ -38,6 +38,10 @@ bool imageio_is_display(imageio_format_t f);
 svet_status imageio_read(const char *path, image_t *img, bool linearise,
                          imageio_format_t *format, svet_error *err);
 
+/* Replace the R, G, B display codes of img by linear values with the sRGB
+ * curve (colour_srgb_decode); alpha is left alone. Can't fail. */
+void imageio_decode_srgb(image_t *img);
+
 /* Write img to path in the format of its extension: .exr as 32-bit float
  * with ZIP (exact), .pfm, and .png/.ppm as 8-bit codes of values already
  * encoded in [0, 1]. Fails with SVET_ERR_UNSUPPORTED for another

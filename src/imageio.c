@@ -95,17 +95,21 @@ svet_status imageio_read(const char *path, image_t *img, bool linearise,
         st = netpbm_read_ppm(path, img, NULL, err);
         break;
     }
-    if (st == SVET_OK && linearise && imageio_is_display(f)) {
-        size_t n = (size_t)img->width * (size_t)img->height;
-        for (size_t i = 0; i < n; i++)
-            for (int c = 0; c < 3; c++) {
-                float *v = &img->px[i * (size_t)img->channels + (size_t)c];
-                *v = (float)colour_srgb_decode((real)*v);
-            }
-    }
+    if (st == SVET_OK && linearise && imageio_is_display(f))
+        imageio_decode_srgb(img);
     if (format)
         *format = f;
     return st;
+}
+
+void imageio_decode_srgb(image_t *img)
+{
+    size_t n = (size_t)img->width * (size_t)img->height;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            float *v = &img->px[i * (size_t)img->channels + (size_t)c];
+            *v = (float)colour_srgb_decode((real)*v);
+        }
 }
 
 svet_status imageio_write(const char *path, const image_t *img,
