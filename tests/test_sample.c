@@ -213,7 +213,7 @@ START_TEST(gamma_q_matches_closed_forms_and_tables)
     ck_assert_near(chi2_gamma_q(50, 135.807 / 2), 0.01, 2e-6);
     ck_assert(chi2_gamma_q(3, 0) == 1);
     ck_assert(isnan(chi2_gamma_q(0, 1)) && isnan(chi2_gamma_q(1, -1)));
-    ck_assert(chi2_gamma_q(2, INFINITY) == 0);
+    ck_assert(chi2_gamma_q(2, (double)INFINITY) == 0);
     test_report_cases("gamma_q_matches_closed_forms_and_tables", n + 6);
 }
 END_TEST
@@ -563,9 +563,10 @@ START_TEST(point_samplers_have_their_distributions)
      * p - p0 = s e1 + t e2 (exact for points of the plane). */
     long double g11 = 0, g12 = 0, g22 = 0;
     for (int c = 0; c < 3; c++) {
-        g11 += (long double)e1[c] * e1[c];
-        g12 += (long double)e1[c] * e2[c];
-        g22 += (long double)e2[c] * e2[c];
+        long double a = (long double)e1[c], b = (long double)e2[c];
+        g11 += a * a;
+        g12 += a * b;
+        g22 += b * b;
     }
     long double det = g11 * g22 - g12 * g12;
     for (int k = 0; k < N; k++) {
@@ -574,9 +575,9 @@ START_TEST(point_samplers_have_their_distributions)
         sample_parallelogram(p, p0, e1, e2, u);
         long double r1 = 0, r2 = 0;
         for (int c = 0; c < 3; c++) {
-            long double dp = (long double)p[c] - p0[c];
-            r1 += dp * e1[c];
-            r2 += dp * e2[c];
+            long double dp = (long double)p[c] - (long double)p0[c];
+            r1 += dp * (long double)e1[c];
+            r2 += dp * (long double)e2[c];
         }
         double s = (double)((g22 * r1 - g12 * r2) / det);
         double t = (double)((g11 * r2 - g12 * r1) / det);
@@ -781,7 +782,7 @@ START_TEST(no_sampler_returns_nan_or_inf_over_a_dense_sweep)
     /* pdfs at the edges of their domains. */
     ck_assert(sample_phong_lobe_pdf(0, 0) > 0);
     ck_assert(sample_phong_lobe_pdf(0, 5) == 0);
-    ck_assert(sample_phong_lobe_pdf(-1e-7f, 0) == 0);
+    ck_assert(sample_phong_lobe_pdf(REAL_C(-1e-7), 0) == 0);
     ck_assert(isfinite(sample_phong_lobe_pdf(1, REAL_C(1e30))));
     ck_assert(sample_cosine_hemisphere_pdf(0) == 0);
     VECTOR3 grazing = { 1, 0, 0 }, tiny = { 1, 0, REAL_MIN }, up = { 0, 0, 1 };
@@ -862,10 +863,12 @@ static void two_pass(const double *x, int n, long double *mean,
 {
     long double s = 0, ss = 0;
     for (int i = 0; i < n; i++)
-        s += x[i];
+        s += (long double)x[i];
     *mean = s / n;
-    for (int i = 0; i < n; i++)
-        ss += (x[i] - *mean) * (x[i] - *mean);
+    for (int i = 0; i < n; i++) {
+        long double d = (long double)x[i] - *mean;
+        ss += d * d;
+    }
     *var = n > 1 ? ss / (n - 1) : 0;
 }
 

@@ -206,8 +206,9 @@ static void directions_file(const char *dir)
     int n = 0;
     for (size_t s = 0; s < sizeof samplers / sizeof samplers[0]; s++)
         for (int i = 0; i < NU; i++) {
-            dres r = ref_direction(samplers[s].s, samplers[s].a, samplers[s].b,
-                                   us[i][0], us[i][1]);
+            dres r = ref_direction(samplers[s].s, (ld)samplers[s].a,
+                                   (ld)samplers[s].b, (ld)us[i][0],
+                                   (ld)us[i][1]);
             fprintf(f,
                     "%d,%s,%.17g,%.17g,%.17g,%.17g,%.17Lg,%.17Lg,%.17Lg,%.17Lg,"
                     "%.3g,%.3g,%.3g,%.3g,%s\n",
@@ -237,7 +238,7 @@ static void points_file(const char *dir)
     int n = 0;
     for (int i = 0; i < NU; i++) {
         ld d[2];
-        concentric(d, us[i][0], us[i][1]);
+        concentric(d, (ld)us[i][0], (ld)us[i][1]);
         fprintf(f, "%d,concentric_disk,%.17g,%.17g,%.17Lg,%.17Lg,%.3g,%.3g,"
                    "Shirley-Chiu 1997 long double\n",
                 n++, (double)us[i][0], (double)us[i][1], d[0], d[1],
@@ -300,9 +301,12 @@ static void sphere_file(const char *dir)
     int n = 0;
     for (size_t s = 0; s < sizeof cfg / sizeof cfg[0]; s++)
         for (int i = 0; i < NU; i++) {
-            ld x[3] = { cfg[s][0], cfg[s][1], cfg[s][2] };
-            ld c[3] = { cfg[s][3], cfg[s][4], cfg[s][5] };
-            ld r = cfg[s][6], u0 = us[i][0], u1 = us[i][1];
+            ld x[3], c[3];
+            for (int k = 0; k < 3; k++) {
+                x[k] = (ld)cfg[s][k];
+                c[k] = (ld)cfg[s][3 + k];
+            }
+            ld r = (ld)cfg[s][6], u0 = (ld)us[i][0], u1 = (ld)us[i][1];
             ld xc[3] = { c[0] - x[0], c[1] - x[1], c[2] - x[2] };
             ld d = sqrtl(xc[0] * xc[0] + xc[1] * xc[1] + xc[2] * xc[2]);
             ld w[3], pdf;

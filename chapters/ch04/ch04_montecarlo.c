@@ -214,7 +214,7 @@ static double loglog_slope(const double *err)
         m++;
     }
     if (m < 2)
-        return NAN;
+        return (double)NAN;
     return (m * sxy - sx * sy) / (m * sxx - sx * sx);
 }
 
