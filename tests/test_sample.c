@@ -962,13 +962,12 @@ END_TEST
 
 /* --- tests/vectors/sample_*.csv --------------------------------------------- */
 
-static double vec_tol(testcsv_t *c)
+/* Column <name>_float or <name>_double, for this build's real. */
+static double per_real(testcsv_t *c, const char *name)
 {
-#ifdef SVET_DOUBLE
-    return testcsv_num(c, "tol_double");
-#else
-    return testcsv_num(c, "tol_float");
-#endif
+    char col[64];
+    snprintf(col, sizeof col, "%s_%s", name, REAL_NAME);
+    return testcsv_num(c, col);
 }
 
 START_TEST(samplers_match_the_vectors)
@@ -1007,18 +1006,14 @@ START_TEST(samplers_match_the_vectors)
             ck_abort_msg("%s:%d: unknown sampler %s", c.path, c.line, s);
             return;
         }
-        double tol = vec_tol(&c);
+        double tol = per_real(&c, "tol");
         ck_assert_msg(fabs((double)w[X] - testcsv_num(&c, "wx")) <= tol &&
                           fabs((double)w[Y] - testcsv_num(&c, "wy")) <= tol &&
                           fabs((double)w[Z] - testcsv_num(&c, "wz")) <= tol,
                       "%s:%d %s: w = (%.9g %.9g %.9g), tol %g", c.path, c.line,
                       s, (double)w[X], (double)w[Y], (double)w[Z], tol);
         double pe = testcsv_num(&c, "pdf");
-#ifdef SVET_DOUBLE
-        double prel = testcsv_num(&c, "pdf_rel_double");
-#else
-        double prel = testcsv_num(&c, "pdf_rel_float");
-#endif
+        double prel = per_real(&c, "pdf_rel");
         ck_assert_msg(fabs((double)pdf - pe) <= prel * pe + 1e-300,
                       "%s:%d %s: pdf %.9g, expected %.9g (rel %g)", c.path,
                       c.line, s, (double)pdf, pe, prel);
@@ -1039,7 +1034,7 @@ START_TEST(samplers_match_the_vectors)
             ck_abort_msg("%s:%d: unknown sampler %s", c.path, c.line, s);
             return;
         }
-        double tol = vec_tol(&c);
+        double tol = per_real(&c, "tol");
         ck_assert_msg(fabs((double)q[0] - testcsv_num(&c, "p0")) <= tol &&
                           fabs((double)q[1] - testcsv_num(&c, "p1")) <= tol,
                       "%s:%d %s: (%.9g %.9g)", c.path, c.line, s, (double)q[0],
@@ -1058,17 +1053,13 @@ START_TEST(samplers_match_the_vectors)
         real u[2] = { (real)testcsv_num(&c, "u0"), (real)testcsv_num(&c, "u1") };
         VECTOR3 w;
         real pdf = sample_sphere_solid_angle(w, x, cc, r, u);
-        double tol = vec_tol(&c);
+        double tol = per_real(&c, "tol");
         ck_assert_msg(fabs((double)w[X] - testcsv_num(&c, "wx")) <= tol &&
                           fabs((double)w[Y] - testcsv_num(&c, "wy")) <= tol &&
                           fabs((double)w[Z] - testcsv_num(&c, "wz")) <= tol,
                       "%s:%d: w = (%.9g %.9g %.9g)", c.path, c.line,
                       (double)w[X], (double)w[Y], (double)w[Z]);
-#ifdef SVET_DOUBLE
-        double prel = testcsv_num(&c, "pdf_rel_double");
-#else
-        double prel = testcsv_num(&c, "pdf_rel_float");
-#endif
+        double prel = per_real(&c, "pdf_rel");
         double pe = testcsv_num(&c, "pdf");
         ck_assert_msg(fabs((double)pdf - pe) <= prel * pe, "%s:%d: pdf %.9g vs %.9g",
                       c.path, c.line, (double)pdf, pe);

@@ -68,52 +68,48 @@ static void uniform_points(real *pts, long n, pcg32_t *g, int stratified)
         pts[i] = pcg32_real(g);
 }
 
+enum { UNIFORM, COSINE, MATCHED }; /* how the directions are drawn */
+
+/* One sample's f / p under the given sampling: a direction w from the
+ * point u of [0,1)^2, and the integrand over the pdf there. */
+static double irr_ratio(int how, const real u[2])
+{
+    VECTOR3 w;
+    double pdf;
+    switch (how) {
+    case UNIFORM:
+        sample_uniform_hemisphere(w, u);
+        pdf = (double)sample_uniform_hemisphere_pdf();
+        break;
+    case COSINE:
+        sample_cosine_hemisphere(w, u);
+        pdf = (double)sample_cosine_hemisphere_pdf(w[Z]);
+        break;
+    default:
+        /* p proportional to f: the Phong lobe cos^(n+1) about the normal.
+         * f / p = 2 pi / (n + 2) for every sample: zero variance. */
+        sample_phong_lobe(w, u, REAL_C(IRR_N + 1));
+        pdf = (double)sample_phong_lobe_pdf(w[Z], REAL_C(IRR_N + 1));
+        break;
+    }
+    return irr_f((double)w[Z]) / pdf;
+}
+
 /* f / p averaged: the estimator <I> = (1/N) sum f(x_i)/p(x_i) (sec. 4). */
-static double irr_uniform(pcg32_t *g, long n, real *pts, int strat)
+static double irr_estimate(pcg32_t *g, long n, real *pts, int how, int strat)
 {
     uniform_points(pts, n, g, strat);
     double sum = 0;
-    for (long i = 0; i < n; i++) {
-        VECTOR3 w;
-        sample_uniform_hemisphere(w, pts + 2 * i);
-        sum += irr_f((double)w[Z]) / (double)sample_uniform_hemisphere_pdf();
-    }
+    for (long i = 0; i < n; i++)
+        sum += irr_ratio(how, pts + 2 * i);
     return sum / (double)n;
 }
 
-static double irr_cosine(pcg32_t *g, long n, real *pts, int strat)
-{
-    uniform_points(pts, n, g, strat);
-    double sum = 0;
-    for (long i = 0; i < n; i++) {
-        VECTOR3 w;
-        sample_cosine_hemisphere(w, pts + 2 * i);
-        sum += irr_f((double)w[Z]) /
-               (double)sample_cosine_hemisphere_pdf(w[Z]);
-    }
-    return sum / (double)n;
-}
-
-static double irr_matched(pcg32_t *g, long n, real *pts, int strat)
-{
-    /* p proportional to f: the Phong lobe cos^(n+1) about the normal.
-     * f / p = 2 pi / (n + 2) for every sample: zero variance. */
-    uniform_points(pts, n, g, strat);
-    double sum = 0;
-    for (long i = 0; i < n; i++) {
-        VECTOR3 w;
-        sample_phong_lobe(w, pts + 2 * i, REAL_C(IRR_N + 1));
-        sum += irr_f((double)w[Z]) /
-               (double)sample_phong_lobe_pdf(w[Z], REAL_C(IRR_N + 1));
-    }
-    return sum / (double)n;
-}
-
-static double m_irr_uniform(pcg32_t *g, long n, real *p) { return irr_uniform(g, n, p, 0); }
-static double m_irr_cosine(pcg32_t *g, long n, real *p) { return irr_cosine(g, n, p, 0); }
-static double m_irr_matched(pcg32_t *g, long n, real *p) { return irr_matched(g, n, p, 0); }
-static double m_irr_strat_uniform(pcg32_t *g, long n, real *p) { return irr_uniform(g, n, p, 1); }
-static double m_irr_strat_cosine(pcg32_t *g, long n, real *p) { return irr_cosine(g, n, p, 1); }
+static double m_irr_uniform(pcg32_t *g, long n, real *p) { return irr_estimate(g, n, p, UNIFORM, 0); }
+static double m_irr_cosine(pcg32_t *g, long n, real *p) { return irr_estimate(g, n, p, COSINE, 0); }
+static double m_irr_matched(pcg32_t *g, long n, real *p) { return irr_estimate(g, n, p, MATCHED, 0); }
+static double m_irr_strat_uniform(pcg32_t *g, long n, real *p) { return irr_estimate(g, n, p, UNIFORM, 1); }
+static double m_irr_strat_cosine(pcg32_t *g, long n, real *p) { return irr_estimate(g, n, p, COSINE, 1); }
 
 /* A one-dimensional integral: int_0^pi sin x dx = 2. */
 
