@@ -67,11 +67,17 @@ void chi2_config_defaults(chi2_config *cfg);
  * integrated over it by adaptive Gauss-Legendre cubature in
  * (cos theta, phi): each bin is split at least twice in each direction
  * (4 x 4 cells, 5 x 5 nodes each), then cells whose estimate changes by more
- * than 1e-7 (absolute, shared out by area) + 1e-6 (relative) when halved are
- * halved again, down to 2^-14 of a bin. Limit: a feature narrower than about
- * 1/20 of a bin that no node sees at depth 2 is missed; its samples then land
- * in bins expected to be (nearly) empty and the test fails rather than
- * passing wrongly. Zoom with cap_height for lobes about +z.
+ * than 1e-7 (absolute, shared out by area) + 1e-4 in float, 1e-7 in double
+ * (relative: above the rounding of a pdf evaluated at a float direction)
+ * when halved are halved again, down to 2^-14 of a bin or 2e5 pdf calls per
+ * bin (the message then says "quadrature unresolved": a pdf with a step
+ * inside a bin, or float noise; the counts are still good to ~1e-4). Bins
+ * touching a pole, and the region below the cap, are cut into bands that
+ * shrink geometrically toward the pole / cap edge. Limit: a feature narrower
+ * than about 1/20 of a bin, away from the poles, that no node sees at
+ * depth 2 is missed; its samples then land in bins expected to be (nearly)
+ * empty and the test fails rather than passing wrongly. Put steps of the
+ * pdf on bin edges, and zoom with cap_height for lobes about +z.
  * Fails (passed = false, reason in message) on: p-value below the Sidak
  * threshold; a NaN, Inf or non-unit sample; a negative or non-finite pdf;
  * more than 1e-5 N samples in cells of zero expectation (pbrt-v3's
