@@ -97,9 +97,10 @@ chi2_result chi2_test(const chi2_config *cfg, chi2_sample_fn sample,
 chi2_result chi2_from_counts(const double *observed, const double *expected,
                              int n, const chi2_config *cfg);
 
-/* Integral of pdf over the whole sphere by the same adaptive cubature, on
- * a 20 x 40 grid (finer inside the cap of height cap_height about +z when
- * cap_height is in (0, 2)). *err (if not NULL) receives the error
+/* Integral of pdf over the whole sphere by the same adaptive cubature, in
+ * bands of cos(theta) halving in width toward both poles (down to 2^-44)
+ * and, when cap_height is in (0, 2), toward the cap's edge 1 - cap_height
+ * from both sides; 24 cells in phi. *err (if not NULL) receives the error
  * estimate. This function can't fail. */
 double chi2_pdf_integral(chi2_pdf_fn pdf, void *ctx, double cap_height,
                          double *err);
