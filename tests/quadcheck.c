@@ -66,6 +66,37 @@ void quadcheck_assert_finite(const PATHPOINT *pp, const char *what)
                   "%s: |ng| = %g", what, (double)vec_length(pp->ng));
 }
 
+long double quadcheck_meridian_distance(const VECTOR3 p, const VECTOR3 a,
+                                        const VECTOR3 b,
+                                        const long double seg[][4], int n)
+{
+    long double w[3], q[3], H2 = 0, h = 0, r2 = 0;
+    for (int k = 0; k < 3; k++) {
+        w[k] = (long double)b[k] - a[k];
+        q[k] = (long double)p[k] - a[k];
+        H2 += w[k] * w[k];
+    }
+    long double H = sqrtl(H2);
+    for (int k = 0; k < 3; k++)
+        h += q[k] * w[k] / H;
+    for (int k = 0; k < 3; k++) {
+        long double t = q[k] - h * w[k] / H;
+        r2 += t * t;
+    }
+    long double rho = sqrtl(r2), best = INFINITY;
+    for (int i = 0; i < n; i++) {
+        /* the nearest point of the segment: clamp the projection */
+        long double er = seg[i][2] - seg[i][0], eh = seg[i][3] - seg[i][1];
+        long double s = ((rho - seg[i][0]) * er + (h - seg[i][1]) * eh) /
+                        (er * er + eh * eh);
+        s = fminl(fmaxl(s, 0), 1);
+        long double dr = rho - (seg[i][0] + s * er);
+        long double dh = h - (seg[i][1] + s * eh);
+        best = fminl(best, sqrtl(dr * dr + dh * dh));
+    }
+    return best;
+}
+
 /* The centres of quadcheck_error_bound and quadcheck_sweep: the origin,
  * and 10 scale away, where the coordinates dwarf the shape. */
 static void centre_at(VECTOR3 c, real scale, int away)

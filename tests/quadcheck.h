@@ -33,6 +33,16 @@ void quadcheck_ks(const COBJECT *obj, int n, uint64_t seed,
 typedef long double (*quadcheck_dist_fn)(const VECTOR3 p, real scale,
                                          const VECTOR3 centre, void *ctx);
 
+/* Distance in long double from p to a surface of revolution about the
+ * segment from a to b, given by its meridian: n segments
+ * (rho0, h0) - (rho1, h1) in the half-plane of the distance rho from the
+ * axis and the height h = (p - a) . (b - a) / |b - a|. A cylinder of
+ * radius R and height H has the segments (R, 0)-(R, H), and (0, 0)-(R, 0),
+ * (0, H)-(R, H) for its caps. */
+long double quadcheck_meridian_distance(const VECTOR3 p, const VECTOR3 a,
+                                        const VECTOR3 b,
+                                        const long double seg[][4], int n);
+
 /* The exact surface passes through the error box of every hit point and
  * every sampled point: dist(p) <= sum_i |n_i| p_error_i, the half-width of
  * the box along the normal n, which is what ray_offset_origin moves past.
