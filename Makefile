@@ -159,10 +159,46 @@ $(BUILD)/bench/bench_%: bench/bench_%.c $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
 
-$(BENCHES): bench-%: $(BUILD)/bench/bench_%
+$(filter-out bench-geometry,$(BENCHES)): bench-%: $(BUILD)/bench/bench_%
 	$(BUILD)/bench/bench_$* $(BENCH_ARGS)
 
 bench: $(BENCHES)
+
+# float against double: both builds measure, then one table
+bench-geometry: $(BUILD)/bench/bench_geometry
+	$(MAKE) REAL=double build/double/bench/bench_geometry
+	@mkdir -p out/bench
+	build/float/bench/bench_geometry --csv out/bench/geometry-float.csv
+	build/double/bench/bench_geometry --csv out/bench/geometry-double.csv
+	@build/float/bench/bench_geometry --report out/bench/geometry-float.csv \
+	    out/bench/geometry-double.csv | tee bench/results/geometry.md
+
+# --- fuzzing: fuzz/fuzz_NAME.c is `make fuzz-NAME` ---------------------------
+# libFuzzer targets, built by clang with ASan + UBSan from the modules each
+# lists in fuzz_NAME_MODULES (clang here has no OpenMP: not the library).
+# `make fuzz-NAME FUZZ_TIME=3600` runs one for that many seconds from its
+# seed corpus fuzz/corpus/NAME/; new inputs go to fuzz/findings/NAME/corpus
+# and crashes to fuzz/findings/NAME/. fuzz/README.md records the runs.
+FUZZ_CC    ?= clang
+FUZZ_TIME  ?= 60
+FUZZ_BUILD ?= build/fuzz
+FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
+              -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
+fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
+    frame material mesh obj parallelogram plane quadric ray rng sample scene \
+    scenefile shape sphere triangle vec xform
+fuzz_scene_ARGS := -dict=fuzz/scene.dict
+
+$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(wildcard src/*.c include/*.h)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $< $(fuzz_$*_MODULES:%=src/%.c) \
+	    -lm -o $@
+
+fuzz-%: $(FUZZ_BUILD)/fuzz_%
+	@mkdir -p fuzz/findings/$*/corpus
+	$< -max_total_time=$(FUZZ_TIME) -timeout=5 $(fuzz_$*_ARGS) \
+	    -artifact_prefix=fuzz/findings/$*/ fuzz/findings/$*/corpus \
+	    fuzz/corpus/$*
 
 # --- install ---------------------------------------------------------------
 install: all
