@@ -384,7 +384,9 @@ static int run_csv(const char *path)
                              fabsl(m[1]) * pp.p_error[1] +
                              fabsl(m[2]) * pp.p_error[2];
                 bool inside = dist <= support * (1 + 1e-6L);
-                double rel = err / (double)s;
+                /* relative to the scale, or to the distance travelled when
+                 * that is larger (far grazing hits of the plane) */
+                double rel = err / fmax((double)s, (double)pp.r_dist);
                 if (rel > maxrel)
                     maxrel = rel;
                 sumsq += rel * rel;
@@ -479,7 +481,8 @@ static int report(const char *fpath, const char *dpath)
             printf("| %s | %.1f | %.1f | %.2f |\n", fr[i].name, fr[i].a,
                    dr[i].a, fr[i].b);
     printf("\nError of the hit point, max over 20000 rays, relative to the "
-           "scale s (object size and distance from the origin ~ s), "
+           "scale s (object size and distance from the origin ~ s) or to "
+           "the distance the ray travelled if larger, "
            "against the exact intersection of the same rounded ray and shape "
            "in long double; and the fraction of hits whose error box "
            "p_error reaches the surface (the distance from the computed "
