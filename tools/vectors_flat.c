@@ -546,6 +546,217 @@ static void boxes(const char *dir, pcg32_t *g)
     close_csv(f, dir, "box.csv");
 }
 
+/* --- xform ---------------------------------------------------------------------- */
+
+/* [R S | t] and its inverse [S^-1 R^T | -S^-1 R^T t] in long double, R
+ * the axis-angle rotation matrix, from the factors. */
+typedef struct {
+    ld m[3][3], t[3], inv[3][3];
+} affine_l;
+
+static void make_affine(affine_l *a, const ld s[3], const ld axis[3], ld deg,
+                        const ld t[3])
+{
+    ld k[3], len = lenl(axis);
+    for (int i = 0; i < 3; i++)
+        k[i] = axis[i] / len;
+    ld th = deg * 3.14159265358979323846264338327950288L / 180;
+    ld c = cosl(th), sn = sinl(th);
+    const ld kx[3][3] = { { 0, -k[2], k[1] }, { k[2], 0, -k[0] },
+                          { -k[1], k[0], 0 } };
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            ld r = (i == j ? c : 0) + sn * kx[i][j] + (1 - c) * k[i] * k[j];
+            a->m[i][j] = r * s[j];      /* R S */
+            a->inv[j][i] = r / s[j];    /* S^-1 R^T */
+        }
+    for (int i = 0; i < 3; i++)
+        a->t[i] = t[i];
+}
+
+static void lin(ld out[3], ld m[3][3], const ld v[3])
+{
+    ld r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    for (int i = 0; i < 3; i++)
+        out[i] = r[i];
+}
+
+/* M^-T n, unit */
+static void normal_l(ld out[3], const affine_l *a, const ld n[3])
+{
+    ld r[3];
+    for (int i = 0; i < 3; i++)
+        r[i] = a->inv[0][i] * n[0] + a->inv[1][i] * n[1] + a->inv[2][i] * n[2];
+    ld len = lenl(r);
+    for (int i = 0; i < 3; i++)
+        out[i] = r[i] / len;
+}
+
+static void xforms(const char *dir, pcg32_t *g)
+{
+    FILE *f = open_csv(dir, "xform.csv",
+                       "A box (a = min, b = max) or a parallelogram (c0 = 0, "
+                       "c1 = a, c3 = b) under the transform: scale (sx, sy, "
+                       "sz), then rotate deg degrees about (kx, ky, kz), "
+                       "then translate (tx, ty, tz); ray o + t d in the "
+                       "world.\n# Expected by the matrix M = R S with the "
+                       "axis-angle R and its inverse S^-1 R^T in long "
+                       "double: the ray taken to object space, the slab "
+                       "test or plane + Cramer there, the world point p = o "
+                       "+ t d, the normal n = unit(M^-T n_object), and the "
+                       "area as the sum of |M a x M b| over the faces.\n# "
+                       "Tolerances: t and area relative, p relative to "
+                       "`scale`, n absolute.",
+                       "case,inner,ax,ay,az,bx,by,bz,sx,sy,sz,kx,ky,kz,deg,"
+                       "tx,ty,tz,ox,oy,oz,dx,dy,dz,hit,t,px,py,pz,nx,ny,nz,"
+                       "area,scale,tol_float,tol_double,source");
+    for (int i = 0; i < 60; i++) {
+        int box = i % 2 == 0, kind = (i / 2) % 4;
+        ld a[3], b[3], s[3], ax[3], t[3], deg = rnd(g, -180, 180);
+        for (int k = 0; k < 3; k++) {
+            s[k] = rnd(g, 0.3f, 3);
+            t[k] = rnd(g, -5, 5);
+        }
+        unitl(ax, g);
+        tofloat(s);
+        tofloat(ax);
+        tofloat(t);
+        deg = (float)deg;
+        ld N[3];
+        if (box) {
+            for (int k = 0; k < 3; k++) {
+                a[k] = rnd(g, -1, -0.2f);
+                b[k] = rnd(g, 0.2f, 1);
+            }
+        } else {
+            do {
+                for (int k = 0; k < 3; k++) {
+                    a[k] = rnd(g, -1, 1);
+                    b[k] = rnd(g, -1, 1);
+                }
+                crossl(N, a, b);
+            } while (lenl(N) < 0.3L * lenl(a) * lenl(b));
+        }
+        tofloat(a);
+        tofloat(b);
+        affine_l M;
+        make_affine(&M, s, ax, deg, t);
+        /* an object-space target with margins, its normal, then a world
+         * ray at it */
+        ld target_o[3], n_o[3] = { 0, 0, 0 }, target[3], n_w[3], o[3], d[3];
+        int fc = (int)pcg32_bounded(g, 6), ka = fc / 2;
+        if (box) {
+            for (int k = 0; k < 3; k++)
+                target_o[k] = a[k] + (b[k] - a[k]) * rnd(g, 0.05f, 0.95f);
+            target_o[ka] = (fc & 1) ? b[ka] : a[ka];
+            n_o[ka] = (fc & 1) ? 1 : -1;
+        } else {
+            ld u = rnd(g, 0.05f, 0.95f), v = rnd(g, 0.05f, 0.95f);
+            if (kind == 2)
+                u = rnd(g, 1.1f, 1.6f);
+            for (int k = 0; k < 3; k++)
+                target_o[k] = u * a[k] + v * b[k];
+            crossl(n_o, a, b);
+        }
+        lin(target, M.m, target_o);
+        for (int k = 0; k < 3; k++)
+            target[k] += t[k];
+        normal_l(n_w, &M, n_o);
+        ld cosv = aim_side(o, d, target, n_w, 1, box, g);
+        if (kind == 2 && box) { /* from inside the box */
+            ld c_o[3], c_w[3];
+            for (int k = 0; k < 3; k++)
+                c_o[k] = 0.5L * (a[k] + b[k]);
+            lin(c_w, M.m, c_o);
+            for (int k = 0; k < 3; k++) {
+                o[k] = c_w[k] + t[k];
+                d[k] = target[k] - o[k];
+            }
+            tofloat(o);
+            tofloat(d);
+        }
+        if (kind == 3)
+            for (int k = 0; k < 3; k++)
+                d[k] = -d[k];
+        /* the reference: object-space ray, textbook test */
+        ld oo[3], dd[3], ot[3];
+        subl(ot, o, t);
+        lin(oo, M.inv, ot);
+        lin(dd, M.inv, d);
+        ld th = 0, p[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 };
+        int hit, face = -1;
+        if (box) {
+            hit = slab(a, b, oo, dd, &th, &face);
+            if (hit) {
+                ld nf[3] = { 0, 0, 0 };
+                nf[face / 2] = (face & 1) ? 1 : -1;
+                normal_l(n, &M, nf);
+            }
+        } else {
+            ld zero[3] = { 0, 0, 0 }, oc[3], q[3], wx[3], xw[3];
+            crossl(N, a, b);
+            subl(oc, zero, oo);
+            th = dotl(oc, N) / dotl(dd, N);
+            for (int k = 0; k < 3; k++)
+                q[k] = oo[k] + th * dd[k];
+            crossl(wx, q, b);
+            crossl(xw, a, q);
+            ld ss = dotl(wx, N) / dotl(N, N), tt = dotl(xw, N) / dotl(N, N);
+            hit = th > 0 && ss >= 0 && ss <= 1 && tt >= 0 && tt <= 1;
+            if (hit)
+                normal_l(n, &M, N);
+        }
+        if (hit)
+            for (int k = 0; k < 3; k++)
+                p[k] = o[k] + th * d[k];
+        else
+            th = 0;
+        /* area: |M a x M b| over the faces */
+        ld area = 0;
+        if (box) {
+            for (int k = 0; k < 3; k++) {
+                ld u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 0 }, mu[3], mv[3], c[3];
+                u[(k + 1) % 3] = b[(k + 1) % 3] - a[(k + 1) % 3];
+                v[(k + 2) % 3] = b[(k + 2) % 3] - a[(k + 2) % 3];
+                lin(mu, M.m, u);
+                lin(mv, M.m, v);
+                crossl(c, mu, mv);
+                area += 2 * lenl(c);
+            }
+        } else {
+            ld mu[3], mv[3], c[3];
+            lin(mu, M.m, a);
+            lin(mv, M.m, b);
+            crossl(c, mu, mv);
+            area = lenl(c);
+        }
+        ld smax = fmaxl(s[0], fmaxl(s[1], s[2]));
+        ld smin = fminl(s[0], fminl(s[1], s[2]));
+        ld scale = fmaxl(max_abs3(o), fmaxl(max_abs3(target), max_abs3(t)));
+        ld kappa = (smax / smin) * (1 + scale / (smin * cosv)) *
+                   (box ? 1 : lenl(a) * lenl(b) / lenl(N));
+        fprintf(f, "%d,%s,", i, box ? "box" : "parallelogram");
+        put3(f, a);
+        put3(f, b);
+        put3(f, s);
+        put3(f, ax);
+        fprintf(f, "%.17g,", (double)deg);
+        put3(f, t);
+        put3(f, o);
+        put3(f, d);
+        fprintf(f, "%d,%.17Lg,", hit, th);
+        put3e(f, p);
+        put3e(f, n);
+        fprintf(f, "%.17Lg,%.17Lg,", area, scale);
+        put_tol(f, kappa);
+        fprintf(f, "%s under M = R S in long double\n",
+                box ? "Kay-Kajiya slabs" : "plane and Cramer's rule");
+    }
+    close_csv(f, dir, "xform.csv");
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -558,5 +769,6 @@ int main(int argc, char **argv)
     planes(argv[1], &g);
     parallelograms(argv[1], &g);
     boxes(argv[1], &g);
+    xforms(argv[1], &g);
     return 0;
 }

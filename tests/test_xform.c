@@ -1,0 +1,682 @@
+/*
+ * test_xform.c - affine transforms and primitives under them (app. C, D):
+ * compose/invert round trips, exact quarter turns, Rodrigues against
+ * vec_rotate, singular transforms, normals under non-uniform scale, the
+ * Cornell box's blocks against hand-computed corners, exact areas and the
+ * ellipsoid's quadrature against a spheroid's closed form, sampling
+ * densities, the geomcheck harness on an oriented box, a parallelogram and
+ * an ellipsoid, tests/vectors/xform.csv and a NaN sweep.
+ */
+#include "testutil.h"
+#include "box.h"
+#include "geomcheck.h"
+#include "parallelogram.h"
+#include "primcheck.h"
+#include "sphere.h"
+#include "triangle.h"
+#include "xform.h"
+
+#include <string.h>
+
+static const VECTOR3 yaxis = { 0, 1, 0 };
+
+/* a random transform: non-uniform scale in [0.2, 5) per axis (a mirror
+ * one time in 4), a rotation, a translation in [-10, 10)^3 */
+static xform_t random_xform(pcg32_t *g)
+{
+    VECTOR3 s, a, t;
+    for (int k = 0; k < 3; k++) {
+        s[k] = REAL_C(0.2) * exp(REAL_C(3.2) * pcg32_real(g));
+        t[k] = 20 * pcg32_real(g) - 10;
+    }
+    if ((pcg32_next(g) & 3) == 0)
+        s[X] = -s[X];
+    geomcheck_random_dir(a, g);
+    return xform_compose(xform_compose(xform_scale(s),
+                                       xform_rotate(a, 360 * pcg32_real(g))),
+                         xform_translate(t));
+}
+
+static real max_abs_diff(real a[3][4], real b[3][4])
+{
+    real d = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            d = fmax(d, fabs(a[i][j] - b[i][j]));
+    return d;
+}
+
+START_TEST(compose_and_invert_round_trip)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 41, 42);
+    long n = 0;
+    xform_t id = xform_identity();
+    for (int i = 0; i < 5000; i++, n++) {
+        xform_t x = random_xform(&g), y, z, back;
+        svet_error err;
+        ck_assert(x.valid);
+        ck_assert_int_eq(xform_invert(&x, &y, &err), SVET_OK);
+        /* x then x^-1 is the identity, both ways; the stored inverse
+         * (from the factors) agrees with the computed one. Entries are
+         * up to 5 * 10 = 50: tolerance 64 epsilon times that. */
+        real tol = 3200 * REAL_EPSILON;
+        z = xform_compose(x, y);
+        ck_assert_msg(max_abs_diff(z.m, id.m) <= tol, "x then x^-1: %g",
+                      (double)max_abs_diff(z.m, id.m));
+        z = xform_compose(y, x);
+        ck_assert(max_abs_diff(z.m, id.m) <= tol);
+        ck_assert(max_abs_diff(y.m, x.inv) <= tol);
+        ck_assert_int_eq(xform_invert(&y, &back, &err), SVET_OK);
+        ck_assert(max_abs_diff(back.m, x.m) <= tol);
+        /* points go there and back */
+        VECTOR3 p, q, r;
+        vec_set(p, 10 * pcg32_real(&g) - 5, 10 * pcg32_real(&g) - 5,
+                10 * pcg32_real(&g) - 5);
+        xform_point(&x, q, p);
+        xform_point(&y, r, q);
+        for (int k = 0; k < 3; k++)
+            ck_assert_near(r[k], p[k], tol);
+    }
+    test_report_cases("compose_and_invert_round_trip", n);
+}
+END_TEST
+
+START_TEST(compose_applies_first_then_second)
+{
+    VECTOR3 s = { 2, 2, 2 }, t = { 1, 0, 0 }, p = { 1, 1, 1 }, q;
+    xform_t st = xform_compose(xform_scale(s), xform_translate(t));
+    xform_point(&st, q, p); /* scaled, then moved: (3, 2, 2) */
+    ck_assert(q[X] == 3 && q[Y] == 2 && q[Z] == 2);
+    xform_t ts = xform_compose(xform_translate(t), xform_scale(s));
+    xform_point(&ts, q, p); /* moved, then scaled: (4, 2, 2) */
+    ck_assert(q[X] == 4 && q[Y] == 2 && q[Z] == 2);
+    xform_vector(&st, q, p); /* vectors ignore the translation */
+    ck_assert(q[X] == 2 && q[Y] == 2 && q[Z] == 2);
+}
+END_TEST
+
+START_TEST(quarter_turns_are_exact_and_rotation_matches_rodrigues)
+{
+    VECTOR3 z = { 0, 0, 1 }, x = { 1, 0, 0 }, p;
+    xform_t r = xform_rotate(z, 90);
+    xform_point(&r, p, x);
+    ck_assert(p[X] == 0 && p[Y] == 1 && p[Z] == 0); /* counter-clockwise */
+    r = xform_rotate(z, -270);
+    xform_point(&r, p, x);
+    ck_assert(p[X] == 0 && p[Y] == 1 && p[Z] == 0);
+    r = xform_rotate(yaxis, 180);
+    xform_point(&r, p, x);
+    ck_assert(p[X] == -1 && p[Y] == 0 && p[Z] == 0);
+    r = xform_rotate(yaxis, 720);
+    xform_point(&r, p, x);
+    ck_assert(p[X] == 1 && p[Y] == 0 && p[Z] == 0);
+    pcg32_t g;
+    pcg32_seed(&g, 43, 44);
+    long n = 0;
+    for (int i = 0; i < 5000; i++, n++) {
+        VECTOR3 k, a, want, got;
+        geomcheck_random_dir(k, &g);
+        geomcheck_random_dir(a, &g);
+        real deg = 720 * pcg32_real(&g) - 360;
+        vec_rotate(want, a, k, deg * (REAL_PI / 180));
+        VECTOR3 k3;
+        vec_scale(k3, k, 3); /* any length of axis */
+        r = xform_rotate(k3, deg);
+        xform_vector(&r, got, a);
+        for (int c = 0; c < 3; c++)
+            ck_assert_near(got[c], want[c], 16 * REAL_EPSILON);
+    }
+    test_report_cases("rotation_matches_vec_rotate", n);
+}
+END_TEST
+
+START_TEST(singular_and_invalid_transforms_are_refused)
+{
+    VECTOR3 zero = { 0, 0, 0 }, flat = { 1, 0, 1 }, nan = { 1, (real)NAN, 1 };
+    svet_error err;
+    xform_t out;
+    ck_assert(!xform_scale(flat).valid);
+    ck_assert(!xform_scale(nan).valid);
+    ck_assert(!xform_rotate(zero, 30).valid);
+    ck_assert(!xform_rotate(yaxis, (real)INFINITY).valid);
+    ck_assert(!xform_translate(nan).valid);
+    ck_assert(!xform_compose(xform_identity(), xform_scale(flat)).valid);
+    xform_t bad = xform_scale(flat);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            ck_assert(isfinite(bad.m[i][j]) && isfinite(bad.inv[i][j]));
+    ck_assert_int_eq(xform_invert(&bad, &out, &err), SVET_ERR_RANGE);
+    /* a matrix with two nearly parallel columns */
+    real m[12] = { 1, 1, 0, 0, 0, 4 * REAL_EPSILON, 0, 0, 0, 0, 1, 0 };
+    ck_assert_int_eq(xform_from_matrix(m, &out, &err), SVET_ERR_RANGE);
+    ck_assert_msg(strstr(err.msg, "singular") != NULL, "%s", err.msg);
+    m[5] = 1;
+    ck_assert_int_eq(xform_from_matrix(m, &out, &err), SVET_OK);
+    /* a shear and its inverse: (x + y, y, z) */
+    VECTOR3 p = { 1, 2, 3 }, q;
+    xform_point(&out, q, p);
+    ck_assert(q[X] == 3 && q[Y] == 2 && q[Z] == 3);
+    VECTOR3 lo = { -1, -1, -1 }, hi = { 1, 1, 1 };
+    ck_assert_ptr_null(xform_new(box_new(lo, hi, &err), &bad, &err));
+    ck_assert_int_eq(err.status, SVET_ERR_RANGE);
+    /* an inverse that is not one */
+    xform_t wrong = xform_identity();
+    wrong.inv[0][0] = 2;
+    ck_assert_ptr_null(xform_new(box_new(lo, hi, &err), &wrong, &err));
+    ck_assert_msg(strstr(err.msg, "not the inverse") != NULL, "%s", err.msg);
+    /* a failed inner constructor passes through with its own message */
+    xform_t id = xform_identity();
+    ck_assert_ptr_null(xform_new(box_new(hi, lo, &err), &id, &err));
+    ck_assert_msg(strstr(err.msg, "box: min") != NULL, "%s", err.msg);
+    ck_assert_ptr_null(xform_of(NULL));
+}
+END_TEST
+
+START_TEST(normals_stay_perpendicular_under_non_uniform_scale)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 45, 46);
+    long n = 0;
+    for (int i = 0; i < 10000; i++, n++) {
+        xform_t x = random_xform(&g);
+        VECTOR3 nn, t, tw, nw, a;
+        geomcheck_random_dir(nn, &g);
+        geomcheck_random_dir(a, &g);
+        VVECTOR3(t, nn, a); /* a tangent: t . n = 0 */
+        xform_vector(&x, tw, t);
+        xform_normal(&x, nw, nn);
+        /* |tw . nw| against the sizes involved */
+        double tol = 64 * (double)REAL_EPSILON * (double)vec_length(tw) *
+                     (double)vec_length(nw) * 25;
+        ck_assert_near(SVECTOR3(tw, nw), 0, tol);
+    }
+    test_report_cases("normals_stay_perpendicular_under_non_uniform_scale", n);
+}
+END_TEST
+
+/* the Cornell box's blocks, as issue 5 words them */
+static xform_t block(real sx, real sy, real sz, real deg, real tx, real ty,
+                     real tz)
+{
+    return xform_compose(xform_compose(xform_scale((VECTOR3){ sx, sy, sz }),
+                                       xform_rotate(yaxis, deg)),
+                         xform_translate((VECTOR3){ tx, ty, tz }));
+}
+
+START_TEST(cornell_box_blocks_have_the_hand_computed_corners)
+{
+    /* The cube [-1,1]^3 scaled by s, turned by a about y (x' = x cos a +
+     * z sin a, z' = -x sin a + z cos a), moved by t. Small block: s = 0.3,
+     * a = -17 deg, cos = 0.95630475596303544, sin = -0.29237170472273677;
+     * e.g. corner (1,1,1): x = 0.335 + 0.3 (cos a + sin a) = 0.534179915,
+     * z = 0.38 + 0.3 (cos a - sin a) = 0.754602938. Large block:
+     * s = (0.3, 0.61, 0.3), a = 18.25 deg, t = (-0.33, -0.4, -0.28). */
+    const double small[8][3] = {
+        { 0.13582008462791045, -1, 0.0053970617942683541 },
+        { -0.03960293820573163, -1, 0.57917991537208957 },
+        { 0.13582008462791045, -0.4, 0.0053970617942683541 },
+        { -0.03960293820573163, -0.4, 0.57917991537208957 },
+        { 0.70960293820573161, -1, 0.18082008462791044 },
+        { 0.53417991537208964, -1, 0.75460293820573165 },
+        { 0.70960293820573161, -0.4, 0.18082008462791044 },
+        { 0.53417991537208964, -0.4, 0.75460293820573165 } };
+    const double large[8][3] = {
+        { -0.70885887980568807, -1.01, -0.47096059591543826 },
+        { -0.52096059591543831, -1.01, 0.098858879805687971 },
+        { -0.70885887980568807, 0.21, -0.47096059591543826 },
+        { -0.52096059591543831, 0.21, 0.098858879805687971 },
+        { -0.13903940408456175, -1.01, -0.65885887980568802 },
+        { 0.048858879805687983, -1.01, -0.089039404084561763 },
+        { -0.13903940408456175, 0.21, -0.65885887980568802 },
+        { 0.048858879805687983, 0.21, -0.089039404084561763 } };
+    xform_t xs = block(REAL_C(0.3), REAL_C(0.3), REAL_C(0.3), -17,
+                       REAL_C(0.335), REAL_C(-0.7), REAL_C(0.38));
+    xform_t xl = block(REAL_C(0.3), REAL_C(0.61), REAL_C(0.3), REAL_C(18.25),
+                       REAL_C(-0.33), REAL_C(-0.4), REAL_C(-0.28));
+    for (int c = 0; c < 8; c++) {
+        VECTOR3 p = { c & 4 ? 1 : -1, c & 2 ? 1 : -1, c & 1 ? 1 : -1 }, q;
+        xform_point(&xs, q, p);
+        for (int k = 0; k < 3; k++)
+            ck_assert_near(q[k], small[c][k], 8 * REAL_EPSILON);
+        xform_point(&xl, q, p);
+        for (int k = 0; k < 3; k++)
+            ck_assert_near(q[k], large[c][k], 8 * REAL_EPSILON);
+    }
+    /* the oriented box: its area is that of the scaled cube, and a ray
+     * straight down onto its top hits at y = -0.4 */
+    VECTOR3 lo = { -1, -1, -1 }, hi = { 1, 1, 1 };
+    svet_error err;
+    COBJECT *o = xform_new(box_new(lo, hi, &err), &xs, &err);
+    ck_assert_msg(o != NULL, "%s", err.msg);
+    ck_assert_near(o->ops->area(o), 6 * 0.36, 16 * REAL_EPSILON);
+    ray_t r = { { REAL_C(0.335), 1, REAL_C(0.38) }, { 0, -1, 0 } };
+    hit_t h;
+    ck_assert(cobject_intersect(o, &r, 0, (real)INFINITY, &h));
+    PATHPOINT pp;
+    cobject_fill(o, &r, &h, &pp);
+    ck_assert_near(pp.cross_point[Y], -0.4, 8 * REAL_EPSILON);
+    ck_assert_near(pp.ng[Y], 1, 8 * REAL_EPSILON);
+    ck_assert_int_eq(pp.prim, BOX_YMAX);
+    bbox_t b;
+    o->ops->bounds(o, -1, &b);
+    ck_assert((double)b.min[X] <= -0.0396029382 &&
+              (double)b.max[X] >= 0.7096029382 && b.min[Y] <= -1 &&
+              (double)b.max[Z] >= 0.7546029382);
+    ck_assert_near(b.min[X], -0.03960293820573163, 1e-5);
+    cobject_free(o);
+}
+END_TEST
+
+START_TEST(flat_shapes_and_boxes_keep_exact_areas_under_any_map)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 47, 48);
+    long n = 0;
+    for (int i = 0; i < 300; i++, n++) {
+        xform_t x = random_xform(&g);
+        svet_error err;
+        /* triangle: area |M e1 x M e2| / 2 */
+        VECTOR3 p0 = { 0, 0, 0 }, p1 = { 2, 0, 1 }, p2 = { -1, 3, 0 };
+        VECTOR3 q0, q1, q2, e1, e2, c;
+        xform_point(&x, q0, p0);
+        xform_point(&x, q1, p1);
+        xform_point(&x, q2, p2);
+        vec_sub(e1, q1, q0);
+        vec_sub(e2, q2, q0);
+        VVECTOR3(c, e1, e2);
+        COBJECT *t = xform_new(triangle_new(p0, p1, p2, &err), &x, &err);
+        ck_assert_msg(t != NULL, "%s", err.msg);
+        ck_assert_rel(t->ops->area(t), vec_length(c) / 2, 64 * REAL_EPSILON,
+                      0);
+        /* box: six faces, each |M a x M b| */
+        VECTOR3 lo = { -1, 0, 2 }, hi = { 1, REAL_C(0.5), 5 };
+        COBJECT *bx = xform_new(box_new(lo, hi, &err), &x, &err);
+        ck_assert_msg(bx != NULL, "%s", err.msg);
+        double want = 0;
+        VECTOR3 ext = { 2, REAL_C(0.5), 3 };
+        for (int k = 0; k < 3; k++) {
+            VECTOR3 a = { 0, 0, 0 }, b = { 0, 0, 0 }, ma, mb;
+            a[(k + 1) % 3] = ext[(k + 1) % 3];
+            b[(k + 2) % 3] = ext[(k + 2) % 3];
+            xform_vector(&x, ma, a);
+            xform_vector(&x, mb, b);
+            VVECTOR3(c, ma, mb);
+            want += 2 * (double)vec_length(c);
+        }
+        ck_assert_rel(bx->ops->area(bx), want, 64 * REAL_EPSILON, 0);
+        cobject_free(t);
+        cobject_free(bx);
+    }
+    test_report_cases("flat_shapes_and_boxes_keep_exact_areas_under_any_map",
+                      n);
+}
+END_TEST
+
+/* Surface area of a spheroid with equatorial radius a and polar c:
+ * prolate (c > a): 2 pi a^2 (1 + c / (a e) asin e), e^2 = 1 - a^2/c^2;
+ * oblate (c < a): 2 pi a^2 (1 + (1 - e^2) / e atanh e), e^2 = 1 - c^2/a^2
+ * (e.g. Beyer, CRC Standard Mathematical Tables). */
+static double spheroid_area(double a, double c)
+{
+    const double pi = 3.14159265358979323846;
+    if (c > a) {
+        double e = sqrt(1 - a * a / (c * c));
+        return 2 * pi * a * a * (1 + c / (a * e) * asin(e));
+    }
+    double e = sqrt(1 - c * c / (a * a));
+    return 2 * pi * a * a * (1 + (1 - e * e) / e * atanh(e));
+}
+
+START_TEST(ellipsoid_area_matches_the_spheroid_closed_form)
+{
+    const double cases[4][2] = { { 1, 2 }, { 2, 1 }, { 1, 5 }, { 3, 0.5 } };
+    for (int i = 0; i < 4; i++) {
+        VECTOR3 c = { 0, 0, 0 }, s = { (real)cases[i][0], (real)cases[i][0],
+                                       (real)cases[i][1] };
+        svet_error err;
+        xform_t x = xform_compose(xform_scale(s),
+                                  xform_translate((VECTOR3){ 3, -2, 7 }));
+        COBJECT *o = xform_new(sphere_new(c, 1, &err), &x, &err);
+        ck_assert_msg(o != NULL, "%s", err.msg);
+        /* the quadrature's own error is far below rounding for the
+         * sphere's smooth map; in float each term carries a few epsilon */
+        ck_assert_rel(o->ops->area(o), spheroid_area(cases[i][0], cases[i][1]),
+                      fmax(64 * (double)REAL_EPSILON, 1e-9), 0);
+        cobject_free(o);
+    }
+    /* a similarity: exact, 4 pi r^2 */
+    VECTOR3 c = { 1, 1, 1 }, s = { 3, 3, 3 };
+    svet_error err;
+    xform_t x = xform_compose(xform_scale(s), xform_rotate(yaxis, 33));
+    COBJECT *o = xform_new(sphere_new(c, 2, &err), &x, &err);
+    ck_assert_rel(o->ops->area(o), 4 * 3.14159265358979323846 * 36,
+                  16 * REAL_EPSILON, 0);
+    cobject_free(o);
+}
+END_TEST
+
+/* Area of the zone z1 <= z <= z2 of the spheroid x^2/a^2 + y^2/a^2 +
+ * z^2/c^2 = 1: dA = 2 pi x sqrt(1 + x'^2) dz = 2 pi a sqrt(1 - k^2 z^2) dz,
+ * k^2 = (c^2 - a^2) / c^4 (c > a), which integrates to
+ * pi a [z sqrt(1 - k^2 z^2) + asin(k z) / k] from z1 to z2. */
+static double zone_area(double a, double c, double z1, double z2)
+{
+    const double pi = 3.14159265358979323846;
+    double k = sqrt(c * c - a * a) / (c * c);
+    double f2 = z2 * sqrt(1 - k * k * z2 * z2) + asin(k * z2) / k;
+    double f1 = z1 * sqrt(1 - k * k * z1 * z1) + asin(k * z1) / k;
+    return pi * a * (f2 - f1);
+}
+
+/* Monte Carlo of the surface integral of [z > z0] by the object's own
+ * sampler, E[[z > z0] / pdf], and of 1, E[1 / pdf]; with standard errors
+ * from the sample variance. Checks that every sample lies on the
+ * ellipsoid with semi-axes s. */
+static void mc_areas(const COBJECT *o, const VECTOR3 s, double z0, int n,
+                     double m[2], double se[2], pcg32_t *g)
+{
+    double sum[2] = { 0, 0 }, sum2[2] = { 0, 0 };
+    for (int i = 0; i < n; i++) {
+        real u[2] = { pcg32_real(g), pcg32_real(g) };
+        cobject_sample_t sm;
+        o->ops->sample(o, u, &sm);
+        ck_assert(sm.pdf > 0 && isfinite(sm.pdf));
+        double px = (double)sm.p[X] / (double)s[X],
+               py = (double)sm.p[Y] / (double)s[Y],
+               pz = (double)sm.p[Z] / (double)s[Z];
+        ck_assert_near(px * px + py * py + pz * pz, 1, 64 * REAL_EPSILON);
+        double w = 1 / (double)sm.pdf, v[2] = { w, (double)sm.p[Z] > z0 ? w : 0 };
+        for (int k = 0; k < 2; k++) {
+            sum[k] += v[k];
+            sum2[k] += v[k] * v[k];
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        m[k] = sum[k] / n;
+        se[k] = sqrt(fmax(sum2[k] / n - m[k] * m[k], 0.0) / n);
+    }
+}
+
+START_TEST(ellipsoid_samples_carry_their_exact_density)
+{
+    /* The sampler is uniform on the sphere, so on the ellipsoid its
+     * density is 1 / (4 pi J): if that pdf is right, the mean of
+     * indicator / pdf is the area of the region (5 standard errors). */
+    pcg32_t g;
+    pcg32_seed(&g, 49, 50);
+    const int N = 40000;
+    VECTOR3 c = { 0, 0, 0 }, s = { 1, 1, 4 }, s3 = { 1, 2, 4 };
+    svet_error err;
+    xform_t x = xform_scale(s);
+    COBJECT *o = xform_new(sphere_new(c, 1, &err), &x, &err);
+    ck_assert_msg(o != NULL, "%s", err.msg);
+    double m[2], se[2];
+    mc_areas(o, s, 2, N, m, se, &g);
+    ck_assert_near(m[0], spheroid_area(1, 4), 5 * se[0]);
+    ck_assert_near(m[1], zone_area(1, 4, 2, 4), 5 * se[1]);
+    cobject_free(o);
+    /* tri-axial: against the quadrature area */
+    x = xform_scale(s3);
+    o = xform_new(sphere_new(c, 1, &err), &x, &err);
+    mc_areas(o, s3, 2, N, m, se, &g);
+    ck_assert_near(m[0], o->ops->area(o), 5 * se[0]);
+    cobject_free(o);
+    test_report_cases("ellipsoid_samples_carry_their_exact_density", 2 * N);
+}
+END_TEST
+
+START_TEST(nested_transforms_merge_into_one)
+{
+    VECTOR3 lo = { -1, -1, -1 }, hi = { 1, 1, 1 }, s = { 2, 1, 1 },
+            t = { 0, 5, 0 };
+    svet_error err;
+    xform_t a = xform_scale(s), b = xform_translate(t);
+    COBJECT *o = xform_new(xform_new(box_new(lo, hi, &err), &a, &err), &b,
+                           &err);
+    ck_assert_msg(o != NULL, "%s", err.msg);
+    const xform_t *x = xform_of(o);
+    ck_assert_ptr_nonnull(x);
+    ck_assert(x->m[0][0] == 2 && x->m[1][3] == 5 && x->inv[0][0] == REAL_C(0.5));
+    ray_t r = { { 0, 10, 0 }, { 0, -1, 0 } };
+    hit_t h;
+    ck_assert(cobject_intersect(o, &r, 0, (real)INFINITY, &h));
+    ck_assert_near(h.t, 4, 8 * REAL_EPSILON);
+    cobject_free(o);
+}
+END_TEST
+
+START_TEST(a_mirrored_box_keeps_outward_normals)
+{
+    VECTOR3 lo = { 0, 0, 0 }, hi = { 1, 2, 3 }, s = { -1, 1, 1 };
+    svet_error err;
+    xform_t x = xform_scale(s);
+    COBJECT *o = xform_new(box_new(lo, hi, &err), &x, &err);
+    ck_assert_msg(o != NULL, "%s", err.msg);
+    pcg32_t g;
+    pcg32_seed(&g, 51, 52);
+    long n = 0;
+    for (int i = 0; i < 5000; i++) {
+        /* from far outside toward the box: the normal faces the ray */
+        ray_t r;
+        VECTOR3 dir, target = { REAL_C(-0.5), 1, REAL_C(1.5) };
+        geomcheck_random_dir(dir, &g);
+        vec_add_scaled(r.o, target, 10, dir);
+        vec_neg(r.d, dir);
+        hit_t h;
+        ck_assert(cobject_intersect(o, &r, 0, (real)INFINITY, &h));
+        PATHPOINT pp;
+        cobject_fill(o, &r, &h, &pp);
+        ck_assert(SVECTOR3(pp.ng, r.d) < 0 && pp.bout);
+        VECTOR3 c;
+        VVECTOR3(c, pp.u, pp.v);
+        for (int k = 0; k < 3; k++)
+            ck_assert_near(c[k], pp.n[k], 8 * REAL_EPSILON);
+        n++;
+    }
+    test_report_cases("a_mirrored_box_keeps_outward_normals", n);
+    cobject_free(o);
+}
+END_TEST
+
+/* --- the geomcheck harness -------------------------------------------------- */
+
+enum { INNER_BOX, INNER_PARA, INNER_SPHERE };
+
+static COBJECT *make_placed(real s, const VECTOR3 c, void *ctx)
+{
+    int kind = *(const int *)ctx;
+    svet_error err;
+    VECTOR3 lo = { REAL_C(-0.5), REAL_C(-0.5), REAL_C(-0.5) },
+            hi = { REAL_C(0.5), REAL_C(0.5), REAL_C(0.5) }, zero = { 0, 0, 0 };
+    VECTOR3 c1 = { 1, 0, 0 }, c3 = { REAL_C(0.3), 1, 0 };
+    COBJECT *in = kind == INNER_BOX    ? box_new(lo, hi, &err)
+                  : kind == INNER_PARA ? parallelogram_new(zero, c1, c3, &err)
+                                       : sphere_new(zero, REAL_C(0.5), &err);
+    VECTOR3 sc = { s, REAL_C(0.6) * s, REAL_C(1.7) * s }, ax = { 1, 2, 3 };
+    xform_t x = xform_compose(xform_compose(xform_scale(sc),
+                                            xform_rotate(ax, 37)),
+                              xform_translate(c));
+    COBJECT *o = xform_new(in, &x, &err);
+    ck_assert_msg(o != NULL, "%s", err.msg);
+    return o;
+}
+
+static long harness(int kind, primcheck_test test, uint64_t seed)
+{
+    geomcheck_kind k = kind == INNER_PARA ? GEOMCHECK_FLAT : GEOMCHECK_CONVEX;
+    return primcheck_over_scales(make_placed, &kind, test, k,
+                                 kind == INNER_PARA, seed);
+}
+
+START_TEST(transformed_spawned_rays_never_rehit_at_any_scale)
+{
+    long n = 0;
+    for (int kind = 0; kind < 3; kind++)
+        n += harness(kind, PRIMCHECK_SPAWN, 100 + (uint64_t)kind);
+    test_report_cases("transformed_spawned_rays_never_rehit_at_any_scale", n);
+}
+END_TEST
+
+START_TEST(transformed_sampled_points_are_hit_at_any_scale)
+{
+    long n = 0;
+    for (int kind = 0; kind < 3; kind++)
+        n += harness(kind, PRIMCHECK_SAMPLED, 200 + (uint64_t)kind);
+    test_report_cases("transformed_sampled_points_are_hit_at_any_scale", n);
+}
+END_TEST
+
+START_TEST(transformed_shadow_rays_between_points_miss_at_any_scale)
+{
+    long n = harness(INNER_BOX, PRIMCHECK_SHADOW, 300) +
+             harness(INNER_SPHERE, PRIMCHECK_SHADOW, 301);
+    test_report_cases("transformed_shadow_rays_between_points_miss_at_any_scale",
+                      n);
+}
+END_TEST
+
+START_TEST(transformed_hits_are_finite_at_any_scale)
+{
+    long n = 0;
+    for (int kind = 0; kind < 3; kind++)
+        n += harness(kind, PRIMCHECK_FINITE, 400 + (uint64_t)kind);
+    test_report_cases("transformed_hits_are_finite_at_any_scale", n);
+}
+END_TEST
+
+START_TEST(transformed_sampling_matches_area_at_any_scale)
+{
+    long n = 0;
+    for (int kind = 0; kind < 3; kind++)
+        n += harness(kind, PRIMCHECK_AREA, 500 + (uint64_t)kind);
+    test_report_cases("transformed_sampling_matches_area_at_any_scale", n);
+}
+END_TEST
+
+/* --- reference vectors ------------------------------------------------------ */
+
+START_TEST(xform_matches_the_reference_vectors)
+{
+    testcsv_t c;
+    testcsv_open(&c, "xform.csv");
+    long n = 0;
+#ifdef SVET_DOUBLE
+    const char *tolcol = "tol_double";
+#else
+    const char *tolcol = "tol_float";
+#endif
+    while (testcsv_next(&c)) {
+        const char *inner = testcsv_str(&c, "inner");
+        VECTOR3 a, b;
+        const char *an[3] = { "ax", "ay", "az" }, *bn[3] = { "bx", "by", "bz" };
+        for (int k = 0; k < 3; k++) {
+            a[k] = (real)testcsv_num(&c, an[k]);
+            b[k] = (real)testcsv_num(&c, bn[k]);
+        }
+        svet_error err;
+        COBJECT *in = strcmp(inner, "box") == 0
+                          ? box_new(a, b, &err)
+                          : parallelogram_new((VECTOR3){ 0, 0, 0 }, a, b, &err);
+        VECTOR3 s = { (real)testcsv_num(&c, "sx"), (real)testcsv_num(&c, "sy"),
+                      (real)testcsv_num(&c, "sz") };
+        VECTOR3 ax = { (real)testcsv_num(&c, "kx"), (real)testcsv_num(&c, "ky"),
+                       (real)testcsv_num(&c, "kz") };
+        VECTOR3 t = { (real)testcsv_num(&c, "tx"), (real)testcsv_num(&c, "ty"),
+                      (real)testcsv_num(&c, "tz") };
+        xform_t x = xform_compose(xform_compose(xform_scale(s),
+                                                xform_rotate(ax, (real)testcsv_num(&c, "deg"))),
+                                  xform_translate(t));
+        COBJECT *o = xform_new(in, &x, &err);
+        ck_assert_msg(o != NULL, "%s", err.msg);
+        ray_t r;
+        vec_set(r.o, (real)testcsv_num(&c, "ox"), (real)testcsv_num(&c, "oy"),
+                (real)testcsv_num(&c, "oz"));
+        vec_set(r.d, (real)testcsv_num(&c, "dx"), (real)testcsv_num(&c, "dy"),
+                (real)testcsv_num(&c, "dz"));
+        hit_t h;
+        bool hit = cobject_intersect(o, &r, 0, (real)INFINITY, &h);
+        ck_assert_msg(hit == (testcsv_num(&c, "hit") == 1), "%s:%d: hit %d",
+                      c.path, c.line, hit);
+        ck_assert_rel(o->ops->area(o), testcsv_num(&c, "area"),
+                      testcsv_num(&c, tolcol), 0);
+        if (hit) {
+            double tol = testcsv_num(&c, tolcol);
+            double scale = testcsv_num(&c, "scale");
+            PATHPOINT pp;
+            cobject_fill(o, &r, &h, &pp);
+            ck_assert_rel(h.t, testcsv_num(&c, "t"), tol, 0);
+            const char *q[3] = { "px", "py", "pz" },
+                       *nn[3] = { "nx", "ny", "nz" };
+            for (int k = 0; k < 3; k++) {
+                ck_assert_near(pp.cross_point[k], testcsv_num(&c, q[k]),
+                               tol * scale);
+                ck_assert_near(pp.ng[k], testcsv_num(&c, nn[k]), tol);
+            }
+        }
+        cobject_free(o);
+        n++;
+    }
+    testcsv_close(&c);
+    ck_assert_int_gt(n, 0);
+    test_report_cases("xform_matches_the_reference_vectors", n);
+}
+END_TEST
+
+START_TEST(xform_sweep_never_returns_nan_or_inf)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 53, 54);
+    long n = 0;
+    for (int i = 0; i < 60; i++) {
+        real s = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 60) - 30);
+        VECTOR3 sc, a, t, lo = { -1, -1, -1 }, hi = { 1, 1, 1 },
+                zero = { 0, 0, 0 };
+        for (int k = 0; k < 3; k++) {
+            sc[k] = s * exp(4 * pcg32_real(&g) - 2);
+            t[k] = s * (20 * pcg32_real(&g) - 10);
+        }
+        geomcheck_random_dir(a, &g);
+        xform_t x = xform_compose(xform_compose(xform_scale(sc),
+                                                xform_rotate(a, 90 * pcg32_real(&g))),
+                                  xform_translate(t));
+        svet_error err;
+        COBJECT *in = i % 3 == 0   ? box_new(lo, hi, &err)
+                      : i % 3 == 1 ? sphere_new(zero, 1, &err)
+                                   : parallelogram_new(zero, a, t, &err);
+        COBJECT *o = xform_new(in, &x, &err);
+        if (!o)
+            continue;
+        n += primcheck_sweep_finite(o, 2000, (uint64_t)i);
+        cobject_free(o);
+    }
+    test_report_cases("xform_sweep_never_returns_nan_or_inf", n);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("xform");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 180);
+    tcase_add_test(tc, compose_and_invert_round_trip);
+    tcase_add_test(tc, compose_applies_first_then_second);
+    tcase_add_test(tc, quarter_turns_are_exact_and_rotation_matches_rodrigues);
+    tcase_add_test(tc, singular_and_invalid_transforms_are_refused);
+    tcase_add_test(tc, normals_stay_perpendicular_under_non_uniform_scale);
+    tcase_add_test(tc, cornell_box_blocks_have_the_hand_computed_corners);
+    tcase_add_test(tc, flat_shapes_and_boxes_keep_exact_areas_under_any_map);
+    tcase_add_test(tc, ellipsoid_area_matches_the_spheroid_closed_form);
+    tcase_add_test(tc, ellipsoid_samples_carry_their_exact_density);
+    tcase_add_test(tc, nested_transforms_merge_into_one);
+    tcase_add_test(tc, a_mirrored_box_keeps_outward_normals);
+    tcase_add_test(tc, transformed_spawned_rays_never_rehit_at_any_scale);
+    tcase_add_test(tc, transformed_sampled_points_are_hit_at_any_scale);
+    tcase_add_test(tc, transformed_shadow_rays_between_points_miss_at_any_scale);
+    tcase_add_test(tc, transformed_hits_are_finite_at_any_scale);
+    tcase_add_test(tc, transformed_sampling_matches_area_at_any_scale);
+    tcase_add_test(tc, xform_matches_the_reference_vectors);
+    tcase_add_test(tc, xform_sweep_never_returns_nan_or_inf);
+    suite_add_tcase(s, tc);
+    return s;
+}
