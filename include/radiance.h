@@ -49,7 +49,7 @@ static inline bool rad_is_black(RADIANCE a)
 
 static inline real rad_max(RADIANCE a)
 {
-    return fmax(a.r, fmax(a.g, a.b));
+    return real_max(a.r, real_max(a.g, a.b));
 }
 
 static inline real rad_average(RADIANCE a)

@@ -38,6 +38,20 @@ typedef float real;
 /* Unit roundoff u = epsilon / 2: |fl(a op b) - (a op b)| <= u |a op b|. */
 #define REAL_UNIT_ROUNDOFF (REAL_EPSILON * REAL_C(0.5))
 
+/* max and min for hot paths. fmax()/fmin() are library calls unless NaN
+ * and signed-zero semantics are relaxed (-ffast-math, which svet does not
+ * use); these compile to one instruction. With a NaN argument they return
+ * b, so use them only where NaN cannot arrive or b is the safe answer. */
+static inline real real_max(real a, real b)
+{
+    return a > b ? a : b;
+}
+
+static inline real real_min(real a, real b)
+{
+    return a < b ? a : b;
+}
+
 #define REAL_PI REAL_C(3.14159265358979323846)
 #define REAL_INV_PI REAL_C(0.31830988618379067154)
 

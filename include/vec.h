@@ -86,19 +86,22 @@ static inline void vec_abs(VECTOR3 c, const VECTOR3 a)
     c[X] = fabs(a[X]); c[Y] = fabs(a[Y]); c[Z] = fabs(a[Z]);
 }
 
+/* Component-wise min and max; a NaN component of a yields b's. */
 static inline void vec_min(VECTOR3 c, const VECTOR3 a, const VECTOR3 b)
 {
-    c[X] = fmin(a[X], b[X]); c[Y] = fmin(a[Y], b[Y]); c[Z] = fmin(a[Z], b[Z]);
+    c[X] = real_min(a[X], b[X]); c[Y] = real_min(a[Y], b[Y]);
+    c[Z] = real_min(a[Z], b[Z]);
 }
 
 static inline void vec_max(VECTOR3 c, const VECTOR3 a, const VECTOR3 b)
 {
-    c[X] = fmax(a[X], b[X]); c[Y] = fmax(a[Y], b[Y]); c[Z] = fmax(a[Z], b[Z]);
+    c[X] = real_max(a[X], b[X]); c[Y] = real_max(a[Y], b[Y]);
+    c[Z] = real_max(a[Z], b[Z]);
 }
 
 static inline real vec_max_component(const VECTOR3 a)
 {
-    return fmax(a[X], fmax(a[Y], a[Z]));
+    return real_max(a[X], real_max(a[Y], a[Z]));
 }
 
 /* Index (X, Y or Z) of the component largest in magnitude. */
@@ -113,10 +116,17 @@ static inline real vec_length2(const VECTOR3 a)
     return SVECTOR3(a, a);
 }
 
-/* Euclidean length. Uses hypot so that components near REAL_MAX or below
- * sqrt(REAL_MIN) do not overflow or underflow in the squares. */
+/* Euclidean length. sqrt of the sum of squares where that is exact to
+ * rounding; hypot, slower but safe, only when the squares would overflow
+ * (components near sqrt(REAL_MAX)) or lose digits to underflow (below
+ * sqrt(REAL_MIN)). */
 static inline real vec_length(const VECTOR3 a)
 {
+    real l2 = a[X] * a[X] + a[Y] * a[Y] + a[Z] * a[Z];
+    if (l2 > REAL_MIN * REAL_C(0x1p24) && l2 < REAL_MAX * REAL_C(0x1p-2))
+        return sqrt(l2);
+    if (l2 == 0 && a[X] == 0 && a[Y] == 0 && a[Z] == 0)
+        return 0;
     return hypot(hypot(a[X], a[Y]), a[Z]);
 }
 
