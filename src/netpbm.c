@@ -23,7 +23,11 @@ typedef struct {
     svet_error *err;
 } reader_t;
 
-static svet_status open_reader(reader_t *r, const char *path, svet_error *err)
+/* Open path and check its magic number, "P" then `colour` (3 planes) or
+ * `grey` (1 plane). On failure nothing stays open. */
+static svet_status open_reader(reader_t *r, const char *path, char colour,
+                               char grey, const char *what, int *planes,
+                               svet_error *err)
 {
     r->path = path;
     r->err = err;
@@ -31,6 +35,14 @@ static svet_status open_reader(reader_t *r, const char *path, svet_error *err)
     if (!r->f)
         return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
                               strerror(errno));
+    int m0 = getc(r->f), m1 = getc(r->f);
+    if (m0 != 'P' || (m1 != colour && m1 != grey)) {
+        fclose(r->f);
+        return svet_error_set(err, SVET_ERR_PARSE, "%s: not %s (it must "
+                              "start with \"P%c\" or \"P%c\")", path, what,
+                              colour, grey);
+    }
+    *planes = m1 == colour ? 3 : 1;
     return SVET_OK;
 }
 
@@ -91,31 +103,34 @@ static long long bytes_left(FILE *f)
     return (long long)end - here;
 }
 
-/* Check the dimensions, that the file holds `need` more bytes, and
- * allocate img. */
-static svet_status prepare(reader_t *r, long long w, long long h, size_t elem,
-                           int planes, image_t *img, size_t *need)
+/* Check the dimensions and that the file holds the raster they promise
+ * (elem bytes a sample, `planes` samples a pixel), then allocate img and
+ * read the raster into *buf (the caller frees it, also on failure). */
+static svet_status load_raster(reader_t *r, long long w, long long h,
+                               size_t elem, int planes, image_t *img,
+                               unsigned char **buf)
 {
-    svet_status st = image_check_size(w, h, planes, elem, need, r->err);
+    size_t need;
+    svet_status st = image_check_size(w, h, planes, elem, &need, r->err);
     if (st != SVET_OK) {
         svet_error_prefix(r->err, r->path);
         return st;
     }
     long long left = bytes_left(r->f);
-    if (left >= 0 && (unsigned long long)left < *need)
+    if (left >= 0 && (unsigned long long)left < need)
         return svet_error_set(r->err, SVET_ERR_PARSE, "%s: truncated: the "
                               "header promises %lld x %lld pixels, %zu bytes, "
-                              "the file holds %lld", r->path, w, h, *need,
+                              "the file holds %lld", r->path, w, h, need,
                               left);
-    st = image_alloc(img, (int)w, (int)h, 3, r->err);
-    if (st != SVET_OK)
+    if ((st = image_alloc(img, (int)w, (int)h, 3, r->err)) != SVET_OK) {
         svet_error_prefix(r->err, r->path);
-    return st;
-}
-
-static svet_status read_raster(reader_t *r, unsigned char *buf, size_t need)
-{
-    size_t got = fread(buf, 1, need, r->f);
+        return st;
+    }
+    *buf = malloc(need);
+    if (!*buf)
+        return svet_error_set(r->err, SVET_ERR_NOMEM, "%s: out of memory",
+                              r->path);
+    size_t got = fread(*buf, 1, need, r->f);
     if (got != need)
         return svet_error_set(r->err, ferror(r->f) ? SVET_ERR_IO
                                                    : SVET_ERR_PARSE,
@@ -138,17 +153,12 @@ svet_status netpbm_read_pfm(const char *path, image_t *img, svet_error *err)
 {
     memset(img, 0, sizeof *img);
     reader_t r;
-    svet_status st = open_reader(&r, path, err);
+    int planes;
+    svet_status st = open_reader(&r, path, 'F', 'f', "a PFM file", &planes,
+                                 err);
     if (st != SVET_OK)
         return st;
     unsigned char *buf = NULL;
-    int m0 = getc(r.f), m1 = getc(r.f);
-    int planes = m1 == 'F' ? 3 : 1;
-    if (m0 != 'P' || (m1 != 'F' && m1 != 'f')) {
-        st = svet_error_set(err, SVET_ERR_PARSE, "%s: not a PFM file (it "
-                            "must start with \"PF\" or \"Pf\")", path);
-        goto done;
-    }
     long long w, h;
     if ((st = read_uint(&r, "width", &w)) != SVET_OK ||
         (st = read_uint(&r, "height", &h)) != SVET_OK)
@@ -170,16 +180,8 @@ svet_status netpbm_read_pfm(const char *path, image_t *img, svet_error *err)
                             path, tok);
         goto done;
     }
-    size_t need;
-    if ((st = prepare(&r, w, h, sizeof(float), planes, img, &need)) !=
+    if ((st = load_raster(&r, w, h, sizeof(float), planes, img, &buf)) !=
         SVET_OK)
-        goto done;
-    buf = malloc(need);
-    if (!buf) {
-        st = svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", path);
-        goto done;
-    }
-    if ((st = read_raster(&r, buf, need)) != SVET_OK)
         goto done;
     bool swap = (scale < 0) != host_is_little_endian();
     for (int y = 0; y < img->height; y++) {
@@ -249,18 +251,12 @@ svet_status netpbm_read_ppm(const char *path, image_t *img, int *bits,
 {
     memset(img, 0, sizeof *img);
     reader_t r;
-    svet_status st = open_reader(&r, path, err);
+    int planes;
+    svet_status st = open_reader(&r, path, '6', '5', "a binary PPM/PGM file",
+                                 &planes, err);
     if (st != SVET_OK)
         return st;
     unsigned char *buf = NULL;
-    int m0 = getc(r.f), m1 = getc(r.f);
-    int planes = m1 == '6' ? 3 : 1;
-    if (m0 != 'P' || (m1 != '6' && m1 != '5')) {
-        st = svet_error_set(err, SVET_ERR_PARSE, "%s: not a binary PPM/PGM "
-                            "file (it must start with \"P6\" or \"P5\")",
-                            path);
-        goto done;
-    }
     long long w, h, maxval;
     if ((st = read_uint(&r, "width", &w)) != SVET_OK ||
         (st = read_uint(&r, "height", &h)) != SVET_OK ||
@@ -271,15 +267,8 @@ svet_status netpbm_read_ppm(const char *path, image_t *img, int *bits,
                             "not in 1..65535", path, maxval);
         goto done;
     }
-    size_t bytes_per = maxval > 255 ? 2 : 1, need;
-    if ((st = prepare(&r, w, h, bytes_per, planes, img, &need)) != SVET_OK)
-        goto done;
-    buf = malloc(need);
-    if (!buf) {
-        st = svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", path);
-        goto done;
-    }
-    if ((st = read_raster(&r, buf, need)) != SVET_OK)
+    size_t bytes_per = maxval > 255 ? 2 : 1;
+    if ((st = load_raster(&r, w, h, bytes_per, planes, img, &buf)) != SVET_OK)
         goto done;
     size_t n = (size_t)img->width * (size_t)img->height;
     for (size_t i = 0; i < n; i++) {
