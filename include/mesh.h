@@ -1,0 +1,209 @@
+/*
+ * mesh.h - the triangle mesh of ch. 7: one COBJECT holding many triangles
+ * (nprims = the triangle count) over shared vertex arrays, as Wavefront OBJ
+ * files (obj.h) and the procedural generators (meshgen.h) produce them.
+ * Each triangle is the watertight triangle of triangle.h; the mesh adds
+ * interpolated shading normals and texture coordinates, area sampling, and
+ * a per-ray form of the watertight test for the grids' inner loop.
+ * Tests: tests/test_mesh.c
+ */
+#ifndef SVET_MESH_H
+#define SVET_MESH_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "cobject.h"
+#include "error.h"
+#include "triangle.h"
+
+/* Largest mesh accepted: indices are int32, and the grids use 31 bits for
+ * a primitive's number. */
+#define MESH_MAX_VERTICES (1L << 28)
+#define MESH_MAX_TRIANGLES (1L << 28)
+
+/* The mesh. The first group of fields is what a loader or generator fills
+ * (malloc'd arrays; mesh_new() takes them over); the second is derived by
+ * mesh_new().
+ *
+ * Memory per triangle (float build; double doubles every real):
+ *   tri 12 B + alias table 8 B = 20 B per triangle, plus 12 B (p) + 12 B
+ *   (n, if any) + 8 B (st, if any) per vertex, and 4 B per triangle for
+ *   slot when present. A closed mesh has about half as many vertices as
+ *   triangles, so a mesh with normals and texture coordinates costs about
+ *   20 + 16 = 36 B per triangle (56 B in double). An acceleration structure
+ *   adds its own compact copy of the corners (primset.h, 36 B per triangle)
+ *   and its cells (grid.h). mesh_bytes() gives the exact figure;
+ *   chapters/ch07/README.md has the table.
+ */
+typedef struct {
+    /* -- given -- */
+    int nverts;
+    VECTOR3 *p;          /* vertex positions [nverts], finite */
+    VECTOR3 *n;          /* unit vertex normals [nverts], or NULL; a zero
+                            vector means "none at this vertex": triangles
+                            using it are shaded with ng */
+    real (*st)[2];       /* texture coordinates [nverts], or NULL; a NaN
+                            means "none at this vertex": triangles using it
+                            take st from their barycentrics */
+    int ntris;
+    int32_t (*tri)[3];   /* vertex indices of each triangle, counter-
+                            clockwise seen from the front: ng is along
+                            (p1 - p0) x (p2 - p0) */
+    int32_t *slot;       /* material slot of each triangle (OBJ usemtl:
+                            obj.h), or NULL */
+    /* -- derived by mesh_new() -- */
+    real *alias_prob;    /* Walker's alias table over the triangles, by */
+    int32_t *alias;      /* area: pick slot i, keep it with probability
+                            alias_prob[i], else take alias[i] */
+    double area;         /* total area, summed in double */
+    bbox_t bounds;
+} mesh_t;
+
+/* Make a mesh COBJECT from m, taking over its arrays (p, n, st, tri, slot:
+ * from malloc; on success they belong to the object, and *m is zeroed; on
+ * failure they are freed too). The derived fields are computed here.
+ * Fails with SVET_ERR_RANGE when a count is negative or above the limits,
+ * there is no vertex or no triangle, an index is out of range, a position
+ * is NaN or infinite, or a normal is not finite; SVET_ERR_NOMEM when memory
+ * runs out. Degenerate (zero-area) triangles are allowed: they have no
+ * area, are never hit and never sampled. */
+svet_status mesh_new(COBJECT **out, mesh_t *m, svet_error *err);
+
+/* A new mesh of the triangles of src whose slot equals `slot` (all of them
+ * when src has no slots and slot is 0), with only the vertices they use, in
+ * the same order. For a scene that maps each OBJ material to its own
+ * COBJECT. Fails with SVET_ERR_RANGE when src is not a mesh or no triangle
+ * has that slot, SVET_ERR_NOMEM. */
+svet_status mesh_new_subset(COBJECT **out, const COBJECT *src, int32_t slot,
+                            svet_error *err);
+
+/* The mesh data of obj, or NULL when obj is not a mesh. */
+const mesh_t *mesh_get(const COBJECT *obj);
+
+/* Bytes the mesh occupies (arrays and the structures around them). */
+size_t mesh_bytes(const COBJECT *obj);
+
+/* True when triangle i cannot be hit (triangle_is_degenerate). */
+bool mesh_triangle_is_degenerate(const mesh_t *m, int i);
+
+/* --- the per-ray watertight test ---------------------------------------- */
+
+/* What triangle_intersect_watertight() computes from the ray alone, once
+ * per ray rather than once per triangle: the axis permutation and the
+ * shear of Woop, Benthin, Wald 2013 (their sec. 3, precomputed per ray as
+ * the paper suggests). */
+typedef struct {
+    const ray_t *r;  /* the ray itself, for the fallback */
+    int kx, ky, kz;  /* permutation: the ray's largest component is kz */
+    real sx, sy, sz; /* shear: x += sx z, y += sy z, z *= sz */
+    bool fast;       /* false: d needed rescaling (or is zero or not
+                        finite): use triangle_intersect_watertight */
+} mesh_ray_t;
+
+/* Prepare r for mesh_ray_intersect(). This function can't fail. */
+static inline void mesh_ray_prepare(mesh_ray_t *mr, const ray_t *r)
+{
+    mr->r = r;
+    int kz = vec_max_axis(r->d);
+    real dz = r->d[kz];
+    int e = (dz != 0 && isfinite(dz)) ? ilogb(dz) : 99;
+    /* triangle.c rescales d when this exponent is outside [-16, 16]; such
+     * rays go the slow way, so that both give bit-identical answers. */
+    mr->fast = e >= -16 && e <= 16;
+    mr->kz = kz;
+    mr->kx = kz == 2 ? 0 : kz + 1;
+    mr->ky = mr->kx == 2 ? 0 : mr->kx + 1;
+    if (mr->fast) {
+        mr->sx = -r->d[mr->kx] / dz;
+        mr->sy = -r->d[mr->ky] / dz;
+        mr->sz = 1 / dz;
+    } else {
+        mr->sx = mr->sy = mr->sz = 0;
+    }
+}
+
+/* The corners of triangle i side by side in q: the layout that
+ * mesh_ray_intersect() reads. This function can't fail. */
+void mesh_triangle_corners(const mesh_t *m, int i, real q[9]);
+
+/* max for the error bound below: the same value as fmax for the finite,
+ * non-negative numbers it gets, without fmax's call (C's fmax must honour
+ * NaN, so compilers do not inline it). */
+static inline real mesh_max3(real a, real b, real c)
+{
+    real m = a > b ? a : b;
+    return m > c ? m : c;
+}
+
+/* Exactly triangle_intersect_watertight(q[0..2], q[3..5], q[6..8], r, ...)
+ * (the same operations in the same order, so the same bits), for a
+ * triangle that is not degenerate: the caller guarantees that, which saves
+ * the degeneracy test of every hit. The rare cases that need more work (an
+ * edge function rounding to zero; a rescaled ray) call the full test. This
+ * function can't fail. */
+static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
+                                      real tmin, real tmax, real *t,
+                                      real b[3])
+{
+    const ray_t *r = mr->r;
+    if (!mr->fast)
+        return triangle_intersect_watertight(q, q + 3, q + 6, r, tmin, tmax,
+                                             t, b);
+    const int kx = mr->kx, ky = mr->ky, kz = mr->kz;
+    const real sx = mr->sx, sy = mr->sy;
+    /* Translate to the origin and shear (Woop et al. sec. 3). */
+    real a0x = q[kx] - r->o[kx], a0y = q[ky] - r->o[ky];
+    real a0z = q[kz] - r->o[kz];
+    real a1x = q[3 + kx] - r->o[kx], a1y = q[3 + ky] - r->o[ky];
+    real a1z = q[3 + kz] - r->o[kz];
+    real a2x = q[6 + kx] - r->o[kx], a2y = q[6 + ky] - r->o[ky];
+    real a2z = q[6 + kz] - r->o[kz];
+    real x0 = a0x + sx * a0z, y0 = a0y + sy * a0z;
+    real x1 = a1x + sx * a1z, y1 = a1y + sy * a1z;
+    real x2 = a2x + sx * a2z, y2 = a2y + sy * a2z;
+    /* Edge functions. A zero may be rounding, and the exact recomputation
+     * of all three may change any sign: the full test does it. */
+    real e0 = x1 * y2 - y1 * x2;
+    real e1 = x2 * y0 - y2 * x0;
+    real e2 = x0 * y1 - y0 * x1;
+    if (e0 == 0 || e1 == 0 || e2 == 0)
+        return triangle_intersect_watertight(q, q + 3, q + 6, r, tmin, tmax,
+                                             t, b);
+    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0))
+        return false;
+    real det = e0 + e1 + e2;
+    if (det == 0 || !isfinite(det))
+        return false;
+    const real sz = mr->sz;
+    real z0 = sz * a0z, z1 = sz * a1z, z2 = sz * a2z;
+    real tt = (e0 * z0 + e1 * z1 + e2 * z2) / det;
+    if (!isfinite(tt))
+        return false;
+    /* Reject early what is outside (tmin, tmax) before the error bound:
+     * the bound only ever rejects more, so the answer is unchanged. */
+    if (!(tt > tmin && tt < tmax))
+        return false;
+    if (tmin >= 0) {
+        /* pbrt-v3 sec. 3.9.6, as in triangle.c */
+        real max_z = mesh_max3(fabs(z0), fabs(z1), fabs(z2));
+        real max_x = mesh_max3(fabs(x0), fabs(x1), fabs(x2));
+        real max_y = mesh_max3(fabs(y0), fabs(y1), fabs(y2));
+        real dz = ray_gamma(3) * max_z;
+        real dx = ray_gamma(5) * (max_x + max_z);
+        real dy = ray_gamma(5) * (max_y + max_z);
+        real de = 2 * (ray_gamma(2) * max_x * max_y + dy * max_x +
+                       dx * max_y);
+        real max_e = mesh_max3(fabs(e0), fabs(e1), fabs(e2));
+        real dt = 3 * (ray_gamma(3) * max_e * max_z + de * max_z +
+                       dz * max_e) / fabs(det);
+        if (tt <= dt)
+            return false;
+    }
+    *t = tt;
+    b[0] = e0 / det;
+    b[1] = e1 / det;
+    b[2] = e2 / det;
+    return true;
+}
+
+#endif
