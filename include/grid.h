@@ -1,0 +1,103 @@
+/*
+ * grid.h - the grids of ch. 7 ("Hierarchical grids"): the uniform grid
+ * walked by the 3D-DDA of Amanatides & Woo ("A fast voxel traversal
+ * algorithm for ray tracing", Eurographics 1987), and the hierarchical
+ * grid of Jevans & Wyvill ("Adaptive voxel subdivision for ray tracing",
+ * Graphics Interface 1989), in which a cell holding too many primitives
+ * holds a grid of its own. Both index a primset_t; the renderer reaches
+ * them through accel.h.
+ * Tests: tests/test_grid.c (agreement with brute force: tests/test_accel.c)
+ */
+#ifndef SVET_GRID_H
+#define SVET_GRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "error.h"
+#include "primset.h"
+
+/* Cells per axis = about k N^(1/3) over the box's aspect (N primitives):
+ * k^3 N cells in all. k measured by bench/bench_grid.c (`--tune`) on the
+ * sphere grids of 1e4 to 1e6 triangles: see chapters/ch07/README.md. */
+#define GRID_K_DEFAULT 2.0
+/* Hierarchical grid: the top level is a uniform grid with HGRID_K_DEFAULT;
+ * a cell with more than HGRID_LEAF_DEFAULT primitives gets a child grid
+ * (HGRID_CHILD_K_DEFAULT n^(1/3) cells per axis for its n primitives), at
+ * most HGRID_DEPTH_DEFAULT levels below the top. */
+#define HGRID_K_DEFAULT 2.0
+#define HGRID_CHILD_K_DEFAULT 2.0
+#define HGRID_LEAF_DEFAULT 12
+#define HGRID_DEPTH_DEFAULT 3
+/* No grid has more cells than this, at any level (4 B each). */
+#define GRID_MAX_CELLS (1L << 25)
+
+typedef struct {
+    double k;       /* top level: cells per axis = k N^(1/3) */
+    int max_depth;  /* 0: uniform grid; > 0: levels of child grids */
+    int leaf_max;   /* a cell with more primitives gets a child grid */
+    double child_k; /* child grid: cells per axis = child_k n^(1/3) */
+} grid_params_t;
+
+/* The uniform grid's defaults (max_depth 0) and the hierarchical grid's. */
+void grid_params_uniform(grid_params_t *p);
+void grid_params_hierarchical(grid_params_t *p);
+
+/* One grid: the top level, or a child of a cell. Coordinates in double,
+ * whatever real is, so that the walk decides cells far more finely than
+ * the primitives' own rounding (see the robustness notes in grid.c). */
+typedef struct {
+    double min[3];      /* lower corner */
+    double w[3];        /* cell size per axis */
+    double inv_w[3];    /* 1 / w */
+    double max[3];      /* upper corner: min + res w */
+    int res[3];         /* cells per axis */
+    uint32_t first;     /* its cells are cells[first .. first + ncells) */
+    int depth;          /* 0 for the top level */
+} grid_node_t;
+
+/* An item with this bit set is a child grid's node number; otherwise the
+ * number of a primitive in the primset. */
+#define GRID_CHILD ((uint32_t)1 << 31)
+
+/* The grid: flat arrays, so a cell costs 4 bytes plus 4 per primitive in
+ * it, and the whole structure is three allocations. */
+typedef struct {
+    const primset_t *ps;  /* the primitives (borrowed) */
+    grid_node_t *nodes;   /* nodes[0] is the top level */
+    uint32_t nnodes;
+    uint32_t *cells;      /* cell c holds items[cells[c] .. cells[c+1]) */
+    uint32_t ncells;
+    uint32_t *items;      /* primitive numbers, child markers last */
+    uint32_t nitems;
+    uint64_t *occupied;   /* bit c: cell c is not empty. 1/32 of the size
+                             of cells, so it stays in cache where cells
+                             would not, and an empty cell costs one bit */
+    double diag;          /* diagonal of the top level */
+    /* statistics of the build */
+    int depth;            /* deepest level */
+    uint32_t max_items;   /* most primitives in one cell */
+    uint32_t empty_cells;
+} grid_t;
+
+/* Build a grid over ps (whose bounds must still be there). Fails with
+ * SVET_ERR_NOMEM, or SVET_ERR_UNSUPPORTED when the scene's extent does not
+ * fit a double (then use brute force). ps must outlive the grid. */
+svet_status grid_build(grid_t **out, const primset_t *ps,
+                       const grid_params_t *p, svet_error *err);
+
+/* Nearest hit: q (primset_query_init) ends with the nearest hit of the
+ * primitives in the grid; the primset's unbounded primitives are the
+ * caller's. Returns q->found. This function can't fail. */
+bool grid_intersect(const grid_t *g, primset_query_t *q);
+
+/* Any hit in (q->tmin, q->tmax); stops at the first. This function can't
+ * fail. */
+bool grid_occluded(const grid_t *g, primset_query_t *q);
+
+/* Bytes the grid holds. */
+size_t grid_bytes(const grid_t *g);
+
+/* NULL is allowed. */
+void grid_free(grid_t *g);
+
+#endif
