@@ -508,7 +508,7 @@ static void cone_rows(out_t *o)
     row(o, "above_the_apex_misses_the_upper_nappe", &c, V(-5, 0, 2.5f),
         V(1, 0, 0), "exact", true);
     row(o, "parallel_to_a_generator", &u, V(0.5f, 0, -1), V(-1, 0, 2),
-        "long double, linear case a = 0", false);
+        "long double; linear case a = 0", false);
 }
 
 int main(int argc, char **argv)
