@@ -117,7 +117,8 @@ typedef struct {
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-static svet_status fail(ctx_t *c, int col, svet_status st, const char *fmt, ...)
+static svet_status fail(ctx_t *c, int col, svet_status st, const char *fmt,
+                        ...)
 {
     char msg[SVET_ERROR_LEN];
     va_list ap;
@@ -186,7 +187,7 @@ static svet_status lex(ctx_t *c, const char *p, const char *end)
             break;
         if (ch < 0x20 || ch == 0x7f)
             return fail(c, col, SVET_ERR_PARSE,
-                           "unexpected control character 0x%02x", ch);
+                        "unexpected control character 0x%02x", ch);
         if (c->ntok == c->cap) {
             if (c->cap > (1 << 24))
                 return fail(c, col, SVET_ERR_RANGE, "too many tokens");
@@ -205,21 +206,21 @@ static svet_status lex(ctx_t *c, const char *p, const char *end)
                 unsigned char qc = (unsigned char)*q;
                 if ((qc < 0x20 && qc != '\t') || qc == 0x7f)
                     return fail(c, (int)(q - line) + 1, SVET_ERR_PARSE,
-                                   "unexpected control character 0x%02x "
-                                   "in a string", qc);
+                                "unexpected control character 0x%02x "
+                                "in a string", qc);
                 q++;
             }
             if (q == end)
                 return fail(c, col, SVET_ERR_PARSE,
-                               "unterminated string: expected a closing "
-                               "'\"' on this line");
+                            "unterminated string: expected a closing "
+                            "'\"' on this line");
             t->s = p + 1;
             t->len = (int)(q - p - 1);
             t->quoted = true;
             p = q + 1;
             if (p < end && *p != ' ' && *p != '\t' && *p != '#')
                 return fail(c, (int)(p - line) + 1, SVET_ERR_PARSE,
-                               "expected a blank after the closing '\"'");
+                            "expected a blank after the closing '\"'");
         } else {
             const char *q = p;
             while (q < end && *q != ' ' && *q != '\t' && *q != '#' &&
@@ -307,16 +308,16 @@ static svet_status number_tok(ctx_t *c, const tok_t *t, const char *what,
     bool nonfinite;
     if (!syntax_number(t, &nonfinite))
         return fail(c, t->col, SVET_ERR_PARSE,
-                       "expected a number for %s, got '%s'", what,
-                       show_tok(t, show, sizeof show));
+                    "expected a number for %s, got '%s'", what,
+                    show_tok(t, show, sizeof show));
     if (nonfinite)
         return fail(c, t->col, SVET_ERR_RANGE,
-                       "%s must be a finite number, not '%s'", what,
-                       show_tok(t, show, sizeof show));
+                    "%s must be a finite number, not '%s'", what,
+                    show_tok(t, show, sizeof show));
     if (t->len >= (int)sizeof buf)
         return fail(c, t->col, SVET_ERR_PARSE,
-                       "number for %s is too long (more than %d characters)",
-                       what, (int)sizeof buf - 1);
+                    "number for %s is too long (more than %d characters)",
+                    what, (int)sizeof buf - 1);
     tok_copy(t, buf, sizeof buf);
     errno = 0;
     double d = strtod(buf, NULL);
@@ -325,7 +326,7 @@ static svet_status number_tok(ctx_t *c, const tok_t *t, const char *what,
     real r = (real)d;
     if (!isfinite(d) || !isfinite(r))
         return fail(c, t->col, SVET_ERR_RANGE,
-                       "%s = %s is too large for %s", what, buf, REAL_NAME);
+                    "%s = %s is too large for %s", what, buf, REAL_NAME);
     *out = r;
     return SVET_OK;
 }
@@ -344,11 +345,11 @@ static svet_status integer(ctx_t *c, const tok_t *t, const char *what,
         bool nf;
         if (syntax_number(t, &nf))
             return fail(c, t->col, SVET_ERR_PARSE,
-                           "expected a whole number for %s, got '%s'", what,
-                           show_tok(t, show, sizeof show));
+                        "expected a whole number for %s, got '%s'", what,
+                        show_tok(t, show, sizeof show));
         return fail(c, t->col, SVET_ERR_PARSE,
-                       "expected a whole number for %s, got '%s'", what,
-                       show_tok(t, show, sizeof show));
+                    "expected a whole number for %s, got '%s'", what,
+                    show_tok(t, show, sizeof show));
     }
     long v;
     if (t->len >= (int)sizeof buf) {
@@ -361,8 +362,8 @@ static svet_status integer(ctx_t *c, const tok_t *t, const char *what,
     }
     if (errno == ERANGE || v < lo || v > hi)
         return fail(c, t->col, SVET_ERR_RANGE,
-                       "%s = %s is out of range: expected %ld to %ld", what,
-                       show_tok(t, show, sizeof show), lo, hi);
+                    "%s = %s is out of range: expected %ld to %ld", what,
+                    show_tok(t, show, sizeof show), lo, hi);
     *out = v;
     return SVET_OK;
 }
@@ -383,15 +384,15 @@ static svet_status uint64_tok(ctx_t *c, const tok_t *t, const char *what,
         unsigned d = ch - '0';
         if (v > (UINT64_MAX - d) / 10)
             return fail(c, t->col, SVET_ERR_RANGE,
-                           "%s = %s is out of range: expected 0 to %llu",
-                           what, show_tok(t, show, sizeof show),
-                           (unsigned long long)UINT64_MAX);
+                        "%s = %s is out of range: expected 0 to %llu",
+                        what, show_tok(t, show, sizeof show),
+                        (unsigned long long)UINT64_MAX);
         v = 10 * v + d;
     }
     if (!ok)
         return fail(c, t->col, SVET_ERR_PARSE,
-                       "expected a whole number >= 0 for %s, got '%s'", what,
-                       show_tok(t, show, sizeof show));
+                    "expected a whole number >= 0 for %s, got '%s'", what,
+                    show_tok(t, show, sizeof show));
     *out = v;
     return SVET_OK;
 }
@@ -424,11 +425,11 @@ static svet_status missing_value(ctx_t *c, const spec_t *sp)
     char show[64];
     if (c->pos < c->ntok)
         return fail(c, c->tok[c->pos].col, SVET_ERR_PARSE,
-                       "'%s' expects %s, got '%s'", sp->key, type_hint(sp),
-                       show_tok(&c->tok[c->pos], show, sizeof show));
+                    "'%s' expects %s, got '%s'", sp->key, type_hint(sp),
+                    show_tok(&c->tok[c->pos], show, sizeof show));
     return fail(c, c->eol_col, SVET_ERR_PARSE,
-                   "'%s' expects %s, got the end of the line", sp->key,
-                   type_hint(sp));
+                "'%s' expects %s, got the end of the line", sp->key,
+                type_hint(sp));
 }
 
 /* n numbers into v, from the current token on. */
@@ -443,9 +444,9 @@ static svet_status numbers(ctx_t *c, const spec_t *sp, int n, real *v)
             if (i == 0)
                 return missing_value(c, sp);
             return fail(c, t->col, SVET_ERR_PARSE,
-                           "'%s' expects %s: got %d number%s, then '%s'",
-                           sp->key, type_hint(sp), i, i == 1 ? "" : "s",
-                           show_tok(t, show, sizeof show));
+                        "'%s' expects %s: got %d number%s, then '%s'",
+                        sp->key, type_hint(sp), i, i == 1 ? "" : "s",
+                        show_tok(t, show, sizeof show));
         }
         char what[48];
         snprintf(what, sizeof what, "'%s'", sp->key);
@@ -476,12 +477,12 @@ static svet_status one_or_three(ctx_t *c, const spec_t *sp, real v[3])
         char show[64];
         if (c->pos + 2 < c->ntok)
             return fail(c, c->tok[c->pos + 2].col, SVET_ERR_PARSE,
-                           "'%s' expects %s: got 2 numbers, then '%s'",
-                           sp->key, type_hint(sp),
-                           show_tok(&c->tok[c->pos + 2], show, sizeof show));
+                        "'%s' expects %s: got 2 numbers, then '%s'",
+                        sp->key, type_hint(sp),
+                        show_tok(&c->tok[c->pos + 2], show, sizeof show));
         return fail(c, c->eol_col, SVET_ERR_PARSE,
-                       "'%s' expects %s: got 2 numbers, then the end of the "
-                       "line", sp->key, type_hint(sp));
+                    "'%s' expects %s: got 2 numbers, then the end of the "
+                    "line", sp->key, type_hint(sp));
     }
     svet_status st = numbers(c, sp, n == 3 ? 3 : 1, v);
     if (st)
@@ -510,8 +511,8 @@ static svet_status unknown(ctx_t *c, const tok_t *t, const char *what,
     const char *near = t->quoted ? NULL : scene_nearest_name(word, names, n);
     if (near)
         return fail(c, t->col, SVET_ERR_PARSE,
-                       "unknown %s '%s' (did you mean '%s'?)", what,
-                       show_tok(t, show, sizeof show), near);
+                    "unknown %s '%s' (did you mean '%s'?)", what,
+                    show_tok(t, show, sizeof show), near);
     char list[320];
     size_t len = 0;
     list[0] = '\0';
@@ -519,8 +520,8 @@ static svet_status unknown(ctx_t *c, const tok_t *t, const char *what,
         len += (size_t)snprintf(list + len, sizeof list - len, "%s%s",
                                 i ? ", " : "", names[i]);
     return fail(c, t->col, SVET_ERR_PARSE,
-                   "unknown %s '%s': expected one of %s", what,
-                   show_tok(t, show, sizeof show), list);
+                "unknown %s '%s': expected one of %s", what,
+                show_tok(t, show, sizeof show), list);
 }
 
 /* Append one transform to the statement's list. */
@@ -528,7 +529,7 @@ static svet_status push_xform(ctx_t *c, xform_op *x, int col)
 {
     if (c->nxf == MAX_XFORMS)
         return fail(c, col, SVET_ERR_RANGE,
-                       "more than %d transforms on one line", MAX_XFORMS);
+                    "more than %d transforms on one line", MAX_XFORMS);
     c->xf[c->nxf++] = *x;
     return SVET_OK;
 }
@@ -545,8 +546,8 @@ static svet_status parse_xform(ctx_t *c, const spec_t *sp, int col)
         st = one_or_three(c, sp, x.v);
         if (!st && (x.v[0] == 0 || x.v[1] == 0 || x.v[2] == 0))
             return fail(c, col, SVET_ERR_RANGE,
-                           "a scale factor of 0 flattens the object: "
-                           "expected nonzero factors");
+                        "a scale factor of 0 flattens the object: "
+                        "expected nonzero factors");
         break;
     case V_TRANSLATE:
         x.kind = XF_TRANSLATE;
@@ -564,7 +565,7 @@ static svet_status parse_xform(ctx_t *c, const spec_t *sp, int col)
             st = numbers(c, sp, 4, x.v);
             if (!st && !(vec_length(x.v) > 0))
                 return fail(c, col, SVET_ERR_RANGE,
-                               "a rotation axis must be a nonzero vector");
+                            "a rotation axis must be a nonzero vector");
         }
         break;
     }
@@ -592,7 +593,7 @@ static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
         st = one_or_three(c, sp, v->v);
         if (!st && (v->v[0] < 0 || v->v[1] < 0 || v->v[2] < 0))
             return fail(c, v->col, SVET_ERR_RANGE,
-                           "%s must not be negative", what);
+                        "%s must not be negative", what);
         return st;
     case V_INT:
         if (c->pos >= c->ntok)
@@ -612,8 +613,8 @@ static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
         v->word = c->tok[c->pos++];
         if (v->word.len == 0)
             return fail(c, v->word.col, SVET_ERR_PARSE,
-                           "%s expects a file name, got an empty string",
-                           what);
+                        "%s expects a file name, got an empty string",
+                        what);
         return SVET_OK;
     case V_ONOFF:
         if (c->pos >= c->ntok)
@@ -625,8 +626,8 @@ static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
             v->on = false;
         else
             return fail(c, v->word.col, SVET_ERR_PARSE,
-                           "%s expects on or off, got '%s'", what,
-                           show_tok(&v->word, show, sizeof show));
+                        "%s expects on or off, got '%s'", what,
+                        show_tok(&v->word, show, sizeof show));
         return SVET_OK;
     case V_WORD: {
         if (c->pos >= c->ntok)
@@ -657,7 +658,7 @@ static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
         return fail(c, v->col, SVET_ERR_RANGE, "%s must be >= 0", what);
     if ((sp->flags & F_NONZERO) && !(vec_length(v->v) > 0))
         return fail(c, v->col, SVET_ERR_RANGE,
-                       "%s must be a nonzero vector", what);
+                    "%s must be a nonzero vector", what);
     return SVET_OK;
 }
 
@@ -685,8 +686,8 @@ static svet_status parse_keys(ctx_t *c, const char *stmt, const spec_t *spec,
                           sp->type == V_TRANSLATE;
         if (vals[i].set && !repeatable)
             return fail(c, t->col, SVET_ERR_PARSE,
-                           "'%s' is given twice (first at column %d)",
-                           sp->key, vals[i].col);
+                        "'%s' is given twice (first at column %d)",
+                        sp->key, vals[i].col);
         vals[i].set = true;
         vals[i].col = t->col;
         c->pos++;
@@ -697,8 +698,8 @@ static svet_status parse_keys(ctx_t *c, const char *stmt, const spec_t *spec,
     for (int i = 0; i < nspec; i++)
         if ((spec[i].flags & F_REQUIRED) && !vals[i].set)
             return fail(c, c->stmt_col, SVET_ERR_PARSE,
-                           "%s needs '%s' (%s)", stmt, spec[i].key,
-                           type_hint(&spec[i]));
+                        "%s needs '%s' (%s)", stmt, spec[i].key,
+                        type_hint(&spec[i]));
     return SVET_OK;
 }
 
@@ -818,8 +819,8 @@ static svet_status st_camera(ctx_t *c)
         cam.fov = v[CAM_FOV].v[0];
         if (!(cam.fov > 0 && cam.fov < 180))
             return fail(c, v[CAM_FOV].col, SVET_ERR_RANGE,
-                           "'fov' is the full angle in degrees: expected "
-                           "more than 0 and less than 180");
+                        "'fov' is the full angle in degrees: expected "
+                        "more than 0 and less than 180");
     }
     if (v[CAM_FOV_AXIS].set)
         cam.fov_axis = (scene_fov_axis)v[CAM_FOV_AXIS].i;
@@ -831,8 +832,8 @@ static svet_status st_camera(ctx_t *c)
         int col = v[CAM_HEIGHT].set ? v[CAM_HEIGHT].col
                   : v[CAM_WIDTH].set ? v[CAM_WIDTH].col : c->stmt_col;
         return fail(c, col, SVET_ERR_RANGE,
-                       "%d x %d pixels is more than the limit of %ld",
-                       cam.width, cam.height, SCENE_MAX_PIXELS);
+                    "%d x %d pixels is more than the limit of %ld",
+                    cam.width, cam.height, SCENE_MAX_PIXELS);
     }
     if (v[CAM_FILTER].set)
         cam.filter = (scene_filter)v[CAM_FILTER].i;
@@ -840,7 +841,7 @@ static svet_status st_camera(ctx_t *c)
         cam.filter_width = v[CAM_FILTER_WIDTH].v[0];
         if (cam.filter_width > 16)
             return fail(c, v[CAM_FILTER_WIDTH].col, SVET_ERR_RANGE,
-                           "'filter_width' is in pixels: expected at most 16");
+                        "'filter_width' is in pixels: expected at most 16");
     }
     c->scene->camera = cam;
     c->camera_line = c->line;
@@ -1023,7 +1024,7 @@ static svet_status st_light(ctx_t *c)
     char show[64];
     if (c->pos >= c->ntok)
         return fail(c, c->eol_col, SVET_ERR_PARSE,
-                       "light expects its kind: point");
+                    "light expects its kind: point");
     const tok_t *kind = &c->tok[c->pos];
     if (!tok_is(kind, "point"))
         return unknown(c, kind, "kind of light", light_kinds, 1);
@@ -1037,12 +1038,12 @@ static svet_status st_light(ctx_t *c)
                 v[L_LUMENS].set;
     if (given != 1)
         return fail(c, c->stmt_col, SVET_ERR_PARSE,
-                       "light point needs exactly one of 'intensity' (W/sr),"
-                       " 'power' (W), 'candela' or 'lumens'");
+                    "light point needs exactly one of 'intensity' (W/sr),"
+                    " 'power' (W), 'candela' or 'lumens'");
     if (v[L_COLOUR].set && !v[L_CANDELA].set && !v[L_LUMENS].set)
         return fail(c, v[L_COLOUR].col, SVET_ERR_PARSE,
-                       "'colour' goes with 'candela' or 'lumens' only "
-                       "(intensity and power take r g b themselves)");
+                    "'colour' goes with 'candela' or 'lumens' only "
+                    "(intensity and power take r g b themselves)");
     RADIANCE I;
     if (v[L_INTENSITY].set) {
         I = rad_make(v[L_INTENSITY].v[0], v[L_INTENSITY].v[1],
@@ -1059,7 +1060,7 @@ static svet_status st_light(ctx_t *c)
                               v[L_COLOUR].v[2]);
         if (!(colour_luminance(colour) > 0))
             return fail(c, v[L_COLOUR].col, SVET_ERR_RANGE,
-                           "'colour' must have a luminance > 0");
+                        "'colour' must have a luminance > 0");
         /* eq. (1.2): candela = 683 lm/W times the luminance of the
          * intensity in W/sr; lumens spread over 4 pi sr (colour.h). */
         I = v[L_CANDELA].set
@@ -1070,10 +1071,11 @@ static svet_status st_light(ctx_t *c)
     }
     if (!rad_is_finite(I))
         return fail(c, c->stmt_col, SVET_ERR_RANGE,
-                       "the light's intensity overflows %s", REAL_NAME);
-    st = scene_add_point_light(c->scene, v[L_POSITION].v, I, c->err);
+                    "the light's intensity overflows %s", REAL_NAME);
+    svet_error e;
+    st = scene_add_point_light(c->scene, v[L_POSITION].v, I, &e);
     if (st)
-        return fail(c, c->stmt_col, st, "%s", c->err->msg);
+        return fail(c, c->stmt_col, st, "%s", e.msg);
     return SVET_OK;
 }
 
@@ -1091,8 +1093,8 @@ static svet_status st_environment(ctx_t *c)
         return st;
     if (c->environment_line)
         return fail(c, c->stmt_col, SVET_ERR_PARSE,
-                       "the environment is already defined on line %d",
-                       c->environment_line);
+                    "the environment is already defined on line %d",
+                    c->environment_line);
     c->environment_line = c->line;
     c->scene->has_environment = true;
     c->scene->environment = rad_make(v[E_RADIANCE].v[0], v[E_RADIANCE].v[1],
@@ -1333,7 +1335,7 @@ static svet_status st_material(ctx_t *c)
     return SVET_OK;
 }
 
-/* --- transforms ------------------------------------------------------------- */
+/* --- transforms ---------------------------------------------------------- */
 
 /* The statement's transforms composed in the written order (xform.h):
  * T = T_n ... T_2 T_1. Each was checked when parsed (nonzero scale
@@ -1657,7 +1659,8 @@ static svet_status add_mesh_parts(ctx_t *c, const obj_t *o, COBJECT *mesh,
         if (!m && name && v[MESH_STRICT].on) {
             const char *near = scene_suggest_material(c->scene, name);
             st = fail(c, file.col, SVET_ERR_PARSE,
-                      "%s: usemtl '%.64s' is not a material of the scene%s%s%s",
+                      "%s: usemtl '%.64s' is not a material of the "
+                      "scene%s%s%s",
                       show_tok(&file, show, sizeof show), name,
                       near ? " (did you mean '" : "", near ? near : "",
                       near ? "'?)" : "");
@@ -1809,8 +1812,8 @@ static svet_status statement(ctx_t *c)
     for (size_t i = 0; i < sizeof reserved / sizeof *reserved; i++)
         if (tok_is(t, reserved[i].name))
             return fail(c, t->col, SVET_ERR_UNSUPPORTED,
-                           "'%s' is not supported yet: %s", reserved[i].name,
-                           reserved[i].chapter);
+                        "'%s' is not supported yet: %s", reserved[i].name,
+                        reserved[i].chapter);
     const char *names[NSTATEMENTS];
     for (int i = 0; i < NSTATEMENTS; i++)
         names[i] = statements[i].name;
@@ -1840,8 +1843,8 @@ svet_status scenefile_parse(scene_t *s, const char *text, size_t len,
     if (len > (size_t)SCENEFILE_MAX_BYTES) {
         c.line = 1;
         st = fail(&c, 1, SVET_ERR_RANGE,
-                     "the file is larger than %ld bytes",
-                     SCENEFILE_MAX_BYTES);
+                  "the file is larger than %ld bytes",
+                  SCENEFILE_MAX_BYTES);
     }
     while (!st && p < end) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
@@ -1982,7 +1985,7 @@ svet_status scenefile_override(scene_t *s, const char *setting,
         if (!x || strchr(x + 1, 'x')) {
             free(line);
             return fail(&c, 1, SVET_ERR_PARSE,
-                           "expected a resolution WIDTHxHEIGHT, e.g. 512x512");
+                        "expected a resolution WIDTHxHEIGHT, e.g. 512x512");
         }
         snprintf(line, vlen + 64, "camera width %.*s height %s",
                  (int)(x - value), value, x + 1);
@@ -1999,7 +2002,7 @@ svet_status scenefile_override(scene_t *s, const char *setting,
         int expect = overrides[k].param ? 3 : 5;
         if (c.ntok != expect)
             st = fail(&c, 1, SVET_ERR_PARSE,
-                         "expected exactly one value after '='");
+                      "expected exactly one value after '='");
     }
     if (!st) {
         scene_camera_t cam = s->camera;

@@ -69,9 +69,9 @@ static void bounds_of(const COBJECT *obj, bbox_t *b)
 #define PI_D 3.14159265358979323846
 
 /* lo <= v <= hi, with a message. */
-#define assert_between(v, lo, hi)                                              \
-    ck_assert_msg((double)(v) >= (lo) && (double)(v) <= (hi),                  \
-                  "%s = %.9g not in [%.9g, %.9g]", #v, (double)(v),           \
+#define assert_between(v, lo, hi)                                        \
+    ck_assert_msg((double)(v) >= (lo) && (double)(v) <= (hi),            \
+                  "%s = %.9g not in [%.9g, %.9g]", #v, (double)(v),     \
                   (double)(lo), (double)(hi))
 
 /* --- settings ------------------------------------------------------------ */
@@ -212,7 +212,7 @@ START_TEST(numbers_in_every_decimal_form_are_read)
 }
 END_TEST
 
-/* --- materials ------------------------------------------------------------ */
+/* --- materials ----------------------------------------------------------- */
 
 START_TEST(every_material_component_parses_with_its_parameters)
 {
@@ -273,7 +273,7 @@ START_TEST(every_material_component_parses_with_its_parameters)
 }
 END_TEST
 
-/* --- objects -------------------------------------------------------------- */
+/* --- objects ------------------------------------------------------------- */
 
 START_TEST(every_shape_parses_with_its_material_and_name)
 {
@@ -461,7 +461,7 @@ START_TEST(cornell_box_matches_the_reference_numbers)
 }
 END_TEST
 
-/* --- lights ------------------------------------------------------------------ */
+/* --- lights -------------------------------------------------------------- */
 
 START_TEST(point_lights_in_every_unit)
 {
@@ -505,7 +505,7 @@ START_TEST(environment_is_read_once)
 }
 END_TEST
 
-/* --- meshes ---------------------------------------------------------------- */
+/* --- meshes -------------------------------------------------------------- */
 
 START_TEST(mesh_usemtl_names_map_to_scene_materials)
 {
@@ -586,7 +586,7 @@ START_TEST(mesh_errors_name_both_files)
 }
 END_TEST
 
-/* --- errors ------------------------------------------------------------------ */
+/* --- errors -------------------------------------------------------------- */
 
 /* Every kind of error, with its exact message and status. */
 static const struct {
@@ -815,7 +815,7 @@ START_TEST(a_nul_byte_is_an_error_not_the_end)
 }
 END_TEST
 
-START_TEST(long_tokens_are_shown_cut_and_unprintable_bytes_as_question_marks)
+START_TEST(long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks)
 {
     char text[400];
     memset(text, 'z', 300);
@@ -832,7 +832,27 @@ START_TEST(long_tokens_are_shown_cut_and_unprintable_bytes_as_question_marks)
 }
 END_TEST
 
-/* --- files ----------------------------------------------------------------- */
+START_TEST(a_null_error_pointer_is_allowed)
+{
+    /* Every failing path must cope with err == NULL (error.h allows it). */
+    int n = (int)(sizeof errors / sizeof *errors);
+    for (int i = 0; i < n; i++) {
+        scene_t s;
+        ck_assert_int_eq(scenefile_parse(&s, errors[i].text,
+                                         strlen(errors[i].text), "t.scn",
+                                         DATA, NULL),
+                         errors[i].status);
+        scene_free(&s);
+    }
+    scene_t s;
+    parse_ok(&s, M "light point position 0 0 0 intensity 1\n");
+    ck_assert_int_eq(scenefile_override(&s, "spp=0", NULL), SVET_ERR_RANGE);
+    ck_assert_int_eq(scenefile_read(&s, "nope.scn", NULL), SVET_ERR_IO);
+    scene_free(&s);
+}
+END_TEST
+
+/* --- files --------------------------------------------------------------- */
 
 START_TEST(read_reports_missing_and_irregular_files)
 {
@@ -912,7 +932,7 @@ START_TEST(fuzzer_findings_are_handled)
 }
 END_TEST
 
-/* --- overrides -------------------------------------------------------------- */
+/* --- overrides ----------------------------------------------------------- */
 
 START_TEST(overrides_set_one_value_each)
 {
@@ -1046,10 +1066,12 @@ Suite *test_suite(void)
     tcase_add_test(tc, mesh_usemtl_names_map_to_scene_materials);
     tcase_add_test(tc, mesh_transforms_move_vertices_and_keep_normals_out);
     tcase_add_test(tc, mesh_errors_name_both_files);
-    tcase_add_test(tc, every_error_names_file_line_column_and_what_was_expected);
-    tcase_add_test(tc, a_nul_byte_is_an_error_not_the_end);
     tcase_add_test(tc,
-                   long_tokens_are_shown_cut_and_unprintable_bytes_as_question_marks);
+                   every_error_names_file_line_column_and_what_was_expected);
+    tcase_add_test(tc, a_nul_byte_is_an_error_not_the_end);
+    tcase_add_test(
+        tc, long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks);
+    tcase_add_test(tc, a_null_error_pointer_is_allowed);
     tcase_add_test(tc, read_reports_missing_and_irregular_files);
     tcase_add_test(tc, read_finds_meshes_beside_the_scene_and_keeps_its_path);
     tcase_add_test(tc, every_shipped_scene_parses);
