@@ -454,6 +454,40 @@ START_TEST(bad_parameters_are_refused_by_name)
 }
 END_TEST
 
+START_TEST(curves_match_the_port_vectors)
+{
+    /* tests/vectors/tonemap.csv: the papers' formulas in long double
+     * (tools/vectors_tonemap.c), not this code */
+    testcsv_t c;
+    testcsv_open(&c, "tonemap.csv");
+    long rows = 0;
+    while (testcsv_next(&c)) {
+        const char *op = testcsv_str(&c, "op");
+        double lw = testcsv_num(&c, "lw"), got;
+        if (strcmp(op, "exponential") == 0)
+            got = tonemap_exponential(lw, testcsv_num(&c, "lav"));
+        else if (strcmp(op, "reinhard") == 0)
+            got = tonemap_reinhard(lw, testcsv_num(&c, "lav"),
+                                   testcsv_num(&c, "key"),
+                                   testcsv_num(&c, "white"));
+        else if (strcmp(op, "drago") == 0)
+            got = tonemap_drago(lw, testcsv_num(&c, "lw_max"),
+                                testcsv_num(&c, "bias"),
+                                testcsv_num(&c, "ld_max"));
+        else
+            ck_abort_msg("tonemap.csv:%d: unknown op %s", c.line, op);
+        ck_assert_msg(fabs(got - testcsv_num(&c, "expected")) <=
+                          testcsv_num(&c, "tol"),
+                      "tonemap.csv:%d: %s(%g) = %.17g, expected %.17g", c.line,
+                      op, lw, got, testcsv_num(&c, "expected"));
+        rows++;
+    }
+    testcsv_close(&c);
+    ck_assert_int_ge(rows, 150);
+    test_report_cases("curves_match_the_port_vectors", rows);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("tonemap");
@@ -470,6 +504,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, nan_and_inf_pixels_are_counted_black_and_kept_out_of_statistics);
     tcase_add_test(tc, negative_channels_are_clamped_and_counted);
     tcase_add_test(tc, bad_parameters_are_refused_by_name);
+    tcase_add_test(tc, curves_match_the_port_vectors);
     suite_add_tcase(s, tc);
     return s;
 }
