@@ -60,7 +60,10 @@ typedef enum {
     SCENE_INTEGRATOR_PATH = 0,   /* path tracing: NEE + BSDF sampling + MIS */
     SCENE_INTEGRATOR_DIRECT = 1, /* direct lighting only (one bounce) */
     SCENE_INTEGRATOR_BSDF = 2,   /* BSDF sampling only, no light sampling */
-    SCENE_INTEGRATOR_AO = 3      /* ambient occlusion within ao_distance */
+    SCENE_INTEGRATOR_AO = 3,     /* ambient occlusion within ao_distance */
+    SCENE_INTEGRATOR_NEE = 4     /* light sampling without MIS: emitters
+                                    that a BSDF sample hits count only after
+                                    a delta bounce (ch. 5's comparison) */
 } scene_integrator;
 
 typedef enum {
@@ -160,6 +163,12 @@ typedef struct {
 
     scene_material_t *materials; /* named materials, in order of definition */
     int nmaterials, cap_materials;
+    int *material_index;        /* hash of the names: open addressing over
+                                   material_slots slots, each an index into
+                                   materials or -1; finding a name costs
+                                   O(1), so a file of many materials loads
+                                   in linear time */
+    int material_slots;
     /* Materials no name refers to (e.g. the defaults an OBJ file needs),
      * freed with the scene. */
     struct material **anon_materials;

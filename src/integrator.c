@@ -175,12 +175,14 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
     if (it->mode == SCENE_INTEGRATOR_AO)
         return ambient_occlusion(it, camera, g, st);
 
-    /* Light sampling runs in every mode but BSDF-only; the emitters that a
-     * BSDF sample hits always count, weighted by MIS where light sampling
-     * could have found them too. Direct lighting is the path tracer cut
+    /* Light sampling runs in every mode but BSDF-only. The emitters that a
+     * BSDF sample hits count, weighted by MIS where light sampling could
+     * have found them too - except in the `nee` mode, which shows light
+     * sampling alone: there they count only after a delta bounce, which
+     * light sampling cannot follow. Direct lighting is the path tracer cut
      * after one scattering event. */
     bool nee = it->lights && it->mode != SCENE_INTEGRATOR_BSDF;
-    const bool bsdf_hits = true;
+    const bool bsdf_hits = !(nee && it->mode == SCENE_INTEGRATOR_NEE);
     int max_depth = it->mode == SCENE_INTEGRATOR_DIRECT
                         ? (it->max_depth < 1 ? it->max_depth : 1)
                         : it->max_depth;
@@ -247,6 +249,7 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         if (nee && !material_is_specular(m)) {
             RADIANCE Ld = direct_light(it, &pp, m, wo, bsdf_hits, g, st);
+            /* with bsdf_hits false the light sample's weight is 1 */
             L = rad_add(L, rad_mul(beta, Ld));
         } else if (nee) {
             /* keep the draw count of a bounce fixed */

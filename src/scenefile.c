@@ -34,6 +34,10 @@
 #define MAX_XFORMS 64
 /* The largest number of keys one statement takes. */
 #define MAX_SPEC 32
+/* The most words on one line: far more than any statement needs (a shape
+ * with every key and 64 transforms has about 300), few enough that a line
+ * of a million numbers costs no memory. */
+#define MAX_TOKENS 4096
 
 /* A token of a line: a word, or a "quoted string" without its quotes. */
 typedef struct {
@@ -189,8 +193,9 @@ static svet_status lex(ctx_t *c, const char *p, const char *end)
             return fail(c, col, SVET_ERR_PARSE,
                         "unexpected control character 0x%02x", ch);
         if (c->ntok == c->cap) {
-            if (c->cap > (1 << 24))
-                return fail(c, col, SVET_ERR_RANGE, "too many tokens");
+            if (c->cap >= MAX_TOKENS)
+                return fail(c, col, SVET_ERR_RANGE,
+                            "more than %d words on one line", MAX_TOKENS);
             int ncap = c->cap ? 2 * c->cap : 32;
             tok_t *nt = realloc(c->tok, (size_t)ncap * sizeof *nt);
             if (!nt)
@@ -849,7 +854,7 @@ static svet_status st_camera(ctx_t *c)
 }
 
 static const char *const integrators[] = { "path", "direct", "bsdf", "ao",
-                                           NULL };
+                                           "nee", NULL };
 static const char *const accels[] = { "auto", "brute", "grid", "hgrid",
                                       NULL };
 

@@ -10,7 +10,7 @@
  *  - a diffuse plane under a point light: L = (rho/pi) I cos(theta) / r^2;
  *  - a disk light of radius a and radiance Le at height h above a diffuse
  *    point, facing it: E = pi Le a^2 / (h^2 + a^2), L = rho E / pi, by every
- *    strategy (path with MIS, direct, BSDF only);
+ *    strategy (path with MIS, direct, BSDF only, light sampling only);
  *  - an emitter seen directly, from the front and from the back.
  * Statistical tolerances are 5 standard errors of the estimate (the
  * standard error measured from the same samples): a correct estimator
@@ -187,8 +187,9 @@ START_TEST(disk_light_over_a_diffuse_point_by_every_strategy)
     const double expect = (double)(rho * Le * a * a / (h * h + a * a));
     const scene_integrator modes[] = { SCENE_INTEGRATOR_PATH,
                                        SCENE_INTEGRATOR_DIRECT,
-                                       SCENE_INTEGRATOR_BSDF };
-    for (int k = 0; k < 3; k++) {
+                                       SCENE_INTEGRATOR_BSDF,
+                                       SCENE_INTEGRATOR_NEE };
+    for (int k = 0; k < 4; k++) {
         scene_t s;
         scene_init(&s);
         VECTOR3 c = { 0, 0, 0 }, up = { 0, 0, 1 }, lc = { 0, 0, h },
@@ -213,7 +214,7 @@ START_TEST(disk_light_over_a_diffuse_point_by_every_strategy)
         scene_free(&s);
     }
     test_report_cases("disk_light_over_a_diffuse_point_by_every_strategy",
-                      3 * 40000);
+                      4 * 40000);
 }
 END_TEST
 
