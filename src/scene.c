@@ -63,6 +63,7 @@ void scene_free(scene_t *s)
     free(s->objects);
     free(s->emitters);
     free(s->materials);
+    free(s->material_index);
     free(s->anon_materials);
     free(s->point_lights);
     free(s->render.output_exr);
@@ -89,6 +90,47 @@ static bool grow(void *arr, int n, int *cap, size_t size)
     return true;
 }
 
+/* FNV-1a, the 32-bit hash of a name (Fowler, Noll, Vo). */
+static unsigned hash_name(const char *name)
+{
+    unsigned h = 2166136261u;
+    for (const unsigned char *p = (const unsigned char *)name; *p; p++)
+        h = (h ^ *p) * 16777619u;
+    return h;
+}
+
+/* The slot of name in the index: where it is, or the empty slot where it
+ * would go. The table is never more than half full, so probing ends. */
+static int find_slot(const scene_t *s, const char *name)
+{
+    unsigned mask = (unsigned)s->material_slots - 1;
+    unsigned i = hash_name(name) & mask;
+    while (s->material_index[i] >= 0 &&
+           strcmp(s->materials[s->material_index[i]].name, name) != 0)
+        i = (i + 1) & mask;
+    return (int)i;
+}
+
+/* Make room in the index for one more name: keep it at most half full,
+ * doubling and re-inserting. Returns false when memory runs out. */
+static bool index_reserve(scene_t *s)
+{
+    if (2 * (s->nmaterials + 1) <= s->material_slots)
+        return true;
+    int nslots = s->material_slots ? 2 * s->material_slots : 16;
+    int *idx = malloc((size_t)nslots * sizeof *idx);
+    if (!idx)
+        return false;
+    for (int i = 0; i < nslots; i++)
+        idx[i] = -1;
+    free(s->material_index);
+    s->material_index = idx;
+    s->material_slots = nslots;
+    for (int k = 0; k < s->nmaterials; k++)
+        s->material_index[find_slot(s, s->materials[k].name)] = k;
+    return true;
+}
+
 svet_status scene_add_material(scene_t *s, const char *name,
                                struct material *m, svet_error *err)
 {
@@ -105,8 +147,9 @@ svet_status scene_add_material(scene_t *s, const char *name,
                               "material '%s' is already defined", name);
     }
     char *copy = malloc(len + 1);
-    if (!copy || !grow(&s->materials, s->nmaterials, &s->cap_materials,
-                       sizeof *s->materials)) {
+    if (!copy || !index_reserve(s) ||
+        !grow(&s->materials, s->nmaterials, &s->cap_materials,
+              sizeof *s->materials)) {
         free(copy);
         material_free(m);
         return svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
@@ -114,6 +157,7 @@ svet_status scene_add_material(scene_t *s, const char *name,
     memcpy(copy, name, len + 1);
     s->materials[s->nmaterials].name = copy;
     s->materials[s->nmaterials].material = m;
+    s->material_index[find_slot(s, copy)] = s->nmaterials;
     s->nmaterials++;
     return SVET_OK;
 }
@@ -132,10 +176,10 @@ svet_status scene_add_anon_material(scene_t *s, struct material *m,
 
 struct material *scene_find_material(const scene_t *s, const char *name)
 {
-    for (int i = 0; i < s->nmaterials; i++)
-        if (strcmp(s->materials[i].name, name) == 0)
-            return s->materials[i].material;
-    return NULL;
+    if (s->material_slots == 0)
+        return NULL;
+    int k = s->material_index[find_slot(s, name)];
+    return k >= 0 ? s->materials[k].material : NULL;
 }
 
 /* Edit distance of a and b, each cut to 63 bytes (a suggestion for a

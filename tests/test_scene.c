@@ -219,6 +219,34 @@ START_TEST(validate_rejects_a_camera_that_cannot_see)
 }
 END_TEST
 
+START_TEST(many_materials_are_all_found)
+{
+    /* The name index is a hash table; this fills it through several
+     * doublings and checks every name, and names never defined. */
+    scene_t s;
+    scene_init(&s);
+    const int n = 3000;
+    char name[32];
+    for (int i = 0; i < n; i++) {
+        snprintf(name, sizeof name, "m%d", i);
+        ck_assert_int_eq(scene_add_material(&s, name, grey(REAL_C(0.5)),
+                                            NULL),
+                         SVET_OK);
+    }
+    for (int i = 0; i < n; i++) {
+        snprintf(name, sizeof name, "m%d", i);
+        ck_assert_ptr_eq(scene_find_material(&s, name),
+                         s.materials[i].material);
+        snprintf(name, sizeof name, "x%d", i);
+        ck_assert_ptr_null(scene_find_material(&s, name));
+    }
+    ck_assert_int_eq(scene_add_material(&s, "m17", grey(1), NULL),
+                     SVET_ERR_PARSE);
+    test_report_cases("many_materials_are_all_found", 2L * n);
+    scene_free(&s);
+}
+END_TEST
+
 START_TEST(nearest_name_suggests_only_likely_typos)
 {
     static const char *const names[] = { "sphere", "plane", "disk", "box",
@@ -268,6 +296,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, emission_is_checked_and_recorded);
     tcase_add_test(tc, point_lights_and_environment_are_lights);
     tcase_add_test(tc, validate_rejects_a_camera_that_cannot_see);
+    tcase_add_test(tc, many_materials_are_all_found);
     tcase_add_test(tc, nearest_name_suggests_only_likely_typos);
     tcase_add_test(tc, suggest_material_finds_the_nearest_defined_name);
     suite_add_tcase(s, tc);

@@ -802,6 +802,23 @@ START_TEST(every_error_names_file_line_column_and_what_was_expected)
 }
 END_TEST
 
+START_TEST(a_line_of_too_many_words_is_refused)
+{
+    /* 5000 numbers after a keyword: refused before they cost memory, at
+     * the 4097th word, number 4096 at column 8 + 2 * 4095. */
+    size_t n = 5000, len = 8 + 2 * n + 2;
+    char *text = malloc(len);
+    ck_assert_ptr_nonnull(text);
+    memcpy(text, "camera ", 7);
+    for (size_t i = 0; i < n; i++)
+        memcpy(text + 7 + 2 * i, "1 ", 2);
+    memcpy(text + 7 + 2 * n, "\n", 2);
+    parse_err(text, SVET_ERR_RANGE,
+              "t.scn:1:8198: more than 4096 words on one line");
+    free(text);
+}
+END_TEST
+
 START_TEST(a_nul_byte_is_an_error_not_the_end)
 {
     static const char text[] = "camera width 8\n\0camera width 9\n";
@@ -1069,6 +1086,7 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    every_error_names_file_line_column_and_what_was_expected);
     tcase_add_test(tc, a_nul_byte_is_an_error_not_the_end);
+    tcase_add_test(tc, a_line_of_too_many_words_is_refused);
     tcase_add_test(
         tc, long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks);
     tcase_add_test(tc, a_null_error_pointer_is_allowed);
