@@ -668,9 +668,11 @@ static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
 }
 
 static svet_status parse_keys(ctx_t *c, const char *stmt, const spec_t *spec,
-                    int nspec, val_t *vals, bool stop_at_plus)
+                              int nspec, val_t *vals, bool stop_at_plus)
 {
     const char *names[MAX_SPEC];
+    const spec_t *last = NULL;
+    char show[64];
     memset(vals, 0, (size_t)nspec * sizeof *vals);
     c->nxf = 0;
     while (c->pos < c->ntok) {
@@ -679,14 +681,27 @@ static svet_status parse_keys(ctx_t *c, const char *stmt, const spec_t *spec,
             break;
         int i = 0;
         const spec_t *sp = find_spec(spec, nspec, t, &i);
+        if (!sp && is_number(t)) {
+            /* A number where a key should be: one value too many. */
+            if (last)
+                return fail(c, t->col, SVET_ERR_PARSE,
+                            "one value too many: '%s' takes %s, then "
+                            "comes a key, not '%s'",
+                            last->key, type_hint(last),
+                            show_tok(t, show, sizeof show));
+            return fail(c, t->col, SVET_ERR_PARSE,
+                        "expected a key of %s before the value '%s'", stmt,
+                        show_tok(t, show, sizeof show));
+        }
         if (!sp) {
             for (int k = 0; k < nspec && k < MAX_SPEC; k++)
                 names[k] = spec[k].key;
             char what[64];
             snprintf(what, sizeof what, "parameter of %s", stmt);
             return unknown(c, t, what, names,
-                              nspec < MAX_SPEC ? nspec : MAX_SPEC);
+                           nspec < MAX_SPEC ? nspec : MAX_SPEC);
         }
+        last = sp;
         bool repeatable = sp->type == V_SCALE || sp->type == V_ROTATE ||
                           sp->type == V_TRANSLATE;
         if (vals[i].set && !repeatable)

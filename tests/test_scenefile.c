@@ -633,8 +633,15 @@ static const struct {
     { M "sphere centre 0 0 0 radius\n", SVET_ERR_PARSE,
       "t.scn:2:27: 'radius' expects a number, got the end of the line" },
     { M "sphere centre 0 0 0 radius 1 2 material m\n", SVET_ERR_PARSE,
-      "t.scn:2:30: unknown parameter of sphere '2': expected one of centre, "
-      "radius, material, emit, twosided, scale, rotate, translate" },
+      "t.scn:2:30: one value too many: 'radius' takes a number, then comes "
+      "a key, not '2'" },
+    { M "sphere 0 0 0 radius 1 material m\n", SVET_ERR_PARSE,
+      "t.scn:2:8: expected a key of sphere before the value '0'" },
+    { M "sphere centre 0 0 0 radius 1 material m wobble 3\n",
+      SVET_ERR_PARSE,
+      "t.scn:2:41: unknown parameter of sphere 'wobble': expected one of "
+      "centre, radius, material, emit, twosided, scale, rotate, "
+      "translate" },
     { M "sphere centre 0 0 0 material m\n", SVET_ERR_PARSE,
       "t.scn:2:1: sphere needs 'radius' (a number)" },
     { "sphere centre 0 0 0 radius 1\n", SVET_ERR_PARSE,
