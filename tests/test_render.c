@@ -6,6 +6,7 @@
  */
 #include "testutil.h"
 #include "disk.h"
+#include "imgcompare.h"
 #include "material.h"
 #include "render.h"
 #include "sphere.h"
@@ -115,14 +116,78 @@ START_TEST(variance_image_matches_the_spread_of_the_samples)
 }
 END_TEST
 
+/* Mean over pixels and channels of an image (the variance images). */
+static double image_mean(const image_t *img)
+{
+    double sum = 0;
+    size_t n = (size_t)img->width * (size_t)img->height * 3;
+    for (size_t i = 0; i < n; i++)
+        sum += (double)img->px[i];
+    return sum / (double)n;
+}
+
+START_TEST(rmse_falls_as_one_over_sqrt_spp)
+{
+    /* The error of an unbiased render of N samples per pixel against the
+     * truth has MSE = mean(sigma^2)/N; against a reference of M samples
+     * it is mean(sigma^2)/N + mean(sigma^2)/M. Both variances are measured
+     * (render_variance), so the prediction is independent of the RMSE it
+     * checks. The MSE averages 24 x 20 x 3 = 1440 squared errors: for
+     * Gaussian noise its relative standard deviation is sqrt(2/1440) =
+     * 0.037, that of the RMSE half of it; with the heavier tails of path
+     * tracing allow 3x that, and 0.2 is then ~3.6 sigma. */
+    scene_t s;
+    small_scene(&s);
+    s.render.seed = 1;
+    render_t ref;
+    ck_assert_int_eq(render_init(&ref, &s, NULL), SVET_OK);
+    render_pass(&ref, 2048, 0, NULL, NULL);
+    image_t refimg, refvar;
+    ck_assert_int_eq(render_image(&ref, &refimg, NULL), SVET_OK);
+    ck_assert_int_eq(render_variance(&ref, &refvar, NULL), SVET_OK);
+    double ref_mse = image_mean(&refvar);
+    const long spp[3] = { 8, 32, 128 };
+    double rmse[3];
+    for (int k = 0; k < 3; k++) {
+        s.render.seed = 100 + (uint64_t)k; /* independent of the reference */
+        render_t r;
+        ck_assert_int_eq(render_init(&r, &s, NULL), SVET_OK);
+        render_pass(&r, spp[k], 0, NULL, NULL);
+        image_t img, var;
+        ck_assert_int_eq(render_image(&r, &img, NULL), SVET_OK);
+        ck_assert_int_eq(render_variance(&r, &var, NULL), SVET_OK);
+        imgcompare_t c;
+        ck_assert_int_eq(imgcompare(&img, &refimg, 0, IMGCOMPARE_EPS, &c, NULL),
+                         SVET_OK);
+        double predicted = sqrt(image_mean(&var) + ref_mse);
+        rmse[k] = c.rmse;
+        ck_assert_msg(fabs(c.rmse / predicted - 1) < 0.2,
+                      "spp %ld: RMSE %g, predicted %g", spp[k], c.rmse,
+                      predicted);
+        image_free(&img);
+        image_free(&var);
+        render_free(&r);
+    }
+    /* 16 times the samples, a quarter of the error (the reference's own
+     * error, 1/16 of the 128-spp variance, barely shows) */
+    ck_assert_msg(rmse[0] / rmse[2] > 3.2 && rmse[0] / rmse[2] < 4.8,
+                  "RMSE ratio 8 to 128 spp: %g", rmse[0] / rmse[2]);
+    image_free(&refimg);
+    image_free(&refvar);
+    render_free(&ref);
+    scene_free(&s);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("render (" REAL_NAME ")");
     TCase *tc = tcase_create("loop");
-    tcase_set_timeout(tc, 60);
+    tcase_set_timeout(tc, 300);
     tcase_add_test(tc, image_is_identical_for_any_threads_and_passes);
     tcase_add_test(tc, two_half_renders_merge_into_the_full_one);
     tcase_add_test(tc, variance_image_matches_the_spread_of_the_samples);
+    tcase_add_test(tc, rmse_falls_as_one_over_sqrt_spp);
     suite_add_tcase(s, tc);
     return s;
 }
