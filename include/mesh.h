@@ -184,13 +184,15 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
     if (!(tt > tmin && tt < tmax))
         return false;
     if (tmin >= 0) {
-        /* pbrt-v3 sec. 3.9.6, as in triangle.c */
+        /* pbrt-v3 sec. 3.9.6 with triangle.c's change of units: keep the
+         * two in step (tests/test_mesh.c checks that they agree). */
         real max_z = mesh_max3(fabs(z0), fabs(z1), fabs(z2));
+        real max_az = mesh_max3(fabs(a0z), fabs(a1z), fabs(a2z));
         real max_x = mesh_max3(fabs(x0), fabs(x1), fabs(x2));
         real max_y = mesh_max3(fabs(y0), fabs(y1), fabs(y2));
         real dz = ray_gamma(3) * max_z;
-        real dx = ray_gamma(5) * (max_x + max_z);
-        real dy = ray_gamma(5) * (max_y + max_z);
+        real dx = ray_gamma(5) * (max_x + max_az);
+        real dy = ray_gamma(5) * (max_y + max_az);
         real de = 2 * (ray_gamma(2) * max_x * max_y + dy * max_x +
                        dx * max_y);
         real max_e = mesh_max3(fabs(e0), fabs(e1), fabs(e2));
