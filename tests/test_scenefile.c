@@ -871,6 +871,7 @@ START_TEST(a_null_error_pointer_is_allowed)
     scene_t s;
     parse_ok(&s, M "light point position 0 0 0 intensity 1\n");
     ck_assert_int_eq(scenefile_override(&s, "spp=0", NULL), SVET_ERR_RANGE);
+    scene_free(&s);
     ck_assert_int_eq(scenefile_read(&s, "nope.scn", NULL), SVET_ERR_IO);
     scene_free(&s);
 }
