@@ -9,6 +9,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -231,6 +232,9 @@ static svet_status lex(ctx_t *c, const char *p, const char *end)
             while (q < end && *q != ' ' && *q != '\t' && *q != '#' &&
                    *q != '"' && (unsigned char)*q >= 0x20 && *q != 0x7f)
                 q++;
+            if (q < end && *q == '"')
+                return fail(c, (int)(q - line) + 1, SVET_ERR_PARSE,
+                            "expected a blank before the opening '\"'");
             t->s = p;
             t->len = (int)(q - p);
             t->quoted = false;
@@ -307,7 +311,7 @@ static bool is_number(const tok_t *t)
 }
 
 static svet_status number_tok(ctx_t *c, const tok_t *t, const char *what,
-                      real *out)
+                              real *out)
 {
     char buf[64], show[64];
     bool nonfinite;
@@ -324,10 +328,9 @@ static svet_status number_tok(ctx_t *c, const tok_t *t, const char *what,
                     "number for %s is too long (more than %d characters)",
                     what, (int)sizeof buf - 1);
     tok_copy(t, buf, sizeof buf);
-    errno = 0;
     double d = strtod(buf, NULL);
-    /* strtod sets ERANGE on underflow too, which is harmless here: the
-     * value is then 0 or subnormal. Only an overflow is an error. */
+    /* An underflow to 0 or a subnormal is harmless; only an overflow (to
+     * infinity, in double or on the conversion to real) is an error. */
     real r = (real)d;
     if (!isfinite(d) || !isfinite(r))
         return fail(c, t->col, SVET_ERR_RANGE,
@@ -336,36 +339,33 @@ static svet_status number_tok(ctx_t *c, const tok_t *t, const char *what,
     return SVET_OK;
 }
 
+/* A whole number [+-]digits in [lo, hi]; leading zeros are fine, and a
+ * value of any length beyond the range is "out of range". */
 static svet_status integer(ctx_t *c, const tok_t *t, const char *what,
-                       long lo, long hi, long *out)
+                           long lo, long hi, long *out)
 {
-    char buf[32], show[64];
+    char show[64];
     const char *s = t->s, *e = t->s + t->len;
+    bool neg = !t->quoted && s < e && *s == '-';
     if (!t->quoted && s < e && (*s == '-' || *s == '+'))
         s++;
-    bool ok = !t->quoted && s < e;
-    for (const char *q = s; ok && q < e; q++)
+    bool ok = !t->quoted && s < e, big = false;
+    long v = 0;
+    for (const char *q = s; ok && q < e; q++) {
         ok = isdigit((unsigned char)*q);
-    if (!ok) {
-        bool nf;
-        if (syntax_number(t, &nf))
-            return fail(c, t->col, SVET_ERR_PARSE,
-                        "expected a whole number for %s, got '%s'", what,
-                        show_tok(t, show, sizeof show));
+        if (ok && !big) {
+            int d = *q - '0';
+            big = v > (LONG_MAX - d) / 10;
+            v = big ? v : 10 * v + d;
+        }
+    }
+    if (!ok)
         return fail(c, t->col, SVET_ERR_PARSE,
                     "expected a whole number for %s, got '%s'", what,
                     show_tok(t, show, sizeof show));
-    }
-    long v;
-    if (t->len >= (int)sizeof buf) {
-        v = (t->s[0] == '-') ? -1 : hi;
-        errno = ERANGE;
-    } else {
-        tok_copy(t, buf, sizeof buf);
-        errno = 0;
-        v = strtol(buf, NULL, 10);
-    }
-    if (errno == ERANGE || v < lo || v > hi)
+    if (neg)
+        v = -v;
+    if (big || v < lo || v > hi)
         return fail(c, t->col, SVET_ERR_RANGE,
                     "%s = %s is out of range: expected %ld to %ld", what,
                     show_tok(t, show, sizeof show), lo, hi);

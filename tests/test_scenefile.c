@@ -108,6 +108,9 @@ END_TEST
 START_TEST(render_keys_parse_to_their_values)
 {
     scene_t s;
+    parse_ok(&s, "render spp 0000000000000000000000000000000000000001024\n");
+    ck_assert_int_eq(s.render.spp, 1024);
+    scene_free(&s);
     parse_ok(&s, "render spp 1024 maxdepth 7 roulette off roulette_depth 9 "
                  "seed 18446744073709551615 integrator ao ao_distance 0.25 "
                  "threads 2 time_limit 12.5 passes 8 checkpoint on "
@@ -730,6 +733,10 @@ static const struct {
     { "render spp 99999999999999999999999\n", SVET_ERR_RANGE,
       "t.scn:1:12: 'spp' = 99999999999999999999999 is out of range: "
       "expected 1 to 16777216" },
+    { "render spp -00000000000000000000000000000000000000000000005\n",
+      SVET_ERR_RANGE,
+      "t.scn:1:12: 'spp' = -000000000000000000000000000000000000000... is "
+      "out of range: expected 1 to 16777216" },
     { "render maxdepth -1\n", SVET_ERR_RANGE,
       "t.scn:1:17: 'maxdepth' = -1 is out of range: expected 0 to 1024" },
     { "render seed 18446744073709551616\n", SVET_ERR_RANGE,
@@ -772,6 +779,8 @@ static const struct {
       "line" },
     { "output exr \"a.exr\"x\n", SVET_ERR_PARSE,
       "t.scn:1:19: expected a blank after the closing '\"'" },
+    { "output exr a\"b.exr\"\n", SVET_ERR_PARSE,
+      "t.scn:1:13: expected a blank before the opening '\"'" },
     { "camera\x01 width 1\n", SVET_ERR_PARSE,
       "t.scn:1:7: unexpected control character 0x01" },
     { "output exr \"\"\n", SVET_ERR_PARSE,
