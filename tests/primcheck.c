@@ -165,3 +165,46 @@ long primcheck_sweep_finite(const COBJECT *obj, int n, uint64_t seed)
     }
     return i;
 }
+
+void primcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v)
+{
+    char col[32];
+    for (int k = 0; k < 3; k++) {
+        snprintf(col, sizeof col, "%s%c", prefix, "xyz"[k]);
+        v[k] = (real)testcsv_num(c, col);
+    }
+}
+
+double primcheck_csv_tol(testcsv_t *c)
+{
+#ifdef SVET_DOUBLE
+    return testcsv_num(c, "tol_double");
+#else
+    return testcsv_num(c, "tol_float");
+#endif
+}
+
+bool primcheck_csv_hit(testcsv_t *c, const COBJECT *obj, const char *p,
+                       const char *n, PATHPOINT *pp)
+{
+    ray_t r;
+    primcheck_csv_vec(c, "o", r.o);
+    primcheck_csv_vec(c, "d", r.d);
+    hit_t h;
+    bool hit = cobject_intersect(obj, &r, 0, (real)INFINITY, &h);
+    ck_assert_msg(hit == (testcsv_num(c, "hit") == 1), "%s:%d: hit %d",
+                  c->path, c->line, hit);
+    if (!hit)
+        return false;
+    double tol = primcheck_csv_tol(c), scale = testcsv_num(c, "scale");
+    cobject_fill(obj, &r, &h, pp);
+    ck_assert_rel(h.t, testcsv_num(c, "t"), tol, 0);
+    VECTOR3 want_p, want_n;
+    primcheck_csv_vec(c, p, want_p);
+    primcheck_csv_vec(c, n, want_n);
+    for (int k = 0; k < 3; k++) {
+        ck_assert_near(pp->cross_point[k], want_p[k], tol * scale);
+        ck_assert_near(pp->ng[k], want_n[k], tol);
+    }
+    return true;
+}

@@ -10,6 +10,7 @@
 
 #include "cobject.h"
 #include "geomcheck.h"
+#include "testutil.h"
 
 /* Build the object under test with characteristic size `scale`, centred
  * near `centre`; return NULL to skip that placement. ctx is passed on. */
@@ -42,5 +43,21 @@ long primcheck_over_scales(primcheck_make_fn make, void *ctx,
  * and n, ng unit; bounds, area and sample (u in [0,1), the ends included)
  * must be free of NaN. Returns the number of rays traced. */
 long primcheck_sweep_finite(const COBJECT *obj, int n, uint64_t seed);
+
+/* --- the reference vectors (tests/vectors/README.md) --------------------- */
+
+/* The vector in the columns <prefix>x, <prefix>y, <prefix>z of the row. */
+void primcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v);
+
+/* The row's tolerance for this build: tol_float or tol_double. */
+double primcheck_csv_tol(testcsv_t *c);
+
+/* Trace the row's ray (ox oy oz dx dy dz) at obj over (0, inf) and check
+ * it against the row: `hit`, then for a hit `t` (relative), the point in
+ * columns <p>x.. (relative to `scale`) and the unit normal ng in <n>x..
+ * (absolute), within the row's tolerance. Returns whether it hit, with
+ * the PATHPOINT in *pp for further checks. */
+bool primcheck_csv_hit(testcsv_t *c, const COBJECT *obj, const char *p,
+                       const char *n, PATHPOINT *pp);
 
 #endif

@@ -307,45 +307,19 @@ START_TEST(parallelogram_matches_the_reference_vectors)
     testcsv_t c;
     testcsv_open(&c, "parallelogram.csv");
     long n = 0;
-#ifdef SVET_DOUBLE
-    const char *tolcol = "tol_double";
-#else
-    const char *tolcol = "tol_float";
-#endif
-    while (testcsv_next(&c)) {
-        VECTOR3 p[3];
-        const char *nm[9] = { "c0x", "c0y", "c0z", "c1x", "c1y", "c1z",
-                              "c3x", "c3y", "c3z" };
-        for (int i = 0; i < 9; i++)
-            p[i / 3][i % 3] = (real)testcsv_num(&c, nm[i]);
-        COBJECT *o = para(p[0], p[1], p[2]);
-        ray_t r;
-        vec_set(r.o, (real)testcsv_num(&c, "ox"), (real)testcsv_num(&c, "oy"),
-                (real)testcsv_num(&c, "oz"));
-        vec_set(r.d, (real)testcsv_num(&c, "dx"), (real)testcsv_num(&c, "dy"),
-                (real)testcsv_num(&c, "dz"));
-        hit_t h;
-        bool hit = cobject_intersect(o, &r, 0, (real)INFINITY, &h);
-        ck_assert_msg(hit == (testcsv_num(&c, "hit") == 1), "%s:%d: hit %d",
-                      c.path, c.line, hit);
-        if (hit) {
-            double tol = testcsv_num(&c, tolcol);
-            double scale = testcsv_num(&c, "scale");
-            PATHPOINT pp;
-            cobject_fill(o, &r, &h, &pp);
-            ck_assert_rel(h.t, testcsv_num(&c, "t"), tol, 0);
-            const char *q[3] = { "px", "py", "pz" },
-                       *e[3] = { "nx", "ny", "nz" };
-            for (int k = 0; k < 3; k++) {
-                ck_assert_near(pp.cross_point[k], testcsv_num(&c, q[k]),
-                               tol * scale);
-                ck_assert_near(pp.ng[k], testcsv_num(&c, e[k]), tol);
-            }
+    for (; testcsv_next(&c); n++) {
+        VECTOR3 c0, c1, c3;
+        primcheck_csv_vec(&c, "c0", c0);
+        primcheck_csv_vec(&c, "c1", c1);
+        primcheck_csv_vec(&c, "c3", c3);
+        COBJECT *o = para(c0, c1, c3);
+        PATHPOINT pp;
+        if (primcheck_csv_hit(&c, o, "p", "n", &pp)) {
+            double tol = primcheck_csv_tol(&c);
             ck_assert_near(pp.st[0], testcsv_num(&c, "s"), tol);
             ck_assert_near(pp.st[1], testcsv_num(&c, "t_param"), tol);
         }
         cobject_free(o);
-        n++;
     }
     testcsv_close(&c);
     ck_assert_int_gt(n, 0);

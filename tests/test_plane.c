@@ -310,43 +310,14 @@ START_TEST(plane_matches_the_reference_vectors)
     testcsv_t c;
     testcsv_open(&c, "plane.csv");
     long n = 0;
-#ifdef SVET_DOUBLE
-    const char *tolcol = "tol_double";
-#else
-    const char *tolcol = "tol_float";
-#endif
-    while (testcsv_next(&c)) {
-        COBJECT *o = plane((real)testcsv_num(&c, "px"),
-                           (real)testcsv_num(&c, "py"),
-                           (real)testcsv_num(&c, "pz"),
-                           (real)testcsv_num(&c, "nx"),
-                           (real)testcsv_num(&c, "ny"),
-                           (real)testcsv_num(&c, "nz"));
-        ray_t r;
-        vec_set(r.o, (real)testcsv_num(&c, "ox"), (real)testcsv_num(&c, "oy"),
-                (real)testcsv_num(&c, "oz"));
-        vec_set(r.d, (real)testcsv_num(&c, "dx"), (real)testcsv_num(&c, "dy"),
-                (real)testcsv_num(&c, "dz"));
-        hit_t h;
-        bool hit = cobject_intersect(o, &r, 0, (real)INFINITY, &h);
-        ck_assert_msg(hit == (testcsv_num(&c, "hit") == 1), "%s:%d: hit %d",
-                      c.path, c.line, hit);
-        if (hit) {
-            double tol = testcsv_num(&c, tolcol);
-            double scale = testcsv_num(&c, "scale");
-            PATHPOINT pp;
-            cobject_fill(o, &r, &h, &pp);
-            ck_assert_rel(h.t, testcsv_num(&c, "t"), tol, 0);
-            const char *q[3] = { "qx", "qy", "qz" },
-                       *e[3] = { "ex", "ey", "ez" };
-            for (int k = 0; k < 3; k++) {
-                ck_assert_near(pp.cross_point[k], testcsv_num(&c, q[k]),
-                               tol * scale);
-                ck_assert_near(pp.ng[k], testcsv_num(&c, e[k]), tol);
-            }
-        }
+    for (; testcsv_next(&c); n++) {
+        VECTOR3 p, nn;
+        primcheck_csv_vec(&c, "p", p);
+        primcheck_csv_vec(&c, "n", nn);
+        COBJECT *o = plane(p[X], p[Y], p[Z], nn[X], nn[Y], nn[Z]);
+        PATHPOINT pp;
+        primcheck_csv_hit(&c, o, "q", "e", &pp);
         cobject_free(o);
-        n++;
     }
     testcsv_close(&c);
     ck_assert_int_gt(n, 0);

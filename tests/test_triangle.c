@@ -574,46 +574,17 @@ START_TEST(triangle_matches_the_reference_vectors)
     testcsv_t c;
     testcsv_open(&c, "triangle.csv");
     long n = 0;
-#ifdef SVET_DOUBLE
-    const char *tolcol = "tol_double";
-#else
-    const char *tolcol = "tol_float";
-#endif
-    while (testcsv_next(&c)) {
-        VECTOR3 p[3];
-        const char *nm[9] = { "p0x", "p0y", "p0z", "p1x", "p1y", "p1z",
-                              "p2x", "p2y", "p2z" };
-        for (int i = 0; i < 9; i++)
-            p[i / 3][i % 3] = (real)testcsv_num(&c, nm[i]);
-        ray_t r;
-        vec_set(r.o, (real)testcsv_num(&c, "ox"), (real)testcsv_num(&c, "oy"),
-                (real)testcsv_num(&c, "oz"));
-        vec_set(r.d, (real)testcsv_num(&c, "dx"), (real)testcsv_num(&c, "dy"),
-                (real)testcsv_num(&c, "dz"));
+    for (; testcsv_next(&c); n++) {
+        VECTOR3 p0, p1, p2;
+        primcheck_csv_vec(&c, "p0", p0);
+        primcheck_csv_vec(&c, "p1", p1);
+        primcheck_csv_vec(&c, "p2", p2);
         svet_error err;
-        COBJECT *o = triangle_new(p[0], p[1], p[2], &err);
+        COBJECT *o = triangle_new(p0, p1, p2, &err);
         ck_assert_msg(o != NULL, "%s", err.msg);
-        hit_t h;
-        bool hit = cobject_intersect(o, &r, 0, (real)INFINITY, &h);
-        int want = (int)testcsv_num(&c, "hit");
-        ck_assert_msg(hit == (want == 1), "%s:%d: hit %d, expected %d",
-                      c.path, c.line, hit, want);
-        if (hit) {
-            double tol = testcsv_num(&c, tolcol);
-            PATHPOINT pp;
-            cobject_fill(o, &r, &h, &pp);
-            ck_assert_rel(h.t, testcsv_num(&c, "t"), tol, 0);
-            const char *pn[3] = { "px", "py", "pz" },
-                       *nn[3] = { "nx", "ny", "nz" };
-            double scale = fabs(testcsv_num(&c, "scale"));
-            for (int k = 0; k < 3; k++) {
-                ck_assert_near(pp.cross_point[k], testcsv_num(&c, pn[k]),
-                               tol * scale);
-                ck_assert_near(pp.ng[k], testcsv_num(&c, nn[k]), tol);
-            }
-        }
+        PATHPOINT pp;
+        primcheck_csv_hit(&c, o, "p", "n", &pp);
         cobject_free(o);
-        n++;
     }
     testcsv_close(&c);
     ck_assert_int_gt(n, 0);

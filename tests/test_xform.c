@@ -509,21 +509,24 @@ static long harness(int kind, primcheck_test test, uint64_t seed)
                                  kind == INNER_PARA, seed);
 }
 
-START_TEST(transformed_spawned_rays_never_rehit_at_any_scale)
+/* the test on a transformed box, parallelogram and sphere */
+static long harness_all(primcheck_test test, uint64_t seed)
 {
     long n = 0;
     for (int kind = 0; kind < 3; kind++)
-        n += harness(kind, PRIMCHECK_SPAWN, 100 + (uint64_t)kind);
-    test_report_cases("transformed_spawned_rays_never_rehit_at_any_scale", n);
+        n += harness(kind, test, seed + (uint64_t)kind);
+    return n;
+}
+
+START_TEST(transformed_spawned_rays_never_rehit_at_any_scale)
+{
+    test_report_cases("transformed_spawned_rays_never_rehit_at_any_scale", harness_all(PRIMCHECK_SPAWN, 100));
 }
 END_TEST
 
 START_TEST(transformed_sampled_points_are_hit_at_any_scale)
 {
-    long n = 0;
-    for (int kind = 0; kind < 3; kind++)
-        n += harness(kind, PRIMCHECK_SAMPLED, 200 + (uint64_t)kind);
-    test_report_cases("transformed_sampled_points_are_hit_at_any_scale", n);
+    test_report_cases("transformed_sampled_points_are_hit_at_any_scale", harness_all(PRIMCHECK_SAMPLED, 200));
 }
 END_TEST
 
@@ -538,19 +541,13 @@ END_TEST
 
 START_TEST(transformed_hits_are_finite_at_any_scale)
 {
-    long n = 0;
-    for (int kind = 0; kind < 3; kind++)
-        n += harness(kind, PRIMCHECK_FINITE, 400 + (uint64_t)kind);
-    test_report_cases("transformed_hits_are_finite_at_any_scale", n);
+    test_report_cases("transformed_hits_are_finite_at_any_scale", harness_all(PRIMCHECK_FINITE, 400));
 }
 END_TEST
 
 START_TEST(transformed_sampling_matches_area_at_any_scale)
 {
-    long n = 0;
-    for (int kind = 0; kind < 3; kind++)
-        n += harness(kind, PRIMCHECK_AREA, 500 + (uint64_t)kind);
-    test_report_cases("transformed_sampling_matches_area_at_any_scale", n);
+    test_report_cases("transformed_sampling_matches_area_at_any_scale", harness_all(PRIMCHECK_AREA, 500));
 }
 END_TEST
 
@@ -561,61 +558,28 @@ START_TEST(xform_matches_the_reference_vectors)
     testcsv_t c;
     testcsv_open(&c, "xform.csv");
     long n = 0;
-#ifdef SVET_DOUBLE
-    const char *tolcol = "tol_double";
-#else
-    const char *tolcol = "tol_float";
-#endif
-    while (testcsv_next(&c)) {
-        const char *inner = testcsv_str(&c, "inner");
-        VECTOR3 a, b;
-        const char *an[3] = { "ax", "ay", "az" }, *bn[3] = { "bx", "by", "bz" };
-        for (int k = 0; k < 3; k++) {
-            a[k] = (real)testcsv_num(&c, an[k]);
-            b[k] = (real)testcsv_num(&c, bn[k]);
-        }
+    for (; testcsv_next(&c); n++) {
+        VECTOR3 a, b, s, k, t, zero = { 0, 0, 0 };
+        primcheck_csv_vec(&c, "a", a);
+        primcheck_csv_vec(&c, "b", b);
+        primcheck_csv_vec(&c, "s", s);
+        primcheck_csv_vec(&c, "k", k);
+        primcheck_csv_vec(&c, "t", t);
         svet_error err;
-        COBJECT *in = strcmp(inner, "box") == 0
+        COBJECT *in = strcmp(testcsv_str(&c, "inner"), "box") == 0
                           ? box_new(a, b, &err)
-                          : parallelogram_new((VECTOR3){ 0, 0, 0 }, a, b, &err);
-        VECTOR3 s = { (real)testcsv_num(&c, "sx"), (real)testcsv_num(&c, "sy"),
-                      (real)testcsv_num(&c, "sz") };
-        VECTOR3 ax = { (real)testcsv_num(&c, "kx"), (real)testcsv_num(&c, "ky"),
-                       (real)testcsv_num(&c, "kz") };
-        VECTOR3 t = { (real)testcsv_num(&c, "tx"), (real)testcsv_num(&c, "ty"),
-                      (real)testcsv_num(&c, "tz") };
+                          : parallelogram_new(zero, a, b, &err);
+        real deg = (real)testcsv_num(&c, "deg");
         xform_t x = xform_compose(xform_compose(xform_scale(s),
-                                                xform_rotate(ax, (real)testcsv_num(&c, "deg"))),
+                                                xform_rotate(k, deg)),
                                   xform_translate(t));
         COBJECT *o = xform_new(in, &x, &err);
         ck_assert_msg(o != NULL, "%s", err.msg);
-        ray_t r;
-        vec_set(r.o, (real)testcsv_num(&c, "ox"), (real)testcsv_num(&c, "oy"),
-                (real)testcsv_num(&c, "oz"));
-        vec_set(r.d, (real)testcsv_num(&c, "dx"), (real)testcsv_num(&c, "dy"),
-                (real)testcsv_num(&c, "dz"));
-        hit_t h;
-        bool hit = cobject_intersect(o, &r, 0, (real)INFINITY, &h);
-        ck_assert_msg(hit == (testcsv_num(&c, "hit") == 1), "%s:%d: hit %d",
-                      c.path, c.line, hit);
         ck_assert_rel(o->ops->area(o), testcsv_num(&c, "area"),
-                      testcsv_num(&c, tolcol), 0);
-        if (hit) {
-            double tol = testcsv_num(&c, tolcol);
-            double scale = testcsv_num(&c, "scale");
-            PATHPOINT pp;
-            cobject_fill(o, &r, &h, &pp);
-            ck_assert_rel(h.t, testcsv_num(&c, "t"), tol, 0);
-            const char *q[3] = { "px", "py", "pz" },
-                       *nn[3] = { "nx", "ny", "nz" };
-            for (int k = 0; k < 3; k++) {
-                ck_assert_near(pp.cross_point[k], testcsv_num(&c, q[k]),
-                               tol * scale);
-                ck_assert_near(pp.ng[k], testcsv_num(&c, nn[k]), tol);
-            }
-        }
+                      primcheck_csv_tol(&c), 0);
+        PATHPOINT pp;
+        primcheck_csv_hit(&c, o, "p", "n", &pp);
         cobject_free(o);
-        n++;
     }
     testcsv_close(&c);
     ck_assert_int_gt(n, 0);

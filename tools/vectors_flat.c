@@ -129,6 +129,26 @@ static void put_tol(FILE *f, ld kappa)
             32 * (kappa + 1) * U_DOUBLE);
 }
 
+/* The ray, the hit flag and t of a row. */
+static void put_ray_hit(FILE *f, const ld o[3], const ld d[3], int hit, ld t)
+{
+    put3(f, o);
+    put3(f, d);
+    fprintf(f, "%d,%.17Lg,", hit, t);
+}
+
+/* The end of every row: the point, the normal, scale, the tolerances and
+ * where the expected values come from. */
+static void put_tail(FILE *f, const ld p[3], const ld n[3], ld scale,
+                     ld kappa, const char *source)
+{
+    put3e(f, p);
+    put3e(f, n);
+    fprintf(f, "%.17Lg,", scale);
+    put_tol(f, kappa);
+    fprintf(f, "%s\n", source);
+}
+
 /* A ray from a random point at distance [0.5, 3) s of `target`, at least
  * 0.3 away from the plane of unit normal n in cosine (on the side n points
  * to when `front`), aimed at target, with a direction of random length in
@@ -249,14 +269,8 @@ static void triangles(const char *dir, pcg32_t *g)
         fprintf(f, "%d,", i);
         for (int j = 0; j < 3; j++)
             put3(f, p[j]);
-        put3(f, o);
-        put3(f, d);
-        fprintf(f, "%d,%.17Lg,", hit, t);
-        put3e(f, pt);
-        put3e(f, n);
-        fprintf(f, "%.17Lg,", scale);
-        put_tol(f, kappa);
-        fprintf(f, "Moller-Trumbore 1997 in long double\n");
+        put_ray_hit(f, o, d, hit, t);
+        put_tail(f, pt, n, scale, kappa, "Moller-Trumbore 1997 in long double");
     }
     close_csv(f, dir, "triangle.csv");
 }
@@ -332,14 +346,9 @@ static void planes(const char *dir, pcg32_t *g)
         fprintf(f, "%d,", i);
         put3(f, p);
         put3(f, n);
-        put3(f, o);
-        put3(f, d);
-        fprintf(f, "%d,%.17Lg,", hit, t);
-        put3e(f, q);
-        put3e(f, e);
-        fprintf(f, "%.17Lg,", scale);
-        put_tol(f, scale / (s * cosv));
-        fprintf(f, "plane equation in long double\n");
+        put_ray_hit(f, o, d, hit, t);
+        put_tail(f, q, e, scale, scale / (s * cosv),
+                 "plane equation in long double");
     }
     close_csv(f, dir, "plane.csv");
 }
@@ -358,7 +367,7 @@ static void parallelograms(const char *dir, pcg32_t *g)
                        "N / |N|.\n# Tolerances: t relative, p relative to "
                        "`scale`, n, s and t_param absolute.",
                        "case,c0x,c0y,c0z,c1x,c1y,c1z,c3x,c3y,c3z,ox,oy,oz,"
-                       "dx,dy,dz,hit,t,px,py,pz,nx,ny,nz,s,t_param,scale,"
+                       "dx,dy,dz,hit,t,s,t_param,px,py,pz,nx,ny,nz,scale,"
                        "tol_float,tol_double,source");
     const float scales[] = { 1e-3f, 1, 1e3f };
     for (int i = 0; i < 60; i++) {
@@ -413,15 +422,12 @@ static void parallelograms(const char *dir, pcg32_t *g)
         put3(f, c0);
         put3(f, c1);
         put3(f, c3);
-        put3(f, o);
-        put3(f, d);
-        fprintf(f, "%d,%.17Lg,", hit, t);
-        put3e(f, q);
-        put3e(f, n);
-        fprintf(f, "%.17Lg,%.17Lg,%.17Lg,", ss, tt, scale);
-        put_tol(f, fmaxl(scale / (lenl(e1) * cosv),
-                         lenl(e1) * lenl(e2) / lenl(N)));
-        fprintf(f, "plane and Cramer's rule in long double\n");
+        put_ray_hit(f, o, d, hit, t);
+        fprintf(f, "%.17Lg,%.17Lg,", ss, tt);
+        put_tail(f, q, n, scale,
+                 fmaxl(scale / (lenl(e1) * cosv),
+                       lenl(e1) * lenl(e2) / lenl(N)),
+                 "plane and Cramer's rule in long double");
     }
     close_csv(f, dir, "parallelogram.csv");
 }
@@ -534,14 +540,10 @@ static void boxes(const char *dir, pcg32_t *g)
         fprintf(f, "%d,", i);
         put3(f, lo);
         put3(f, hi);
-        put3(f, o);
-        put3(f, d);
-        fprintf(f, "%d,%.17Lg,%d,", hit, t, face);
-        put3e(f, p);
-        put3e(f, n);
-        fprintf(f, "%.17Lg,", scale);
-        put_tol(f, scale / (s * 0.2L * cosv));
-        fprintf(f, "Kay-Kajiya slab test in long double\n");
+        put_ray_hit(f, o, d, hit, t);
+        fprintf(f, "%d,", face);
+        put_tail(f, p, n, scale, scale / (s * 0.2L * cosv),
+                 "Kay-Kajiya slab test in long double");
     }
     close_csv(f, dir, "box.csv");
 }
@@ -610,8 +612,8 @@ static void xforms(const char *dir, pcg32_t *g)
                        "Tolerances: t and area relative, p relative to "
                        "`scale`, n absolute.",
                        "case,inner,ax,ay,az,bx,by,bz,sx,sy,sz,kx,ky,kz,deg,"
-                       "tx,ty,tz,ox,oy,oz,dx,dy,dz,hit,t,px,py,pz,nx,ny,nz,"
-                       "area,scale,tol_float,tol_double,source");
+                       "tx,ty,tz,ox,oy,oz,dx,dy,dz,hit,t,area,px,py,pz,nx,ny,"
+                       "nz,scale,tol_float,tol_double,source");
     for (int i = 0; i < 60; i++) {
         int box = i % 2 == 0, kind = (i / 2) % 4;
         ld a[3], b[3], s[3], ax[3], t[3], deg = rnd(g, -180, 180);
@@ -744,15 +746,11 @@ static void xforms(const char *dir, pcg32_t *g)
         put3(f, ax);
         fprintf(f, "%.17g,", (double)deg);
         put3(f, t);
-        put3(f, o);
-        put3(f, d);
-        fprintf(f, "%d,%.17Lg,", hit, th);
-        put3e(f, p);
-        put3e(f, n);
-        fprintf(f, "%.17Lg,%.17Lg,", area, scale);
-        put_tol(f, kappa);
-        fprintf(f, "%s under M = R S in long double\n",
-                box ? "Kay-Kajiya slabs" : "plane and Cramer's rule");
+        put_ray_hit(f, o, d, hit, th);
+        fprintf(f, "%.17Lg,", area);
+        put_tail(f, p, n, scale, kappa,
+                 box ? "Kay-Kajiya slabs under M = R S in long double"
+                     : "plane and Cramer's rule under M = R S in long double");
     }
     close_csv(f, dir, "xform.csv");
 }
