@@ -1,6 +1,9 @@
 #!/bin/sh
 # run-tests.sh - run each check suite given on the command line, then print
 # one closing line "N passed, N failed" over all suites (used by make test).
+# check's per-test timeout only catches hangs; the default 4 s is too short
+# for the statistical suites on a loaded machine. Tests never time code.
+CK_DEFAULT_TIMEOUT=${CK_DEFAULT_TIMEOUT:-600}; export CK_DEFAULT_TIMEOUT
 passed=0; failed=0; bad=""
 for t in "$@"; do
     out=$("$t" 2>&1); rc=$?
