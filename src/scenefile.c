@@ -498,7 +498,7 @@ static svet_status one_or_three(ctx_t *c, const spec_t *sp, real v[3])
 }
 
 static const spec_t *find_spec(const spec_t *spec, int nspec,
-                                const tok_t *t, int *index)
+                               const tok_t *t, int *index)
 {
     for (int i = 0; i < nspec; i++)
         if (tok_is(t, spec[i].key)) {
@@ -509,7 +509,7 @@ static const spec_t *find_spec(const spec_t *spec, int nspec,
 }
 
 static svet_status unknown(ctx_t *c, const tok_t *t, const char *what,
-                       const char *const *names, int n)
+                           const char *const *names, int n)
 {
     char show[64], word[64];
     tok_copy(t, word, sizeof word);
@@ -1359,18 +1359,23 @@ static svet_status st_material(ctx_t *c)
 
 /* The statement's transforms composed in the written order (xform.h):
  * T = T_n ... T_2 T_1. Each was checked when parsed (nonzero scale
- * factors and rotation axis, finite numbers), so the result is valid. */
-static xform_t xform_of_list(const ctx_t *c)
+ * factors and rotation axis, finite numbers), but their product may still
+ * overflow or underflow (scale 1e30 scale 1e30): then it is refused. */
+static svet_status xform_of_list(ctx_t *c, xform_t *x)
 {
-    xform_t x = xform_identity();
+    *x = xform_identity();
     for (int i = 0; i < c->nxf; i++) {
         const xform_op *op = &c->xf[i];
         xform_t t = op->kind == XF_SCALE ? xform_scale(op->v)
                     : op->kind == XF_ROTATE ? xform_rotate(op->v, op->v[3])
                                             : xform_translate(op->v);
-        x = xform_compose(x, t);
+        *x = xform_compose(*x, t);
     }
-    return x;
+    if (!x->valid)
+        return fail(c, c->nxf ? c->xf[0].col : c->stmt_col, SVET_ERR_RANGE,
+                    "the transforms do not make an invertible map in %s "
+                    "(a factor too large or too small)", REAL_NAME);
+    return SVET_OK;
 }
 
 /* Does x mirror (det M < 0)? */
@@ -1526,7 +1531,10 @@ static svet_status st_shape(ctx_t *c)
     svet_error_clear(&e);
     COBJECT *obj = NULL;
     bool flat = kind == S_TRIANGLE || kind == S_PARALLELOGRAM;
-    xform_t x = xform_of_list(c);
+    xform_t x;
+    st = xform_of_list(c, &x);
+    if (st)
+        return st;
     switch (kind) {
     case S_SPHERE:
         obj = sphere_new(v[0].v, v[1].v[0], &e);
@@ -1730,6 +1738,10 @@ static svet_status st_mesh(ctx_t *c)
         return fail(c, common[K_TWOSIDED].col, SVET_ERR_PARSE,
                     "'twosided' says an emitter emits on both sides: it "
                     "needs 'emit'");
+    xform_t x;
+    st = xform_of_list(c, &x);
+    if (st)
+        return st;
     const material_t *dflt = NULL;
     if (common[K_MATERIAL].set) {
         st = find_material(c, &common[K_MATERIAL], &dflt);
@@ -1761,7 +1773,6 @@ static svet_status st_mesh(ctx_t *c)
             COBJECT *mesh = o.mesh;
             o.mesh = NULL;
             if (c->nxf > 0) {
-                xform_t x = xform_of_list(c);
                 COBJECT *moved = NULL;
                 st = mesh_transformed(&moved, mesh, &x, &e);
                 cobject_free(mesh);

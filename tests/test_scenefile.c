@@ -704,6 +704,18 @@ static const struct {
     { M "box min 0 0 0 max 1 1 1 rotate 0 0 0 45 material m\n",
       SVET_ERR_RANGE,
       "t.scn:2:25: a rotation axis must be a nonzero vector" },
+    { M "sphere centre 0 0 0 radius 1 scale 1e30 scale 1e30 scale 1e30 "
+      "scale 1e30 scale 1e30 scale 1e30 scale 1e30 scale 1e30 scale 1e30 "
+      "scale 1e30 scale 1e30 material m\n",
+      SVET_ERR_RANGE,
+      "t.scn:2:30: the transforms do not make an invertible map in "
+      REAL_NAME " (a factor too large or too small)" },
+    { M "mesh file tri.obj scale 1e-30 scale 1e-30 scale 1e-30 "
+      "scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 scale 1e-30 "
+      "scale 1e-30 scale 1e-30 scale 1e-30 material m\n",
+      SVET_ERR_RANGE,
+      "t.scn:2:19: the transforms do not make an invertible map in "
+      REAL_NAME " (a factor too large or too small)" },
     { M "disk centre 0 0 0 normal 0 0 0 radius 1 material m\n",
       SVET_ERR_RANGE, "t.scn:2:19: 'normal' must be a nonzero vector" },
     { M "plane point 0 0 0 normal 0 1 0 material m emit 1\n",
