@@ -1696,13 +1696,17 @@ static svet_status add_mesh_parts(ctx_t *c, const obj_t *o, COBJECT *mesh,
         }
         if (!m)
             m = dflt;
+        if (!m && name) {
+            st = fail(c, c->stmt_col, SVET_ERR_PARSE,
+                      "%s: usemtl '%.64s' is not a material of the scene: "
+                      "give the mesh a default 'material'",
+                      show_tok(&file, show, sizeof show), name);
+            break;
+        }
         if (!m) {
             st = fail(c, c->stmt_col, SVET_ERR_PARSE,
-                      name ? "%s: usemtl '%.64s' is not a material of the "
-                             "scene: give the mesh a default 'material'"
-                           : "%s: faces without usemtl need a default "
-                             "'material'%.0s",
-                      show_tok(&file, show, sizeof show), name ? name : "");
+                      "%s: faces without usemtl need a default 'material'",
+                      show_tok(&file, show, sizeof show));
             break;
         }
         COBJECT *part = NULL;

@@ -546,6 +546,23 @@ START_TEST(mesh_usemtl_names_map_to_scene_materials)
 }
 END_TEST
 
+START_TEST(a_mesh_without_usemtl_is_one_object_and_may_emit)
+{
+    scene_t s;
+    parse_ok(&s, M "mesh file quad.obj material m emit 2 twosided\n");
+    ck_assert_int_eq(s.nobjects, 1);
+    ck_assert_int_eq(s.objects[0]->nprims, 2);
+    ck_assert_ptr_eq(s.objects[0]->material, scene_find_material(&s, "m"));
+    ck_assert_int_eq(s.nemitters, 1);
+    ck_assert(s.emitters[0]->two_sided);
+    ck_assert_near(s.emitters[0]->radiance.r, 2, 0);
+    scene_free(&s);
+    parse_err("mesh file quad.obj\n", SVET_ERR_PARSE,
+              "t.scn:1:1: quad.obj: faces without usemtl need a default "
+              "'material'");
+}
+END_TEST
+
 START_TEST(mesh_transforms_move_vertices_and_keep_normals_out)
 {
     scene_t s;
@@ -1110,6 +1127,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, point_lights_in_every_unit);
     tcase_add_test(tc, environment_is_read_once);
     tcase_add_test(tc, mesh_usemtl_names_map_to_scene_materials);
+    tcase_add_test(tc, a_mesh_without_usemtl_is_one_object_and_may_emit);
     tcase_add_test(tc, mesh_transforms_move_vertices_and_keep_normals_out);
     tcase_add_test(tc, mesh_errors_name_both_files);
     tcase_add_test(tc,
