@@ -1550,6 +1550,9 @@ static svet_status st_shape(ctx_t *c)
         corner(&x, &v[0], p0);
         corner(&x, &v[1], p1);
         corner(&x, &v[2], p2);
+        if (!vec_is_finite(p0) || !vec_is_finite(p1) || !vec_is_finite(p2))
+            return fail(c, c->xf[0].col, SVET_ERR_RANGE,
+                        "the transformed corners overflow %s", REAL_NAME);
         if (triangle_is_degenerate(p0, p1, p2))
             return fail(c, c->stmt_col, SVET_ERR_RANGE,
                         "the triangle has no area: its corners are (nearly)"

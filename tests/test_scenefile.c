@@ -608,6 +608,12 @@ END_TEST
 
 /* --- errors -------------------------------------------------------------- */
 
+#ifdef SVET_DOUBLE
+#define BIG "1e300"
+#else
+#define BIG "1e+30" /* as long as the double one: same columns */
+#endif
+
 /* Every kind of error, with its exact message and status. */
 static const struct {
     const char *text;
@@ -743,6 +749,10 @@ static const struct {
       SVET_ERR_PARSE,
       "t.scn:2:41: 'twosided' says an emitter emits on both sides: it "
       "needs 'emit'" },
+    /* BIG is finite in real, BIG^2 is not. */
+    { M "triangle p0 0 0 0 p1 " BIG " 0 0 p2 0 1 0 material m translate 1 0 0 "
+      "scale " BIG "\n", SVET_ERR_RANGE,
+      "t.scn:2:52: the transformed corners overflow " REAL_NAME },
     { M "triangle p0 0 0 0 p1 1 1 1 p2 2 2 2 material m\n", SVET_ERR_RANGE,
       "t.scn:2:1: the triangle has no area: its corners are (nearly) "
       "collinear" },
