@@ -177,10 +177,10 @@ void quadric_bounds_add(bbox_t *b, const VECTOR3 lo, const VECTOR3 hi);
  * its hit stay on the surface:
  *     margin = 4 (gamma(4) (max_i |at_i| + 2 size) + 2 delta size),
  * delta = QUADRIC_FRAME_DELTA: twice the in-plane error of a rim point
- * (sqrt(3) times its per-axis bound), to cover the ray's own rounding. Samples in that band move onto
- * its inner edge: a band of relative width ~1e-5 (float, a shape at the
- * origin), which no test of the distribution can see, while the pdf stays
- * 1/area. This function can't fail. */
+ * (sqrt(3) times its per-axis bound), to cover the ray's own rounding.
+ * Samples in that band move onto its inner edge: a band of relative width
+ * ~1e-5 (float, a shape at the origin), which no test of the distribution
+ * can see, while the pdf stays 1/area. This function can't fail. */
 real quadric_sample_margin(const VECTOR3 at, real size);
 
 /* Choose face i of n with probability area[i] / (sum of the areas) by u0,

@@ -109,6 +109,20 @@ static long double support(const VECTOR3 n, const VECTOR3 e)
     return fabsl(n[X]) * e[X] + fabsl(n[Y]) * e[Y] + fabsl(n[Z]) * e[Z];
 }
 
+/* One point of quadcheck_error_bound: dist(p) <= the box's half-width
+ * along n. Returns dist / bound. */
+static long double within_bound(const COBJECT *obj, quadcheck_dist_fn dist,
+                                void *ctx, real scale, const VECTOR3 centre,
+                                const VECTOR3 p, const VECTOR3 n,
+                                const VECTOR3 p_error, const char *what)
+{
+    long double d = dist(p, scale, centre, ctx);
+    long double e = support(n, p_error);
+    ck_assert_msg(d <= e, "%s, scale %g: %s %Lg off the surface, bound %Lg",
+                  obj->ops->name, (double)scale, what, d, e);
+    return d / e;
+}
+
 long quadcheck_error_bound(primcheck_make_fn make, quadcheck_dist_fn dist,
                            void *ctx, int n, uint64_t seed)
 {
@@ -138,28 +152,37 @@ long quadcheck_error_bound(primcheck_make_fn make, quadcheck_dist_fn dist,
                 vec_sub(r.d, target, r.o);
                 PATHPOINT pp;
                 if (quadcheck_trace(obj, &r, 0, (real)INFINITY, &pp)) {
-                    long double d = dist(pp.cross_point, sc[i], c, ctx);
-                    long double e = support(pp.ng, pp.p_error);
-                    ck_assert_msg(d <= e, "%s, scale %g: hit %Lg off the "
-                                  "surface, bound %Lg", obj->ops->name,
-                                  (double)sc[i], d, e);
-                    worst = fmaxl(worst, d / e);
+                    worst = fmaxl(worst, within_bound(obj, dist, ctx, sc[i],
+                                                      c, pp.cross_point,
+                                                      pp.ng, pp.p_error,
+                                                      "hit"));
                     cases++;
                 }
                 real u[2] = { pcg32_real(&g), pcg32_real(&g) };
                 cobject_sample_t s;
                 obj->ops->sample(obj, u, &s);
-                long double d = dist(s.p, sc[i], c, ctx);
-                long double e = support(s.n, s.p_error);
-                ck_assert_msg(d <= e, "%s, scale %g: sample %Lg off the "
-                              "surface, bound %Lg", obj->ops->name,
-                              (double)sc[i], d, e);
-                worst = fmaxl(worst, d / e);
+                worst = fmaxl(worst, within_bound(obj, dist, ctx, sc[i], c,
+                                                  s.p, s.n, s.p_error,
+                                                  "sample"));
                 cases++;
             }
             cobject_free(obj);
         }
     printf("  largest distance / bound: %.3g\n", (double)worst);
+    return cases;
+}
+
+long quadcheck_harness(primcheck_make_fn make, int n,
+                       const geomcheck_kind kinds[], primcheck_test test,
+                       uint64_t seed)
+{
+    long cases = 0;
+    for (int v = 0; v < n; v++) {
+        if (test == PRIMCHECK_SHADOW && kinds[v] != GEOMCHECK_CONVEX)
+            continue;
+        cases += primcheck_over_scales(make, &v, test, kinds[v], true,
+                                       seed + (uint64_t)v);
+    }
     return cases;
 }
 

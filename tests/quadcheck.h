@@ -51,6 +51,13 @@ long double quadcheck_meridian_distance(const VECTOR3 p, const VECTOR3 a,
 long quadcheck_error_bound(primcheck_make_fn make, quadcheck_dist_fn dist,
                            void *ctx, int n, uint64_t seed);
 
+/* primcheck_over_scales on each placement v = 0 .. n-1 of make (called
+ * with ctx = &v), of kind kinds[v]; PRIMCHECK_SHADOW runs on the CONVEX
+ * placements only. Returns the cases tried. */
+long quadcheck_harness(primcheck_make_fn make, int n,
+                       const geomcheck_kind kinds[], primcheck_test test,
+                       uint64_t seed);
+
 /* primcheck_sweep_finite (n rays) on make(scale, centre, ctx) at every
  * scale of primcheck_scales, centred at the origin and 10 scale away.
  * Returns the rays traced. */

@@ -355,17 +355,12 @@ START_TEST(sampled_faces_depths_and_radii_are_uniform_by_area)
 END_TEST
 
 /* The harness on all four placements: OPEN when open, CONVEX capped. */
+static const geomcheck_kind kinds[4] = { GEOMCHECK_OPEN, GEOMCHECK_OPEN,
+                                         GEOMCHECK_CONVEX, GEOMCHECK_CONVEX };
+
 static long harness(primcheck_test test, uint64_t seed)
 {
-    long cases = 0;
-    for (int v = 0; v < 4; v++) {
-        geomcheck_kind kind = v >= 2 ? GEOMCHECK_CONVEX : GEOMCHECK_OPEN;
-        if (test == PRIMCHECK_SHADOW && kind != GEOMCHECK_CONVEX)
-            continue;
-        cases += primcheck_over_scales(make_cone, &v, test, kind, true,
-                                       seed + (uint64_t)v);
-    }
-    return cases;
+    return quadcheck_harness(make_cone, 4, kinds, test, seed);
 }
 
 START_TEST(spawned_rays_never_rehit_the_cone)

@@ -308,13 +308,11 @@ START_TEST(sampled_radius_squared_and_azimuth_are_uniform)
 END_TEST
 
 /* The harness on both placements: kind FLAT (rays leave on either side). */
+static const geomcheck_kind kinds[2] = { GEOMCHECK_FLAT, GEOMCHECK_FLAT };
+
 static long harness(primcheck_test test, uint64_t seed)
 {
-    long cases = 0;
-    for (int v = 0; v < 2; v++)
-        cases += primcheck_over_scales(make_disk, &v, test, GEOMCHECK_FLAT,
-                                       true, seed + (uint64_t)v);
-    return cases;
+    return quadcheck_harness(make_disk, 2, kinds, test, seed);
 }
 
 START_TEST(spawned_rays_never_rehit_the_disk)

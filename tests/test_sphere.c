@@ -300,46 +300,43 @@ START_TEST(sampled_coordinates_are_uniform_as_archimedes_says)
 }
 END_TEST
 
+/* The harness: a sphere is CONVEX. */
+static const geomcheck_kind kinds[1] = { GEOMCHECK_CONVEX };
+
+static long harness(primcheck_test test, uint64_t seed)
+{
+    return quadcheck_harness(make_sphere, 1, kinds, test, seed);
+}
+
 START_TEST(spawned_rays_never_rehit_the_sphere)
 {
     test_report_cases("spawned_rays_never_rehit_the_sphere",
-                      primcheck_over_scales(make_sphere, NULL, PRIMCHECK_SPAWN,
-                                            GEOMCHECK_CONVEX, true, 1));
+                      harness(PRIMCHECK_SPAWN, 1));
 }
 END_TEST
 
 START_TEST(sampled_points_are_hit)
 {
-    test_report_cases("sampled_points_are_hit",
-                      primcheck_over_scales(make_sphere, NULL,
-                                            PRIMCHECK_SAMPLED,
-                                            GEOMCHECK_CONVEX, true, 2));
+    test_report_cases("sampled_points_are_hit", harness(PRIMCHECK_SAMPLED, 2));
 }
 END_TEST
 
 START_TEST(shadow_rays_between_points_miss)
 {
     test_report_cases("shadow_rays_between_points_miss",
-                      primcheck_over_scales(make_sphere, NULL,
-                                            PRIMCHECK_SHADOW,
-                                            GEOMCHECK_CONVEX, true, 3));
+                      harness(PRIMCHECK_SHADOW, 3));
 }
 END_TEST
 
 START_TEST(hits_are_finite)
 {
-    test_report_cases("hits_are_finite",
-                      primcheck_over_scales(make_sphere, NULL,
-                                            PRIMCHECK_FINITE,
-                                            GEOMCHECK_CONVEX, true, 4));
+    test_report_cases("hits_are_finite", harness(PRIMCHECK_FINITE, 4));
 }
 END_TEST
 
 START_TEST(sampling_matches_area)
 {
-    test_report_cases("sampling_matches_area",
-                      primcheck_over_scales(make_sphere, NULL, PRIMCHECK_AREA,
-                                            GEOMCHECK_CONVEX, true, 5));
+    test_report_cases("sampling_matches_area", harness(PRIMCHECK_AREA, 5));
 }
 END_TEST
 
