@@ -43,17 +43,19 @@ static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
     const para_shape *sh = obj->shape;
     real t, b[3], st[2];
     bool any = false;
+    triangle_ray_t pr;
+    triangle_ray_prepare(&pr, r);
     /* triangle A: p = c0 + (b1 + b2) e1 + b2 e2 */
-    if (triangle_intersect_watertight(sh->c[0], sh->c[1], sh->c[2], r, tmin,
-                                      tmax, &t, b)) {
+    if (triangle_intersect_prepared(sh->c[0], sh->c[1], sh->c[2], &pr, tmin,
+                                    tmax, &t, b)) {
         any = true;
         tmax = t;
         st[0] = b[1] + b[2];
         st[1] = b[2];
     }
     /* triangle B: p = c0 + b1 e1 + (b1 + b2) e2; only if nearer */
-    if (triangle_intersect_watertight(sh->c[0], sh->c[2], sh->c[3], r, tmin,
-                                      tmax, &t, b)) {
+    if (triangle_intersect_prepared(sh->c[0], sh->c[2], sh->c[3], &pr, tmin,
+                                    tmax, &t, b)) {
         any = true;
         st[0] = b[1];
         st[1] = b[1] + b[2];

@@ -29,37 +29,67 @@ static real diff_of_products_exact(real a, real b, real c, real d)
 #endif
 }
 
-bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
-                                   const VECTOR3 p2, const ray_t *r,
-                                   real tmin, real tmax, real *t, real b[3])
+/* max of two finite reals without a libm call (fmax must handle NaN) */
+static inline real max2(real a, real b)
 {
+    return a > b ? a : b;
+}
+
+static inline real max3a(real a, real b, real c)
+{
+    return max2(fabs(a), max2(fabs(b), fabs(c)));
+}
+
+void triangle_ray_prepare(triangle_ray_t *pr, const ray_t *r)
+{
+    /* Woop et al. sec. 3: permute the axes so that the ray's largest
+     * component is z, and shear so that the ray runs along +z. */
+    vec_copy(pr->o, r->o);
+    int kz = vec_max_axis(r->d);
+    real dz = r->d[kz];
+    pr->ok = dz != 0 && isfinite(dz);
+    pr->scale = 0;
+    pr->kz = kz;
+    pr->kx = kz == 2 ? 0 : kz + 1;
+    pr->ky = pr->kx == 2 ? 0 : pr->kx + 1;
+    if (!pr->ok) {
+        pr->sx = pr->sy = pr->sz = 0;
+        return;
+    }
     /* Scale d by a power of two (exact) when its largest component is far
      * from 1, so that 1/d_z and the sheared z's cannot overflow; the ray
      * parameter then scales back by the same power (o + t d = o + t' d'). */
     VECTOR3 d;
     vec_copy(d, r->d);
-    int kz = vec_max_axis(d);
-    if (!(d[kz] != 0 && isfinite(d[kz])))
-        return false;
-    int scale = ilogb(d[kz]);
-    if (scale < -16 || scale > 16)
+    real ad = fabs(dz);
+    if (ad < REAL_C(0x1p-16) || ad >= REAL_C(0x1p17)) {
+        pr->scale = ilogb(dz);
         for (int i = 0; i < 3; i++)
-            d[i] = ldexp(d[i], -scale);
-    else
-        scale = 0;
+            d[i] = ldexp(d[i], -pr->scale);
+    }
+    /* one division per ray; sx, sy carry two roundings */
+    real inv = 1 / d[kz];
+    pr->sx = -d[pr->kx] * inv;
+    pr->sy = -d[pr->ky] * inv;
+    pr->sz = inv;
+}
 
-    /* Woop et al. sec. 3: translate the vertices to the ray origin, then
-     * permute the axes so that the ray's largest component is z, and shear
-     * so that the ray runs along +z. Every vertex is transformed on its
-     * own, so a vertex shared by two triangles lands on the same point in
-     * both: the root of watertightness. */
-    int kx = kz == 2 ? 0 : kz + 1;
-    int ky = kx == 2 ? 0 : kx + 1;
-    real sx = -d[kx] / d[kz], sy = -d[ky] / d[kz], sz = 1 / d[kz];
+bool triangle_intersect_prepared(const VECTOR3 p0, const VECTOR3 p1,
+                                 const VECTOR3 p2, const triangle_ray_t *pr,
+                                 real tmin, real tmax, real *t, real b[3])
+{
+    if (!pr->ok)
+        return false;
+    /* Translate the vertices to the ray origin and shear them into ray
+     * space. Every vertex is transformed on its own, so a vertex shared by
+     * two triangles lands on the same point in both: the root of
+     * watertightness. */
+    const int kx = pr->kx, ky = pr->ky, kz = pr->kz;
+    const real sx = pr->sx, sy = pr->sy;
     VECTOR3 a0, a1, a2;
-    vec_sub(a0, p0, r->o);
-    vec_sub(a1, p1, r->o);
-    vec_sub(a2, p2, r->o);
+    vec_sub(a0, p0, pr->o);
+    vec_sub(a1, p1, pr->o);
+    vec_sub(a2, p2, pr->o);
     real x0 = a0[kx] + sx * a0[kz], y0 = a0[ky] + sy * a0[kz];
     real x1 = a1[kx] + sx * a1[kz], y1 = a1[ky] + sy * a1[kz];
     real x2 = a2[kx] + sx * a2[kz], y2 = a2[ky] + sy * a2[kz];
@@ -88,39 +118,41 @@ bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
         return false;
 
     /* t = sum e_i z_i / det with the sheared z's (Woop et al. eq. 8). */
+    const real sz = pr->sz;
     real z0 = sz * a0[kz], z1 = sz * a1[kz], z2 = sz * a2[kz];
     real tt = (e0 * z0 + e1 * z1 + e2 * z2) / det;
     if (!isfinite(tt))
         return false;
 
     /* pbrt-v3 sec. 3.9.6: a conservative bound dt on the error of tt.
-     * The sheared x, y carry gamma(5) (max|x| + max|a_z|), the edge
-     * functions de, the scaled z's gamma(3) max|z|, and t = sum e_i z_i /
-     * det carries dt. One departure: pbrt-v3 uses the scaled z's (in units
-     * of t) in the x and y terms (in units of length), which is right only
-     * for |d| near 1; here the unscaled a_z keep the units apart, so the
-     * bound holds for any length of d. A hit that may truly lie at t <= 0
-     * is rejected, so a ray leaving the triangle never finds it again at
-     * t ~ 0. Applied when tmin >= 0 only, so a caller asking for t < 0
-     * still gets it. */
+     * The sheared x, y carry gamma(5) (max|x| + max|a_z|) (the translated
+     * coordinate one rounding, the shear factor two, its product and the
+     * sum one each), the edge functions de, the scaled z's gamma(3) max|z|,
+     * and t = sum e_i z_i / det carries dt. One departure: pbrt-v3 uses the
+     * scaled z's (in units of t) in the x and y terms (in units of length),
+     * which is right only for |d| near 1; here the unscaled a_z keep the
+     * units apart, so the bound holds for any length of d. A hit that may
+     * truly lie at t <= 0 is rejected, so a ray leaving the triangle never
+     * finds it again at t ~ 0. Applied when tmin >= 0 only, so a caller
+     * asking for t < 0 still gets it. */
     if (tmin >= 0) {
-        real max_z = fmax(fabs(z0), fmax(fabs(z1), fabs(z2)));
-        real max_az = fmax(fabs(a0[kz]), fmax(fabs(a1[kz]), fabs(a2[kz])));
-        real max_x = fmax(fabs(x0), fmax(fabs(x1), fabs(x2)));
-        real max_y = fmax(fabs(y0), fmax(fabs(y1), fabs(y2)));
+        real max_z = max3a(z0, z1, z2);
+        real max_az = max3a(a0[kz], a1[kz], a2[kz]);
+        real max_x = max3a(x0, x1, x2);
+        real max_y = max3a(y0, y1, y2);
         real dz = ray_gamma(3) * max_z;
         real dx = ray_gamma(5) * (max_x + max_az);
         real dy = ray_gamma(5) * (max_y + max_az);
         real de = 2 * (ray_gamma(2) * max_x * max_y + dy * max_x +
                        dx * max_y);
-        real max_e = fmax(fabs(e0), fmax(fabs(e1), fabs(e2)));
+        real max_e = max3a(e0, e1, e2);
         real dt = 3 * (ray_gamma(3) * max_e * max_z + de * max_z +
                        dz * max_e) / fabs(det);
         if (tt <= dt)
             return false;
     }
-    if (scale != 0)
-        tt = ldexp(tt, -scale);
+    if (pr->scale != 0)
+        tt = ldexp(tt, -pr->scale);
     if (!(tt > tmin && tt < tmax))
         return false;
     /* Only now, on the rare path of a hit: a triangle of no area has no
@@ -133,6 +165,15 @@ bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
     b[1] = e1 / det;
     b[2] = e2 / det;
     return true;
+}
+
+bool triangle_intersect_watertight(const VECTOR3 p0, const VECTOR3 p1,
+                                   const VECTOR3 p2, const ray_t *r,
+                                   real tmin, real tmax, real *t, real b[3])
+{
+    triangle_ray_t pr;
+    triangle_ray_prepare(&pr, r);
+    return triangle_intersect_prepared(p0, p1, p2, &pr, tmin, tmax, t, b);
 }
 
 bool triangle_is_degenerate(const VECTOR3 p0, const VECTOR3 p1,

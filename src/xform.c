@@ -217,7 +217,8 @@ svet_status xform_from_matrix(const real m[12], xform_t *out,
     return SVET_OK;
 }
 
-static void apply(const real *m, VECTOR3 out, const VECTOR3 p, bool point)
+static inline void apply(const real *m, VECTOR3 out, const VECTOR3 p,
+                         bool point)
 {
     real r[3];
     for (int i = 0; i < 3; i++)
@@ -292,7 +293,7 @@ static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
             *k = e;
     }
     for (int i = 0; i < 3; i++)
-        d[i] = ldexp(r->d[i], -*k);
+        d[i] = *k ? ldexp(r->d[i], -*k) : r->d[i];
     apply(MAT(sh->x.inv), ro->o, r->o, true);
     apply(MAT(sh->x.inv), ro->d, d, false);
     return vec_is_finite(ro->o) && vec_is_finite(ro->d) &&
@@ -309,10 +310,10 @@ static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
         return false;
     /* an affine map keeps t; only the power-of-two scaling of d moves it */
     hit_t h;
-    if (!sh->inner->ops->intersect(sh->inner, prim, &ro, ldexp(tmin, k),
-                                   ldexp(tmax, k), &h))
+    real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
+    if (!sh->inner->ops->intersect(sh->inner, prim, &ro, lo, hi, &h))
         return false;
-    real t = ldexp(h.t, -k);
+    real t = k ? ldexp(h.t, -k) : h.t;
     if (!(t > tmin && t < tmax))
         return false;
     *hit = h;
@@ -361,7 +362,8 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     int k;
     object_ray(sh, r, &ro, &k);
     hit_t h = *hit;
-    h.t = ldexp(hit->t, k);
+    if (k != 0)
+        h.t = ldexp(hit->t, k);
     sh->inner->ops->surface(sh->inner, &ro, &h, pp);
     VECTOR3 p, e;
     world_point(sh, pp->cross_point, pp->p_error, p, e);

@@ -222,6 +222,46 @@ START_TEST(degenerate_triangles_never_hit_and_never_give_nan)
 }
 END_TEST
 
+START_TEST(a_prepared_ray_gives_the_same_answers_bit_for_bit)
+{
+    /* one prepared ray against many triangles, as a mesh uses it; the
+     * directions span huge and tiny lengths (the power-of-two rescaling) */
+    pcg32_t g;
+    pcg32_seed(&g, 16, 17);
+    long n = 0;
+    for (int i = 0; i < 2000; i++) {
+        ray_t r;
+        vec_set(r.o, 4 * pcg32_real(&g) - 2, 4 * pcg32_real(&g) - 2,
+                4 * pcg32_real(&g) - 2);
+        geomcheck_random_dir(r.d, &g);
+        vec_scale(r.d, r.d, ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 80) - 40));
+        triangle_ray_t pr;
+        triangle_ray_prepare(&pr, &r);
+        for (int j = 0; j < 20; j++, n++) {
+            VECTOR3 p[3];
+            for (int k = 0; k < 9; k++)
+                p[k / 3][k % 3] = 2 * pcg32_real(&g) - 1;
+            real t1 = -1, t2 = -1, b1[3] = { 0, 0, 0 }, b2[3] = { 0, 0, 0 };
+            bool h1 = triangle_intersect_watertight(p[0], p[1], p[2], &r, 0,
+                                                    (real)INFINITY, &t1, b1);
+            bool h2 = triangle_intersect_prepared(p[0], p[1], p[2], &pr, 0,
+                                                  (real)INFINITY, &t2, b2);
+            ck_assert(h1 == h2);
+            ck_assert(memcmp(&t1, &t2, sizeof t1) == 0 &&
+                      memcmp(b1, b2, sizeof b1) == 0);
+        }
+    }
+    ray_t zero = { { 0, 0, 0 }, { 0, 0, 0 } };
+    triangle_ray_t pr;
+    triangle_ray_prepare(&pr, &zero);
+    VECTOR3 a = { -1, -1, 0 }, b = { 1, -1, 0 }, c = { 0, 1, 0 };
+    real t, bb[3];
+    ck_assert(!pr.ok);
+    ck_assert(!triangle_intersect_prepared(a, b, c, &pr, -1, 1, &t, bb));
+    test_report_cases("a_prepared_ray_gives_the_same_answers_bit_for_bit", n);
+}
+END_TEST
+
 /* --- closed meshes -------------------------------------------------------- */
 
 typedef struct {
@@ -630,6 +670,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, triangle_misses_outside_its_edges_and_hits_on_them);
     tcase_add_test(tc, rays_parallel_to_the_triangle_never_hit);
     tcase_add_test(tc, degenerate_triangles_never_hit_and_never_give_nan);
+    tcase_add_test(tc, a_prepared_ray_gives_the_same_answers_bit_for_bit);
     tcase_add_test(tc, no_ray_slips_through_a_closed_octahedron);
     tcase_add_test(tc, no_ray_slips_through_a_subdivided_icosahedron);
     tcase_add_test(tc, triangle_spawned_rays_never_rehit_at_any_scale);
