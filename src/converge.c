@@ -13,14 +13,15 @@
 #include "fileio.h"
 #include "imgcompare.h"
 
-/* The mean of the R, G, B values of v where both a and b are finite (the
- * values imgcompare counts). */
-static double mean_variance(const image_t *v, const image_t *a,
-                            const image_t *b)
+/* The means over the R, G, B values where both a and b are finite (the
+ * values imgcompare counts) of v and of v / (b^2 + eps). */
+static void mean_variance(const image_t *v, const image_t *a,
+                          const image_t *b, double out[2])
 {
+    out[CONVERGE_ABS] = out[CONVERGE_REL] = 0;
     if (!v)
-        return 0;
-    double sum = 0;
+        return;
+    double sum = 0, rsum = 0;
     long n = 0;
     for (int y = 0; y < a->height; y++)
         for (int x = 0; x < a->width; x++)
@@ -31,9 +32,13 @@ static double mean_variance(const image_t *v, const image_t *a,
                 if (!isfinite(va) || !isfinite(vb) || !isfinite(s2))
                     continue;
                 sum += s2;
+                rsum += s2 / (vb * vb + IMGCOMPARE_EPS);
                 n++;
             }
-    return n ? sum / (double)n : 0;
+    if (n) {
+        out[CONVERGE_ABS] = sum / (double)n;
+        out[CONVERGE_REL] = rsum / (double)n;
+    }
 }
 
 static svet_status same_size(const image_t *v, const image_t *a,
@@ -60,61 +65,66 @@ svet_status converge_measure(const image_t *img, const image_t *var,
         st = same_size(ref_var, img, "the reference's variance image", err);
     if (st != SVET_OK)
         return st;
-    pt->mse = c.mse;
     pt->rmse = c.rmse;
-    pt->relmse = c.relmse;
     pt->psnr = c.psnr;
-    pt->variance = mean_variance(var, img, ref);
-    pt->ref_variance = mean_variance(ref_var, img, ref);
+    pt->mse[CONVERGE_ABS] = c.mse;
+    pt->mse[CONVERGE_REL] = c.relmse;
+    mean_variance(var, img, ref, pt->variance);
+    mean_variance(ref_var, img, ref, pt->ref_variance);
     return SVET_OK;
 }
 
 /* the render's own MSE against the exact image */
-static double own_mse(const converge_point_t *p)
+static double own_mse(const converge_point_t *p, converge_metric m)
 {
-    return fmax(0.0, p->mse - p->ref_variance);
+    return fmax(0.0, p->mse[m] - p->ref_variance[m]);
 }
 
-double converge_rmse(const converge_point_t *p)
+double converge_error(const converge_point_t *p, converge_metric m)
 {
-    return sqrt(own_mse(p));
+    return sqrt(own_mse(p, m));
 }
 
-double converge_bias2(const converge_point_t *p)
+double converge_bias2(const converge_point_t *p, converge_metric m)
 {
-    return p->mse - p->variance - p->ref_variance;
+    return p->mse[m] - p->variance[m] - p->ref_variance[m];
 }
 
-double converge_efficiency(const converge_point_t *p)
+double converge_efficiency(const converge_point_t *p, converge_metric m)
 {
-    double d = p->variance * p->seconds;
+    double d = p->variance[m] * p->seconds;
     return d > 0 ? 1 / d : 0;
 }
 
-double converge_efficiency_mse(const converge_point_t *p)
+double converge_efficiency_mse(const converge_point_t *p, converge_metric m)
 {
-    double d = own_mse(p) * p->seconds;
+    double d = own_mse(p, m) * p->seconds;
     return d > 0 ? 1 / d : 0;
 }
 
-bool converge_biased(const converge_point_t *p, int n, double *bias)
+bool converge_biased(const converge_point_t *p, int n, converge_metric m,
+                     double *bias)
 {
     if (bias)
         *bias = 0;
     if (n <= 0)
         return false;
     const converge_point_t *last = &p[n - 1];
-    double b2 = converge_bias2(last);
+    double b2 = converge_bias2(last, m);
     if (bias)
         *bias = sqrt(fmax(0.0, b2));
-    return b2 > last->variance + last->ref_variance;
+    /* one sample per pixel has no variance estimate (render_variance
+     * gives 0): nothing to tell bias from noise by */
+    if (last->spp == 1)
+        return false;
+    return b2 > last->variance[m] + last->ref_variance[m];
 }
 
 /* The squared bias the extrapolation keeps: 0 for an unbiased series. */
-static double floor2(const converge_point_t *p, int n)
+static double floor2(const converge_point_t *p, int n, converge_metric m)
 {
     double b;
-    return converge_biased(p, n, &b) ? b * b : 0;
+    return converge_biased(p, n, m, &b) ? b * b : 0;
 }
 
 /* Interpolate y at x between (x0, y0) and (x1, y1), linearly in
@@ -130,8 +140,8 @@ static double loglog(double x, double x0, double y0, double x1, double y1)
     return y0 + (x - x0) * (y1 - y0) / (x1 - x0);
 }
 
-double converge_error_at(const converge_point_t *p, int n, double t,
-                         converge_how *how)
+double converge_error_at(const converge_point_t *p, int n, converge_metric m,
+                         double t, converge_how *how)
 {
     converge_how dummy;
     how = how ? how : &dummy;
@@ -141,24 +151,24 @@ double converge_error_at(const converge_point_t *p, int n, double t,
     }
     if (t >= p[0].seconds && t <= p[n - 1].seconds) {
         *how = CONVERGE_MEASURED;
+        if (n == 1)
+            return converge_error(&p[0], m);
         int i = 0;
         while (i + 1 < n - 1 && p[i + 1].seconds < t)
             i++;
-        if (n == 1)
-            return converge_rmse(&p[0]);
-        return loglog(t, p[i].seconds, converge_rmse(&p[i]),
-                      p[i + 1].seconds, converge_rmse(&p[i + 1]));
+        return loglog(t, p[i].seconds, converge_error(&p[i], m),
+                      p[i + 1].seconds, converge_error(&p[i + 1], m));
     }
     /* MSE = b^2 + noise, the noise falling as 1/t (variance ~ 1/N, N ~ t) */
     *how = CONVERGE_EXTRAPOLATED;
     const converge_point_t *e = t > p[n - 1].seconds ? &p[n - 1] : &p[0];
-    double b2 = floor2(p, n);
-    double noise = fmax(0.0, own_mse(e) - b2);
+    double b2 = floor2(p, n, m);
+    double noise = fmax(0.0, own_mse(e, m) - b2);
     return sqrt(b2 + noise * e->seconds / t);
 }
 
-double converge_time_to(const converge_point_t *p, int n, double e,
-                        converge_how *how)
+double converge_time_to(const converge_point_t *p, int n, converge_metric m,
+                        double e, converge_how *how)
 {
     converge_how dummy;
     how = how ? how : &dummy;
@@ -166,35 +176,37 @@ double converge_time_to(const converge_point_t *p, int n, double e,
         *how = CONVERGE_UNKNOWN;
         return (double)NAN;
     }
-    double b2 = floor2(p, n);
     for (int i = 0; i < n; i++) {
-        double ei = converge_rmse(&p[i]);
+        double ei = converge_error(&p[i], m);
         if (ei > e)
             continue;
         if (i > 0) {
             *how = CONVERGE_MEASURED;
             /* e lies between the errors of points i - 1 and i: swap the
              * roles of time and error in the log-log interpolation */
-            return loglog(e, converge_rmse(&p[i - 1]), p[i - 1].seconds,
+            return loglog(e, converge_error(&p[i - 1], m), p[i - 1].seconds,
                           ei, p[i].seconds);
         }
         break; /* reached at the first point already: extrapolate back */
     }
-    const converge_point_t *q = converge_rmse(&p[0]) <= e ? &p[0] : &p[n - 1];
+    double b2 = floor2(p, n, m);
+    const converge_point_t *q =
+        converge_error(&p[0], m) <= e ? &p[0] : &p[n - 1];
     if (e * e <= b2) {
         *how = CONVERGE_NEVER;
         return (double)INFINITY;
     }
     *how = CONVERGE_EXTRAPOLATED;
-    double noise = fmax(0.0, own_mse(q) - b2);
+    double noise = fmax(0.0, own_mse(q, m) - b2);
     return q->seconds * noise / (e * e - b2);
 }
 
 /* --- CSV ----------------------------------------------------------------- */
 
 static const char *const header =
-    "method,spp,seconds,rmse,rmse_noref,relmse,psnr,mse,variance,"
-    "ref_variance,bias2,efficiency,efficiency_mse,rays";
+    "method,spp,seconds,rays,rmse,psnr,"
+    "mse,variance,ref_variance,rmse_noref,bias2,efficiency,"
+    "relmse,relvariance,ref_relvariance,relrmse_noref,relbias2,relefficiency";
 
 svet_status converge_csv_write(const char *path, const char *method,
                                const char *comment, const converge_point_t *p,
@@ -218,22 +230,26 @@ svet_status converge_csv_write(const char *path, const char *method,
     fprintf(f, "%s\n", header);
     for (int i = 0; i < n; i++) {
         const converge_point_t *q = &p[i];
-        fprintf(f, "%s,%ld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,"
-                   "%.9g,%.9g,%.17g\n",
-                method, q->spp, q->seconds, q->rmse, converge_rmse(q),
-                q->relmse, q->psnr, q->mse, q->variance, q->ref_variance,
-                converge_bias2(q), converge_efficiency(q),
-                converge_efficiency_mse(q), q->rays);
+        fprintf(f, "%s,%ld,%.9g,%.17g,%.9g,%.9g", method, q->spp, q->seconds,
+                q->rays, q->rmse, q->psnr);
+        for (int m = CONVERGE_ABS; m <= CONVERGE_REL; m++)
+            fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", q->mse[m],
+                    q->variance[m], q->ref_variance[m],
+                    converge_error(q, (converge_metric)m),
+                    converge_bias2(q, (converge_metric)m),
+                    converge_efficiency(q, (converge_metric)m));
+        fputc('\n', f);
     }
     return fileio_commit(&out, err);
 }
 
 /* The columns read back, in the order of `wanted`. */
-enum { COL_METHOD, COL_SPP, COL_SECONDS, COL_MSE, COL_RMSE, COL_RELMSE,
-       COL_PSNR, COL_VARIANCE, COL_REF_VARIANCE, COL_RAYS, NCOLS };
+enum { COL_METHOD, COL_SPP, COL_SECONDS, COL_RAYS, COL_RMSE, COL_PSNR,
+       COL_MSE, COL_VARIANCE, COL_REF_VARIANCE, COL_RELMSE, COL_RELVARIANCE,
+       COL_REF_RELVARIANCE, NCOLS };
 static const char *const wanted[NCOLS] = {
-    "method", "spp", "seconds", "mse", "rmse", "relmse", "psnr", "variance",
-    "ref_variance", "rays"
+    "method", "spp", "seconds", "rays", "rmse", "psnr", "mse", "variance",
+    "ref_variance", "relmse", "relvariance", "ref_relvariance"
 };
 
 #define CSV_MAXFIELDS 64
@@ -302,7 +318,7 @@ svet_status converge_csv_read(const char *path, char *method,
                 for (int j = 0; j < nf; j++)
                     if (strcmp(field[j], wanted[k]) == 0)
                         col[k] = j;
-                if (col[k] < 0 && k != COL_RAYS) {
+                if (col[k] < 0) {
                     st = svet_error_set(err, SVET_ERR_PARSE, "%s:%d: no "
                                         "column '%s' in the header", path,
                                         lineno, wanted[k]);
@@ -347,13 +363,15 @@ svet_status converge_csv_read(const char *path, char *method,
             snprintf(method, method_len, "%s", field[col[COL_METHOD]]);
         q->spp = (long)v[COL_SPP];
         q->seconds = v[COL_SECONDS];
-        q->mse = v[COL_MSE];
-        q->rmse = v[COL_RMSE];
-        q->relmse = v[COL_RELMSE];
-        q->psnr = v[COL_PSNR];
-        q->variance = v[COL_VARIANCE];
-        q->ref_variance = v[COL_REF_VARIANCE];
         q->rays = v[COL_RAYS];
+        q->rmse = v[COL_RMSE];
+        q->psnr = v[COL_PSNR];
+        q->mse[CONVERGE_ABS] = v[COL_MSE];
+        q->variance[CONVERGE_ABS] = v[COL_VARIANCE];
+        q->ref_variance[CONVERGE_ABS] = v[COL_REF_VARIANCE];
+        q->mse[CONVERGE_REL] = v[COL_RELMSE];
+        q->variance[CONVERGE_REL] = v[COL_RELVARIANCE];
+        q->ref_variance[CONVERGE_REL] = v[COL_REF_RELVARIANCE];
         (*n)++;
     }
     if (st == SVET_OK && ferror(f))

@@ -23,7 +23,8 @@ START_TEST(error_bias_and_efficiency_of_a_known_pattern)
 {
     /* reference 0.5 everywhere with variance vr; the render 0.5 +- d
      * alternating, variance v: MSE = d^2 exactly (d, 0.5 +- d exact in
-     * float), the render's own MSE d^2 - vr, bias^2 = d^2 - v - vr */
+     * float), the render's own MSE d^2 - vr, bias^2 = d^2 - v - vr; the
+     * relative forms divide each by 0.5^2 + 0.01 = 0.26 */
     const float d = 0.125f, v = 0.01f, vr = 0.001f;
     image_t img, var, ref, rvar;
     filled(&ref, 20, 10, 0.5f);
@@ -38,27 +39,37 @@ START_TEST(error_bias_and_efficiency_of_a_known_pattern)
     ck_assert_int_eq(converge_measure(&img, &var, &ref, &rvar, &pt, NULL),
                      SVET_OK);
     const double dd = (double)d, vv = (double)v, vvr = (double)vr;
-    ck_assert_rel(pt.mse, dd * dd, 1e-12, 0);
     ck_assert_rel(pt.rmse, dd, 1e-12, 0);
     ck_assert_rel(pt.psnr, -20 * log10(dd), 1e-12, 0); /* peak 1 */
-    ck_assert_rel(pt.variance, vv, 1e-12, 0);
-    ck_assert_rel(pt.ref_variance, vvr, 1e-12, 0);
-    ck_assert_rel(converge_rmse(&pt), sqrt(dd * dd - vvr), 1e-12, 0);
-    ck_assert_rel(converge_bias2(&pt), dd * dd - vv - vvr, 1e-12, 0);
-    ck_assert_rel(converge_efficiency(&pt), 1 / (vv * 4), 1e-12, 0);
-    ck_assert_rel(converge_efficiency_mse(&pt), 1 / ((dd * dd - vvr) * 4),
-                  1e-12, 0);
-    /* bias^2 = 0.0046 < v + vr = 0.011: noise explains the error */
-    double b;
-    ck_assert(!converge_biased(&pt, 1, &b));
-    ck_assert_rel(b, sqrt(dd * dd - vv - vvr), 1e-12, 0);
+    for (int m = CONVERGE_ABS; m <= CONVERGE_REL; m++) {
+        converge_metric M = (converge_metric)m;
+        double k = m == CONVERGE_REL ? 0.26 : 1;
+        ck_assert_rel(pt.mse[m], dd * dd / k, 1e-12, 0);
+        ck_assert_rel(pt.variance[m], vv / k, 1e-12, 0);
+        ck_assert_rel(pt.ref_variance[m], vvr / k, 1e-12, 0);
+        ck_assert_rel(converge_error(&pt, M), sqrt((dd * dd - vvr) / k),
+                      1e-12, 0);
+        ck_assert_rel(converge_bias2(&pt, M), (dd * dd - vv - vvr) / k,
+                      1e-12, 0);
+        ck_assert_rel(converge_efficiency(&pt, M), k / (vv * 4), 1e-12, 0);
+        ck_assert_rel(converge_efficiency_mse(&pt, M),
+                      k / ((dd * dd - vvr) * 4), 1e-12, 0);
+        /* bias^2 = 0.0046 < v + vr = 0.011: noise explains the error */
+        double b;
+        ck_assert(!converge_biased(&pt, 1, M, &b));
+        ck_assert_rel(b, sqrt((dd * dd - vv - vvr) / k), 1e-12, 0);
+    }
     /* without variance images: every error is bias */
     ck_assert_int_eq(converge_measure(&img, NULL, &ref, NULL, &pt, NULL),
                      SVET_OK);
-    ck_assert(pt.variance == 0 && pt.ref_variance == 0);
-    ck_assert(converge_biased(&pt, 1, &b));
+    ck_assert(pt.variance[0] == 0 && pt.ref_variance[1] == 0);
+    double b;
+    ck_assert(converge_biased(&pt, 1, CONVERGE_ABS, &b));
     ck_assert_rel(b, dd, 1e-12, 0);
-    ck_assert(converge_efficiency(&pt) == 0);
+    /* ... unless it is one sample per pixel, which has no variance */
+    pt.spp = 1;
+    ck_assert(!converge_biased(&pt, 1, CONVERGE_ABS, &b));
+    ck_assert(converge_efficiency(&pt, CONVERGE_REL) == 0);
     image_t small;
     filled(&small, 10, 10, 0);
     svet_error err;
@@ -81,9 +92,13 @@ static void series(converge_point_t *p, int n, const double *t, double c,
     for (int i = 0; i < n; i++) {
         p[i].seconds = t[i];
         p[i].spp = 1L << i;
-        p[i].variance = c / t[i];
-        p[i].mse = b2 + c / t[i];
-        p[i].rmse = sqrt(p[i].mse);
+        for (int m = 0; m < 2; m++) {
+            /* the relative metric at another scale, to tell them apart */
+            double k = m ? 3 : 1;
+            p[i].variance[m] = k * c / t[i];
+            p[i].mse[m] = k * (b2 + c / t[i]);
+        }
+        p[i].rmse = sqrt(p[i].mse[0]);
     }
 }
 
@@ -92,34 +107,37 @@ START_TEST(an_unbiased_series_is_read_exactly_off_its_power_law)
     const double t[] = { 0.5, 1, 2, 4, 8 }, c = 0.02;
     converge_point_t p[5];
     series(p, 5, t, c, 0);
-    ck_assert(!converge_biased(p, 5, NULL));
+    ck_assert(!converge_biased(p, 5, CONVERGE_ABS, NULL));
     converge_how how;
     /* between points: log-log interpolation of e = sqrt(c / t) is exact */
     const double ts[] = { 0.5, 0.7, 3, 5.5, 8 };
     for (int i = 0; i < 5; i++) {
-        ck_assert_rel(converge_error_at(p, 5, ts[i], &how), sqrt(c / ts[i]),
+        ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, ts[i], &how), sqrt(c / ts[i]),
                       1e-12, 0);
         ck_assert_int_eq(how, CONVERGE_MEASURED);
-        ck_assert_rel(converge_time_to(p, 5, sqrt(c / ts[i]), &how), ts[i],
+        ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, sqrt(c / ts[i]), &how), ts[i],
                       1e-12, 0);
         ck_assert_int_eq(how, ts[i] == 0.5 ? CONVERGE_EXTRAPOLATED
                                            : CONVERGE_MEASURED);
     }
     /* beyond them: the 1/t law from the nearest end */
-    ck_assert_rel(converge_error_at(p, 5, 100, &how), sqrt(c / 100), 1e-12, 0);
+    ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, 100, &how), sqrt(c / 100), 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
-    ck_assert_rel(converge_error_at(p, 5, 0.1, &how), sqrt(c / 0.1), 1e-12, 0);
-    ck_assert_rel(converge_time_to(p, 5, sqrt(c / 100), &how), 100, 1e-12, 0);
+    ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, 0.1, &how), sqrt(c / 0.1), 1e-12, 0);
+    ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, sqrt(c / 100), &how), 100, 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
-    ck_assert_rel(converge_time_to(p, 5, sqrt(c / 0.1), &how), 0.1, 1e-12, 0);
+    ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, sqrt(c / 0.1), &how), 0.1, 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
     /* efficiency 1 / (variance t) = 1 / c at every point */
     for (int i = 0; i < 5; i++)
-        ck_assert_rel(converge_efficiency(&p[i]), 1 / c, 1e-12, 0);
+        ck_assert_rel(converge_efficiency(&p[i], CONVERGE_ABS), 1 / c, 1e-12, 0);
+    /* the relative metric reads its own columns: 3 times the MSE */
+    ck_assert_rel(converge_error_at(p, 5, CONVERGE_REL, 3, &how),
+                  sqrt(3 * c / 3), 1e-12, 0);
     /* nothing to read from no points */
-    ck_assert(isnan(converge_error_at(p, 0, 1, &how)));
+    ck_assert(isnan(converge_error_at(p, 0, CONVERGE_ABS, 1, &how)));
     ck_assert_int_eq(how, CONVERGE_UNKNOWN);
-    ck_assert(isnan(converge_time_to(p, 0, 1, &how)));
+    ck_assert(isnan(converge_time_to(p, 0, CONVERGE_ABS, 1, &how)));
 }
 END_TEST
 
@@ -132,22 +150,22 @@ START_TEST(a_biased_series_never_falls_below_its_bias)
     converge_point_t p[5];
     series(p, 5, t, c, b2);
     double b;
-    ck_assert(converge_biased(p, 5, &b));
+    ck_assert(converge_biased(p, 5, CONVERGE_ABS, &b));
     ck_assert_rel(b, 0.1, 1e-12, 0);
     converge_how how;
-    ck_assert_rel(converge_error_at(p, 5, 1000, &how), sqrt(b2 + c / 1000),
+    ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, 1000, &how), sqrt(b2 + c / 1000),
                   1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
-    ck_assert(converge_time_to(p, 5, 0.1, &how) == (double)INFINITY);
+    ck_assert(converge_time_to(p, 5, CONVERGE_ABS, 0.1, &how) == (double)INFINITY);
     ck_assert_int_eq(how, CONVERGE_NEVER);
-    ck_assert(converge_time_to(p, 5, 0.05, &how) == (double)INFINITY);
+    ck_assert(converge_time_to(p, 5, CONVERGE_ABS, 0.05, &how) == (double)INFINITY);
     /* an error above the bias but below the last point: b^2 + c / t = e^2 */
     double e = sqrt(b2 + c / 20);
-    ck_assert_rel(converge_time_to(p, 5, e, &how), 20, 1e-12, 0);
+    ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, e, &how), 20, 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
     /* the same law with b^2 below the noise at t = 8 is not called biased */
     series(p, 5, t, c, 0.001);
-    ck_assert(!converge_biased(p, 5, NULL));
+    ck_assert(!converge_biased(p, 5, CONVERGE_ABS, NULL));
 }
 END_TEST
 
@@ -157,8 +175,8 @@ START_TEST(csv_files_read_back)
     converge_point_t p[3];
     series(p, 3, t, 0.03, 0.0001);
     for (int i = 0; i < 3; i++) {
-        p[i].ref_variance = 1e-5;
-        p[i].relmse = 0.1 / (i + 1);
+        p[i].ref_variance[0] = 1e-5;
+        p[i].ref_variance[1] = 2e-5;
         p[i].psnr = 20 + i;
         p[i].rays = 1e9 + i;
     }
@@ -178,12 +196,13 @@ START_TEST(csv_files_read_back)
         /* 9 significant digits written */
         ck_assert_int_eq(q[i].spp, p[i].spp);
         ck_assert_rel(q[i].seconds, p[i].seconds, 1e-8, 0);
-        ck_assert_rel(q[i].mse, p[i].mse, 1e-8, 0);
         ck_assert_rel(q[i].rmse, p[i].rmse, 1e-8, 0);
-        ck_assert_rel(q[i].relmse, p[i].relmse, 1e-8, 0);
         ck_assert_rel(q[i].psnr, p[i].psnr, 1e-8, 0);
-        ck_assert_rel(q[i].variance, p[i].variance, 1e-8, 0);
-        ck_assert_rel(q[i].ref_variance, p[i].ref_variance, 1e-8, 0);
+        for (int m = 0; m < 2; m++) {
+            ck_assert_rel(q[i].mse[m], p[i].mse[m], 1e-8, 0);
+            ck_assert_rel(q[i].variance[m], p[i].variance[m], 1e-8, 0);
+            ck_assert_rel(q[i].ref_variance[m], p[i].ref_variance[m], 1e-8, 0);
+        }
         ck_assert(q[i].rays == p[i].rays);
     }
     free(q);
@@ -192,7 +211,7 @@ START_TEST(csv_files_read_back)
     size_t len = imgtest_read_bytes(path, &bytes);
     ck_assert(len > 0);
     ck_assert(strncmp((char *)bytes, "# scene cbox\n# build float\nmethod,spp,"
-                      "seconds,rmse,rmse_noref,", 50) == 0);
+                      "seconds,rays,", 46) == 0);
     free(bytes);
     /* names that would break the CSV are refused, and the file kept */
     ck_assert_int_eq(converge_csv_write(path, "a,b", NULL, p, 3, &err),
@@ -206,6 +225,10 @@ START_TEST(csv_files_read_back)
 }
 END_TEST
 
+/* the columns converge_csv_read needs, in another order than written */
+#define HEADER "method,spp,seconds,rays,rmse,psnr,mse,variance,ref_variance," \
+               "relmse,relvariance,ref_relvariance\n"
+
 START_TEST(malformed_csv_files_are_refused_with_their_line)
 {
     static const struct {
@@ -213,13 +236,11 @@ START_TEST(malformed_csv_files_are_refused_with_their_line)
         svet_status st;
     } bad[] = {
         { "# only a comment\n", "no header row", SVET_ERR_PARSE },
-        { "method,spp,seconds\n", "no column 'mse'", SVET_ERR_PARSE },
-        { "method,spp,seconds,mse,rmse,relmse,psnr,variance,ref_variance\n"
-          "a,1,0.5,x,1,1,1,1,1\n", ":2: column 'mse'", SVET_ERR_PARSE },
-        { "method,spp,seconds,mse,rmse,relmse,psnr,variance,ref_variance\n"
-          "a,1,0.5,1\n", ":2: column 'rmse'", SVET_ERR_PARSE },
-        { "method,spp,seconds,mse,rmse,relmse,psnr,variance,ref_variance\n"
-          "a,-3,0.5,1,1,1,1,1,1\n", "spp >= 0", SVET_ERR_PARSE },
+        { "method,spp,seconds,rays\n", "no column 'rmse'", SVET_ERR_PARSE },
+        { HEADER "a,1,0.5,0,1,1,x,1,1,1,1,1\n", ":2: column 'mse'",
+          SVET_ERR_PARSE },
+        { HEADER "a,1,0.5,0,1\n", ":2: column 'psnr'", SVET_ERR_PARSE },
+        { HEADER "a,-3,0.5,0,1,1,1,1,1,1,1,1\n", "spp >= 0", SVET_ERR_PARSE },
     };
     const char *path = imgtest_path("bad.csv");
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -235,9 +256,8 @@ START_TEST(malformed_csv_files_are_refused_with_their_line)
                       "case %zu: '%s'", i, err.msg);
         ck_assert(q == NULL && n == 0);
     }
-    /* a header without rays, and no rows: valid, empty */
-    const char *ok = "method,spp,seconds,mse,rmse,relmse,psnr,variance,"
-                     "ref_variance\n";
+    /* a header and no rows: valid, empty */
+    const char *ok = HEADER;
     imgtest_write_bytes(path, ok, strlen(ok));
     converge_point_t *q;
     int n;
