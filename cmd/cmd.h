@@ -27,4 +27,9 @@ void cmd_render_help(FILE *f);
 int cmd_diff(int argc, char **argv);
 void cmd_diff_help(FILE *f);
 
+/* svet converge SCENE --ref REF.exr [options], or --report CSV...: see
+ * cmd_converge_help (cmd/converge.c). */
+int cmd_converge(int argc, char **argv);
+void cmd_converge_help(FILE *f);
+
 #endif

@@ -22,6 +22,8 @@ static const subcommand_t commands[] = {
     { "diff", "compare two images (EXR, PFM, PNG, PPM): RMSE, relMSE, MAE, "
               "PSNR, max",
       cmd_diff, cmd_diff_help },
+    { "converge", "error against time of a render, against a converged "
+                  "reference (CSV, plot)", cmd_converge, cmd_converge_help },
 };
 enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
