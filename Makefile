@@ -203,6 +203,22 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 	    -artifact_prefix=fuzz/findings/$*/ fuzz/findings/$*/corpus \
 	    fuzz/corpus/$*
 
+# --- reference output and the speed/accuracy measurements -----------------
+# `make reference` renders tests/reference/ from every scenes/*.scn with the
+# float build (tools/reference.sh: half resolution, 4096 spp; its README
+# gives the time); `make tradeoffs` measures every knob of the renderer
+# against those references with both builds and writes docs/tradeoffs.md
+# (tools/tradeoffs.sh, under 30 minutes on 2 cores).
+.PHONY: reference tradeoffs
+reference:
+	$(MAKE) REAL=float BUILD=build/float build/float/svet
+	sh tools/reference.sh build/float/svet
+
+tradeoffs:
+	$(MAKE) REAL=float BUILD=build/float build/float/svet
+	$(MAKE) REAL=double BUILD=build/double build/double/svet
+	sh tools/tradeoffs.sh
+
 # --- install ---------------------------------------------------------------
 install: all
 	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/svet \
@@ -226,6 +242,8 @@ help:
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
+	@echo "make reference       re-render tests/reference/ (converged references)"
+	@echo "make tradeoffs       measure speed against accuracy: docs/tradeoffs.md"
 	@echo "make install PREFIX=... DESTDIR=..."
 	@echo "chapters: $(CHAPTERS)"
 

@@ -1,0 +1,81 @@
+#!/bin/sh
+# reference.sh - `make reference`: the converged reference renders of
+# tests/reference/ (their README says what they are for), one per scene
+# file scenes/*.scn: at half the scene's resolution (the files stay small),
+# REF_SPP samples per pixel (4096), seed 0, by the float build of `svet
+# render`. For scene NAME it writes NAME.exr (the mean, 32-bit float, ZIP),
+# NAME-var.exr (the per-pixel variance of the mean), NAME.png (tone-mapped,
+# to look at) and NAME.txt (the exact command, seed, spp, build and render
+# time, as "key = value" lines that tests/test_reference.c reads).
+#
+# usage: sh tools/reference.sh SVET [SCENE.scn ...]
+#   SVET     the svet binary (make reference passes build/float/svet)
+#   SCENE    only these scenes (default: every scenes/*.scn)
+# environment: REF_SPP (samples per pixel, default 4096), REF_DIR (default
+# tests/reference), REF_THREADS (default 0: every core).
+set -eu
+
+svet=${1:?usage: sh tools/reference.sh SVET [SCENE.scn ...]}
+shift
+[ -x "$svet" ] || { echo "reference.sh: $svet is not built" >&2; exit 1; }
+spp=${REF_SPP:-4096}
+dir=${REF_DIR:-tests/reference}
+threads=${REF_THREADS:-0}
+[ $# -gt 0 ] || set -- scenes/*.scn
+mkdir -p "$dir"
+
+# The build, for the record: compiler and the exact flags of the Makefile.
+cc_line=$(${CC:-cc} --version 2>/dev/null | head -n 1)
+cflags=$(make -s --no-print-directory --eval 'print-cflags: ; @echo $(ALL_CFLAGS)' \
+         print-cflags REAL="${REAL:-float}" 2>/dev/null || echo unknown)
+cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)
+cores=$(nproc 2>/dev/null || echo "?")
+
+# The scene's own image size: the last `width` and `height` given on
+# `camera` lines (scenes/README.md), 256 when absent.
+scene_size() {
+    awk '$1 == "camera" { for (i = 2; i < NF; i++) {
+             if ($i == "width") w = $(i + 1); if ($i == "height") h = $(i + 1) } }
+         END { print (w ? w : 256), (h ? h : 256) }' "$1"
+}
+
+total0=$(date +%s)
+for scene in "$@"; do
+    name=$(basename "$scene" .scn)
+    size=$(scene_size "$scene")
+    w=$(( ${size% *} / 2 )); h=$(( ${size#* } / 2 ))
+    [ "$w" -ge 1 ] && [ "$h" -ge 1 ] || { w=${size% *}; h=${size#* }; }
+    cmd="$svet render $scene --spp $spp --seed 0 --threads $threads --set resolution=${w}x${h} -o $dir/$name.exr --variance $dir/$name-var.exr --png $dir/$name.png"
+    echo "reference.sh: $name: ${w}x${h}, $spp spp" >&2
+    t0=$(date +%s.%N)
+    # keep the summary line of svet render (time, samples/s, rays/s)
+    $cmd 2>"$dir/.$name.log" >/dev/null || {
+        cat "$dir/.$name.log" >&2; rm -f "$dir/.$name.log"; exit 1; }
+    summary=$(tail -n 1 "$dir/.$name.log")
+    rm -f "$dir/.$name.log"
+    t1=$(date +%s.%N)
+    secs=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }')
+    blob=$(git hash-object "$scene" 2>/dev/null || echo unknown)
+    {
+        echo "# $dir/$name.txt - how $name.exr and $name-var.exr were made (make reference)."
+        echo "# $name.exr: the mean image, linear RGB, 32-bit float EXR (ZIP)."
+        echo "# $name-var.exr: per pixel and channel the variance of that mean"
+        echo "#   (svet render --variance: s^2 / spp, s^2 the unbiased sample variance)."
+        echo "scene = $scene"
+        echo "scene_blob = $blob"
+        echo "resolution = ${w}x${h}"
+        echo "spp = $spp"
+        echo "seed = 0"
+        echo "command = $cmd"
+        echo "real = ${REAL:-float}"
+        echo "compiler = $cc_line"
+        echo "cflags = $cflags"
+        echo "machine = $cpu, $cores cores"
+        echo "render_seconds = $secs"
+        echo "render_summary = $summary"
+        echo "date = $(date -u +%Y-%m-%d)"
+    } > "$dir/$name.txt"
+    echo "reference.sh: $name: $secs s" >&2
+done
+total1=$(date +%s)
+echo "reference.sh: $(( total1 - total0 )) s in all; $(du -ch "$dir"/*.exr | tail -n 1 | cut -f 1) of EXR in $dir" >&2
