@@ -44,13 +44,15 @@ real quadric_diff_of_products(real a, real b, real c, real d);
  * ds = d 2^-k, exactly (a power of two changes only the exponent), and
  * return k. The ray o + t d is then o + t' ds with t' = t 2^k, so the
  * quadratic of any finite direction, 1e-30 or 1e30 long, has coefficients
- * of order one; quadric_unscale_t(t', k) gives t back exactly. The zero
- * vector (and a non-finite one) is copied unchanged, returning 0. */
+ * that neither overflow nor underflow; quadric_unscale_t(t', k) gives t
+ * back exactly. A direction whose largest component lies in
+ * [2^-32, 2^32] needs no scaling and is copied (k = 0), as are the zero
+ * vector and a non-finite one. */
 int quadric_scale_dir(VECTOR3 ds, const VECTOR3 d);
 
 static inline real quadric_unscale_t(real ts, int k)
 {
-    return scalbn(ts, -k);
+    return k ? scalbn(ts, -k) : ts;
 }
 
 /* Scale q in place to length len (> 0): the re-projection of a point onto

@@ -46,8 +46,13 @@ real quadric_diff_of_products(real a, real b, real c, real d)
 
 int quadric_scale_dir(VECTOR3 ds, const VECTOR3 d)
 {
-    real m = fmax(fabs(d[X]), fmax(fabs(d[Y]), fabs(d[Z])));
-    if (!(m > 0) || !isfinite(m)) {
+    real ax = fabs(d[X]), ay = fabs(d[Y]), az = fabs(d[Z]);
+    real m = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
+    /* Moderate lengths are left alone: their squares and products cannot
+     * overflow or underflow, and ilogb and scalbn, library calls, would
+     * cost as much as the rest of a sphere test. */
+    if ((m >= REAL_C(0x1p-32) && m <= REAL_C(0x1p32)) || !(m > 0) ||
+        !isfinite(m)) {
         vec_copy(ds, d);
         return 0;
     }
