@@ -29,7 +29,8 @@ typedef struct {
     camera_t camera;
     lightset_t lights;      /* empty (nothing allocated) without lights */
     tracer_t tracer;
-    void *accel;            /* acceleration structure, when one is built */
+    void *accel;            /* the acceleration structure (accel.h): brute
+                               force, uniform or hierarchical grid */
     void (*accel_free)(void *);
     char accel_choice[160]; /* what was chosen for tracing, and why */
     integrator_t integrator;

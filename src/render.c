@@ -4,6 +4,8 @@
  */
 #include "render.h"
 
+#include "accel.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +13,29 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+
+/* The tracer over an acceleration structure (ch. 7). */
+static bool accel_trace(const void *ctx, const ray_t *r, real tmin, real tmax,
+                        hit_t *hit, const COBJECT **obj)
+{
+    accel_hit_t h;
+    if (!accel_intersect(ctx, r, tmin, tmax, &h))
+        return false;
+    *hit = h.hit;
+    *obj = h.obj;
+    return true;
+}
+
+static bool accel_shadow(const void *ctx, const ray_t *r, real tmin,
+                         real tmax)
+{
+    return accel_occluded(ctx, r, tmin, tmax);
+}
+
+static void accel_release(void *a)
+{
+    accel_free(a);
+}
 
 svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
 {
@@ -31,9 +56,24 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
         if (st != SVET_OK)
             return st;
     }
-    r->tracer = tracer_brute(s);
-    snprintf(r->accel_choice, sizeof r->accel_choice,
-             "brute force over %d objects", s->nobjects);
+    /* The scene's choice of acceleration structure; AUTO picks brute force
+     * for a few primitives and a grid only when there are many (accel.h) */
+    accel_params_t ap;
+    accel_params_default(&ap);
+    ap.kind = (accel_kind)s->render.accel;
+    accel_t *a = NULL;
+    st = accel_build(&a, s->objects, s->nobjects, &ap, err);
+    if (st != SVET_OK) {
+        render_free(r);
+        return st;
+    }
+    r->accel = a;
+    r->accel_free = accel_release;
+    r->tracer.intersect = accel_trace;
+    r->tracer.occluded = accel_shadow;
+    r->tracer.ctx = a;
+    snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
+             accel_describe(a));
     integrator_init(&r->integrator, s, &r->lights, r->tracer);
     st = image_accum_alloc(&r->acc, c->width, c->height, err);
     if (st != SVET_OK) {
