@@ -143,6 +143,53 @@ START_TEST(direction_scaling_is_exact_for_every_length)
 }
 END_TEST
 
+START_TEST(projection_reaches_the_length_for_tiny_and_huge_vectors)
+{
+    /* a hit computed at the sphere's very centre gave (0, 5e-43, 0):
+     * r / |q| overflowed before the scaling by a power of two */
+    const real lens[] = { REAL_C(1e-4), 1, REAL_C(1e6) };
+    const real mags[] = { REAL_MIN / 64, REAL_C(1e-30), 1, REAL_C(1e30),
+                          REAL_MAX / 4 };
+    long cases = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 5; j++, cases++) {
+            VECTOR3 q = { 0, mags[j], -mags[j] / 3 };
+            ck_assert(quadric_project(q, lens[i]));
+            ck_assert(vec_is_finite(q));
+            /* within gamma(6) per component of a vector exactly len long */
+            ck_assert_rel(vec_length(q), lens[i], 8 * REAL_EPSILON, 0);
+            ck_assert(q[X] == 0 && q[Y] > 0 && q[Z] < 0);
+        }
+    VECTOR3 zero = { 0, 0, 0 }, bad = { (real)NAN, 0, 1 };
+    ck_assert(!quadric_project(zero, 1));
+    ck_assert(!quadric_project(bad, 1));
+    test_report_cases(
+        "projection_reaches_the_length_for_tiny_and_huge_vectors", cases);
+}
+END_TEST
+
+START_TEST(disk_hits_miss_parallel_rays_and_include_the_rim)
+{
+    real ts, x, y;
+    VECTOR3 o = { 0, 0, 1 }, along = { 1, 0, 0 }, down = { 0, 0, -1 };
+    ck_assert(!quadric_disk_hit(o, along, 0, 1, &ts, &x, &y));
+    VECTOR3 in_plane = { 0, 0, 0 };
+    ck_assert(!quadric_disk_hit(in_plane, along, 0, 1, &ts, &x, &y));
+    VECTOR3 rim = { 1, 0, 1 }, out = { 0, 0, 1 };
+    ck_assert(quadric_disk_hit(rim, down, 0, 1, &ts, &x, &y));
+    ck_assert(ts == 1 && x == 1 && y == 0);
+    out[X] = nextafter(REAL_C(1.0), REAL_C(2.0));
+    ck_assert(!quadric_disk_hit(out, down, 0, 1, &ts, &x, &y));
+    /* the bound of a box rounds outward */
+    bbox_t b;
+    bbox_empty(&b);
+    VECTOR3 lo = { REAL_C(0.1), -1, 0 }, hi = { REAL_C(0.3), 1, 0 };
+    quadric_bounds_add(&b, lo, hi);
+    for (int k = 0; k < 3; k++)
+        ck_assert(b.min[k] < lo[k] && b.max[k] > hi[k]);
+}
+END_TEST
+
 START_TEST(azimuth_lies_in_zero_to_two_pi)
 {
     ck_assert_near(quadric_phi(0, 0), 0, 0);
@@ -264,6 +311,9 @@ Suite *test_suite(void)
     tcase_add_test(tc, roots_keep_full_precision_where_the_textbook_cancels);
     tcase_add_test(tc, kahan_difference_of_products_is_within_two_ulps);
     tcase_add_test(tc, direction_scaling_is_exact_for_every_length);
+    tcase_add_test(tc,
+                   projection_reaches_the_length_for_tiny_and_huge_vectors);
+    tcase_add_test(tc, disk_hits_miss_parallel_rays_and_include_the_rim);
     tcase_add_test(tc, azimuth_lies_in_zero_to_two_pi);
     tcase_add_test(tc, axis_frame_defect_is_a_quarter_of_its_bound);
     tcase_add_test(tc, frame_points_are_within_their_rounding_bound);
