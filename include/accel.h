@@ -109,6 +109,8 @@ typedef struct {
     long max_cell;        /* most primitives in one cell */
     int depth;            /* deepest level (0: the top only) */
     int res[3];           /* the top level's cells per axis */
+    double box_min[3];    /* and its box: cell (i, j, k) starts at */
+    double box_max[3];    /* box_min + (i, j, k) (box_max - box_min) / res */
 } accel_stats_t;
 
 void accel_get_stats(const accel_t *a, accel_stats_t *s);

@@ -30,7 +30,8 @@ typedef struct {
  * triangles of one grid cell lie side by side in memory;
  * refs[ntri .. nbounded) the other primitives with finite bounds, in the
  * order of the objects; refs[nbounded .. nrefs) those without (infinite
- * planes, say), which are tested for every ray. Degenerate mesh triangles
+ * planes, say: bounds beyond +-REAL_MAX / 16 count as infinite), which
+ * are tested for every ray. Degenerate mesh triangles
  * are left out: they are never hit. */
 typedef struct {
     COBJECT *const *objs;   /* the scene's objects (borrowed) */
@@ -145,7 +146,9 @@ static inline bool primset_test(const primset_t *ps, primset_query_t *q,
     } else {
         const primref_t pr = ps->refs[ref];
         const COBJECT *o = ps->objs[pr.obj];
-        hit_t h;
+        /* zeroed: a primitive may leave part of the scratch b unset, and
+         * every structure must return the same bytes */
+        hit_t h = { 0, 0, { 0, 0, 0 } };
         if (!o->ops->intersect(o, (int)pr.prim, q->r, q->tmin, q->tmax_tie,
                                &h))
             return false;

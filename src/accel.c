@@ -252,8 +252,11 @@ void accel_get_stats(const accel_t *a, accel_stats_t *s)
         s->empty_cells = (long)g->empty_cells;
         s->max_cell = (long)g->max_items;
         s->depth = g->depth;
-        for (int k = 0; k < 3; k++)
+        for (int k = 0; k < 3; k++) {
             s->res[k] = g->nodes[0].res[k];
+            s->box_min[k] = g->nodes[0].min[k];
+            s->box_max[k] = g->nodes[0].max[k];
+        }
     }
 }
 

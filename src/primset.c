@@ -9,10 +9,16 @@
 
 #include <stdlib.h>
 
+/* Bounds that reach past +-REAL_MAX / 16 are taken for infinite: an
+ * infinite plane reports +-REAL_MAX, and a grid over such a box would have
+ * cells wider than anything in the scene. */
 static bool bounds_finite(const bbox_t *b)
 {
-    return vec_is_finite(b->min) && vec_is_finite(b->max) &&
-           !bbox_is_empty(b);
+    const real huge = REAL_MAX / 16;
+    for (int k = 0; k < 3; k++)
+        if (!(fabs(b->min[k]) <= huge && fabs(b->max[k]) <= huge))
+            return false;
+    return !bbox_is_empty(b);
 }
 
 /* Which of the three groups of primset.h primitive (o, k) belongs to. */

@@ -1,0 +1,617 @@
+/*
+ * test_accel.c - ch. 7: the uniform and the hierarchical grid answer
+ * exactly what brute force answers (the same object, sub-primitive and t,
+ * bit for bit, or both miss) on random scenes of meshes and analytic
+ * primitives, for rays of every awkward kind: starting inside, exactly on
+ * cell boundaries, parallel to an axis, lying in a cell plane, aimed at
+ * mesh vertices, from far away, with long and short and exact tmax; shadow
+ * queries agree with nearest-hit queries; empty and degenerate scenes;
+ * queries from two threads; the automatic choice.
+ */
+#include "testutil.h"
+#include "accel.h"
+#include "box.h"
+#include "cone.h"
+#include "cylinder.h"
+#include "disk.h"
+#include "geomcheck.h"
+#include "mesh.h"
+#include "meshgen.h"
+#include "parallelogram.h"
+#include "plane.h"
+#include "sphere.h"
+#include "triangle.h"
+#include "xform.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NKIND 6
+/* The structures compared with brute force: the defaults, and grids made
+ * coarse, fine and deep so that every path of the build and the walk
+ * runs (few and many primitives per cell, nested child grids). */
+static void kind_params(int k, accel_params_t *p)
+{
+    accel_params_default(p);
+    switch (k) {
+    case 0: p->kind = ACCEL_BRUTE; break;
+    case 1: p->kind = ACCEL_GRID; break;
+    case 2: p->kind = ACCEL_HGRID; break;
+    case 3: p->kind = ACCEL_GRID; p->grid_k = 0.4; break;
+    case 4: p->kind = ACCEL_GRID; p->grid_k = 5; break;
+    default:
+        p->kind = ACCEL_HGRID; p->hgrid_k = 0.3; p->hgrid_leaf = 2;
+        p->hgrid_depth = 4; p->hgrid_child_k = 1.5;
+        break;
+    }
+}
+
+typedef struct {
+    COBJECT **objs;
+    int n, cap;
+} scene_t_;
+
+static void add(scene_t_ *s, COBJECT *o)
+{
+    ck_assert_ptr_nonnull(o);
+    if (s->n == s->cap) {
+        s->cap = s->cap ? 2 * s->cap : 16;
+        s->objs = realloc(s->objs, (size_t)s->cap * sizeof *s->objs);
+    }
+    s->objs[s->n++] = o;
+}
+
+static void free_scene(scene_t_ *s)
+{
+    for (int i = 0; i < s->n; i++)
+        cobject_free(s->objs[i]);
+    free(s->objs);
+    memset(s, 0, sizeof *s);
+}
+
+static real uni(pcg32_t *g, real lo, real hi)
+{
+    return lo + (hi - lo) * pcg32_real(g);
+}
+
+static void rand_point(VECTOR3 p, pcg32_t *g, real lo, real hi)
+{
+    vec_set(p, uni(g, lo, hi), uni(g, lo, hi), uni(g, lo, hi));
+}
+
+/* A random scene in [-10, 10]^3 of n objects: meshes (spheres, tori,
+ * terrain patches, thin sliver triangles) and every analytic primitive
+ * there is, some under transforms, one infinite plane now and then. */
+static void random_scene(scene_t_ *s, pcg32_t *g, int n, bool with_plane)
+{
+    svet_error e;
+    for (int i = 0; i < n; i++) {
+        VECTOR3 c, d;
+        rand_point(c, g, -9, 9);
+        real r = uni(g, REAL_C(0.2), REAL_C(2.5));
+        COBJECT *o = NULL;
+        switch (pcg32_bounded(g, 11)) {
+        case 0:
+            ck_assert(meshgen_uv_sphere(&o, c, r, 6 + (int)pcg32_bounded(g, 30),
+                                        3 + (int)pcg32_bounded(g, 15),
+                                        &e) == SVET_OK);
+            break;
+        case 1:
+            ck_assert(meshgen_torus(&o, c, r, r / 3, 8 + (int)pcg32_bounded(g, 20),
+                                    4 + (int)pcg32_bounded(g, 10),
+                                    &e) == SVET_OK);
+            break;
+        case 2:
+            ck_assert(meshgen_terrain(&o, c, 2 * r, r / 2,
+                                      2 + (int)pcg32_bounded(g, 12),
+                                      pcg32_next(g), &e) == SVET_OK);
+            break;
+        case 3:
+            o = sphere_new(c, r, &e);
+            break;
+        case 4:
+            vec_set(d, r, r / 2, r / 3);
+            vec_add(d, c, d);
+            o = box_new(c, d, &e);
+            break;
+        case 5: {
+            VECTOR3 c1 = { c[X] + r, c[Y], c[Z] }, c3 = { c[X], c[Y] + r, c[Z] + r };
+            o = parallelogram_new(c, c1, c3, &e);
+            break;
+        }
+        case 6:
+            geomcheck_random_dir(d, g);
+            o = disk_new(c, d, r, &e);
+            break;
+        case 7:
+            geomcheck_random_dir(d, g);
+            vec_add_scaled(d, c, 2 * r, d);
+            o = pcg32_bounded(g, 2) ? cylinder_new(c, d, r / 2, true, &e)
+                                    : cone_new(c, d, r / 2, true, &e);
+            break;
+        case 8: {
+            VECTOR3 p1, p2;
+            rand_point(p1, g, -1, 1);
+            rand_point(p2, g, -REAL_C(0.01), REAL_C(0.01));
+            vec_add_scaled(p1, c, 3 * r, p1);
+            vec_add(p2, p2, c);
+            o = triangle_new(c, p1, p2, &e); /* a sliver, not a mesh */
+            break;
+        }
+        case 9: {
+            VECTOR3 lo = { -1, -1, -1 }, hi = { 1, 1, 1 }, ax, sc = { r, r / 2, r };
+            geomcheck_random_dir(ax, g);
+            xform_t x = xform_compose(
+                xform_compose(xform_scale(sc),
+                              xform_rotate(ax, uni(g, 0, 360))),
+                xform_translate(c));
+            o = xform_new(pcg32_bounded(g, 2) ? box_new(lo, hi, &e)
+                                              : sphere_new(lo, 1, &e),
+                          &x, &e);
+            break;
+        }
+        default: {
+            /* a mesh with degenerate and sliver triangles among good ones */
+            mesh_t m = { 0 };
+            m.nverts = 5;
+            m.ntris = 4;
+            m.p = malloc(5 * sizeof *m.p);
+            m.tri = malloc(4 * sizeof *m.tri);
+            for (int k = 0; k < 4; k++)
+                rand_point(m.p[k], g, -r, r), vec_add(m.p[k], m.p[k], c);
+            vec_copy(m.p[4], m.p[0]);
+            int32_t t[4][3] = { { 0, 1, 2 }, { 0, 4, 3 }, { 1, 2, 3 },
+                                { 2, 2, 3 } };
+            memcpy(m.tri, t, sizeof t);
+            ck_assert(mesh_new(&o, &m, &e) == SVET_OK);
+            break;
+        }
+        }
+        ck_assert_msg(o != NULL, "%s", e.msg);
+        add(s, o);
+    }
+    if (with_plane) {
+        VECTOR3 p = { 0, -9, 0 }, nrm = { 0, 1, REAL_C(0.1) };
+        add(s, plane_new(p, nrm, &e));
+    }
+}
+
+/* Compare every kind with brute force on one ray; count hits. */
+typedef struct {
+    accel_t *a[NKIND];
+    long rays, hits, mismatches;
+} bench_t;
+
+static void compare(bench_t *b, const ray_t *r, real tmin, real tmax)
+{
+    accel_hit_t h[NKIND];
+    bool found[NKIND];
+    for (int k = 0; k < NKIND; k++) {
+        found[k] = accel_intersect(b->a[k], r, tmin, tmax, &h[k]);
+        bool occ = accel_occluded(b->a[k], r, tmin, tmax);
+        ck_assert_msg(occ == found[k],
+                      "kind %d: occluded %d but nearest found %d", k, occ,
+                      found[k]);
+    }
+    for (int k = 1; k < NKIND; k++) {
+        bool same = found[k] == found[0];
+        /* b is each primitive's own scratch: compared for meshes (ours),
+         * whose surface() reads all three barycentrics */
+        if (same && found[0])
+            same = h[k].obj == h[0].obj && h[k].hit.prim == h[0].hit.prim &&
+                   memcmp(&h[k].hit.t, &h[0].hit.t, sizeof(real)) == 0 &&
+                   (!mesh_get(h[0].obj) ||
+                    memcmp(h[k].hit.b, h[0].hit.b, sizeof h[0].hit.b) == 0);
+        ck_assert_msg(same,
+                      "kind %d disagrees with brute force: found %d/%d, t %.9g "
+                      "/ %.9g, prim %d / %d; ray o (%a %a %a) d (%a %a %a) "
+                      "tmin %g tmax %g",
+                      k, found[k], found[0], (double)h[k].hit.t,
+                      (double)h[0].hit.t, h[k].hit.prim, h[0].hit.prim,
+                      (double)r->o[X], (double)r->o[Y], (double)r->o[Z],
+                      (double)r->d[X], (double)r->d[Y], (double)r->d[Z],
+                      (double)tmin, (double)tmax);
+    }
+    b->rays++;
+    b->hits += found[0];
+}
+
+static void build_all(bench_t *b, COBJECT **objs, int n)
+{
+    memset(b, 0, sizeof *b);
+    for (int k = 0; k < NKIND; k++) {
+        accel_params_t p;
+        kind_params(k, &p);
+        svet_error e;
+        ck_assert_msg(accel_build(&b->a[k], objs, n, &p, &e) == SVET_OK, "%s",
+                      e.msg);
+    }
+}
+
+static void free_all(bench_t *b)
+{
+    for (int k = 0; k < NKIND; k++)
+        accel_free(b->a[k]);
+}
+
+/* A cell boundary coordinate of kind k's top grid on axis a. */
+static real boundary(const accel_t *a, int axis, pcg32_t *g)
+{
+    accel_stats_t s;
+    accel_get_stats(a, &s);
+    int i = (int)pcg32_bounded(g, (uint32_t)s.res[axis] + 1);
+    double w = (s.box_max[axis] - s.box_min[axis]) / s.res[axis];
+    return (real)(s.box_min[axis] + i * w);
+}
+
+/* Rays of every kind through one scene. */
+static void rays_of_every_kind(bench_t *b, const COBJECT *const *objs, int n,
+                               pcg32_t *g, int count)
+{
+    for (int i = 0; i < count; i++) {
+        ray_t r;
+        int kind = i % 10;
+        rand_point(r.o, g, -12, 12);
+        geomcheck_random_dir(r.d, g);
+        real tmin = 0, tmax = (real)INFINITY;
+        switch (kind) {
+        case 0: /* from outside, toward the scene */
+            geomcheck_random_dir(r.o, g);
+            vec_scale(r.o, r.o, 30);
+            {
+                VECTOR3 t;
+                rand_point(t, g, -8, 8);
+                vec_sub(r.d, t, r.o);
+            }
+            break;
+        case 1: /* parallel to an axis */
+            vec_set(r.d, 0, 0, 0);
+            r.d[pcg32_bounded(g, 3)] = pcg32_bounded(g, 2) ? 1 : -1;
+            break;
+        case 2: /* origin on a cell boundary (of a grid), on 1 to 3 axes */
+            for (int a = 0; a < 3; a++)
+                if (a == 0 || pcg32_bounded(g, 2))
+                    r.o[a] = boundary(b->a[1 + (int)pcg32_bounded(g, 5)], a, g);
+            break;
+        case 3: { /* in a cell plane: on a boundary, no motion across it */
+            int a = (int)pcg32_bounded(g, 3);
+            r.o[a] = boundary(b->a[1 + (int)pcg32_bounded(g, 5)], a, g);
+            r.d[a] = 0;
+            if (pcg32_bounded(g, 2)) /* and along an axis within it */
+                r.d[(a + 1) % 3] = 0;
+            break;
+        }
+        case 4: { /* at a mesh vertex or a primitive's sampled point */
+            const COBJECT *o = objs[pcg32_bounded(g, (uint32_t)n)];
+            const mesh_t *m = mesh_get(o);
+            VECTOR3 t;
+            if (m) {
+                vec_copy(t, m->p[pcg32_bounded(g, (uint32_t)m->nverts)]);
+            } else {
+                real u[2] = { pcg32_real(g), pcg32_real(g) };
+                cobject_sample_t sm;
+                o->ops->sample(o, u, &sm);
+                vec_copy(t, sm.p);
+            }
+            vec_sub(r.d, t, r.o);
+            break;
+        }
+        case 5: /* short and long tmax */
+            tmax = pcg32_bounded(g, 2) ? uni(g, 0, 3) : REAL_C(1e30);
+            break;
+        case 6: /* tmin > 0 */
+            tmin = uni(g, 0, 5);
+            break;
+        case 7: /* very far away, aimed at the scene */
+            geomcheck_random_dir(r.o, g);
+            vec_scale(r.o, r.o, REAL_C(2e4));
+            {
+                VECTOR3 t;
+                rand_point(t, g, -8, 8);
+                vec_sub(r.d, t, r.o);
+            }
+            break;
+        case 8: /* tiny and huge direction lengths */
+            vec_scale(r.d, r.d, pcg32_bounded(g, 2) ? REAL_C(1e-20) : REAL_C(1e15));
+            break;
+        default: /* from inside the scene box, as incoherent rays start */
+            rand_point(r.o, g, -9, 9);
+            break;
+        }
+        if (vec_length2(r.d) == 0)
+            continue;
+        compare(b, &r, tmin, tmax);
+        /* the nearest hit's t as tmax excludes it (open interval), and
+         * as tmin finds what lies beyond */
+        accel_hit_t h;
+        if (i % 3 == 0 && accel_intersect(b->a[0], &r, tmin, tmax, &h)) {
+            compare(b, &r, tmin, h.hit.t);
+            compare(b, &r, h.hit.t, tmax);
+        }
+    }
+}
+
+START_TEST(grids_answer_exactly_what_brute_force_answers)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 2024, 7);
+    long rays = 0, hits = 0;
+    for (int sc = 0; sc < 24; sc++) {
+        scene_t_ s = { 0 };
+        random_scene(&s, &g, 4 + (int)pcg32_bounded(&g, 60), sc % 4 == 0);
+        bench_t b;
+        build_all(&b, s.objs, s.n);
+        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 3000);
+        rays += b.rays;
+        hits += b.hits;
+        free_all(&b);
+        free_scene(&s);
+    }
+    ck_assert(hits > rays / 5);
+    test_report_cases("grids_answer_exactly_what_brute_force_answers (rays x "
+                      "5 structures)", rays);
+}
+END_TEST
+
+/* A dense mesh inside a sparse one: hierarchy at work, rays at the
+ * teapot, parallel to axes and from inside it. */
+START_TEST(grids_agree_on_the_teapot_in_a_stadium)
+{
+    meshgen_scene_t s;
+    svet_error e;
+    ck_assert(meshgen_teapot_stadium(&s, 20000, &e) == SVET_OK);
+    bench_t b;
+    build_all(&b, s.objs, s.nobjs);
+    accel_stats_t st;
+    accel_get_stats(b.a[2], &st);
+    ck_assert_msg(st.depth >= 1 && st.nodes > 1, "hgrid not refined: depth %d",
+                  st.depth);
+    pcg32_t g;
+    pcg32_seed(&g, 5, 6);
+    for (int i = 0; i < 6000; i++) {
+        ray_t r;
+        VECTOR3 t = { uni(&g, -1, 1), uni(&g, -1, 1), uni(&g, 0, 2) };
+        if (i % 3 == 0) {
+            rand_point(r.o, &g, -5, 5);
+            r.o[Z] += 5;
+        } else if (i % 3 == 1) {
+            rand_point(r.o, &g, -REAL_C(0.5), REAL_C(0.5));
+            r.o[Z] += 1;
+        } else {
+            rand_point(r.o, &g, -500, 500);
+            r.o[Z] = fabs(r.o[Z]);
+        }
+        vec_sub(r.d, t, r.o);
+        if (i % 5 == 0)
+            geomcheck_random_dir(r.d, &g);
+        if (i % 7 == 0) {
+            vec_set(r.d, 0, 0, 0);
+            r.d[i % 3] = i % 2 ? 1 : -1;
+        }
+        compare(&b, &r, 0, (real)INFINITY);
+    }
+    test_report_cases("grids_agree_on_the_teapot_in_a_stadium", b.rays);
+    free_all(&b);
+    meshgen_free_objects(&s);
+}
+END_TEST
+
+START_TEST(empty_and_degenerate_scenes_never_hit)
+{
+    bench_t b;
+    pcg32_t g;
+    pcg32_seed(&g, 1, 1);
+    /* no objects at all, and NULL entries */
+    COBJECT *none[3] = { NULL, NULL, NULL };
+    build_all(&b, none, 0);
+    ray_t r = { { 0, 0, 0 }, { 1, 0, 0 } };
+    for (int k = 0; k < NKIND; k++) {
+        accel_hit_t h;
+        ck_assert(!accel_intersect(b.a[k], &r, 0, (real)INFINITY, &h));
+        ck_assert(!accel_occluded(b.a[k], &r, 0, (real)INFINITY));
+    }
+    free_all(&b);
+    build_all(&b, none, 3);
+    free_all(&b);
+    /* only degenerate triangles: nothing to index */
+    mesh_t m = { 0 };
+    m.nverts = 3;
+    m.ntris = 2;
+    m.p = calloc(3, sizeof *m.p);
+    m.tri = calloc(2, sizeof *m.tri);
+    m.p[1][X] = 1;
+    m.p[2][X] = 2; /* collinear */
+    m.tri[0][1] = 1;
+    m.tri[0][2] = 2;
+    COBJECT *o;
+    svet_error e;
+    ck_assert(mesh_new(&o, &m, &e) == SVET_OK);
+    build_all(&b, &o, 1);
+    accel_stats_t st;
+    accel_get_stats(b.a[1], &st);
+    ck_assert_int_eq(st.prims, 0);
+    ray_t down = { { 1, 0, 1 }, { 0, 0, -1 } };
+    compare(&b, &down, 0, (real)INFINITY);
+    free_all(&b);
+    cobject_free(o);
+}
+END_TEST
+
+/* One triangle far larger than anything: it spans every cell. */
+START_TEST(a_single_huge_triangle_is_found_from_everywhere)
+{
+    VECTOR3 p0 = { -1e4, -1e4, 0 }, p1 = { 1e4, -1e4, REAL_C(0.5) },
+            p2 = { 0, 1e4, -REAL_C(0.5) };
+    svet_error e;
+    scene_t_ s = { 0 };
+    add(&s, triangle_new(p0, p1, p2, &e));
+    mesh_t m = { 0 };
+    m.nverts = 3;
+    m.ntris = 1;
+    m.p = malloc(3 * sizeof *m.p);
+    m.tri = calloc(1, sizeof *m.tri);
+    vec_copy(m.p[0], p0);
+    vec_copy(m.p[1], p1);
+    vec_copy(m.p[2], p2);
+    m.p[0][Z] += 3;
+    m.tri[0][1] = 1;
+    m.tri[0][2] = 2;
+    COBJECT *o;
+    ck_assert(mesh_new(&o, &m, &e) == SVET_OK);
+    add(&s, o);
+    pcg32_t g;
+    pcg32_seed(&g, 9, 9);
+    for (int j = 0; j < 20; j++) { /* and small things near it */
+        VECTOR3 c;
+        rand_point(c, &g, -3, 3);
+        add(&s, sphere_new(c, REAL_C(0.3), &e));
+    }
+    bench_t b;
+    build_all(&b, s.objs, s.n);
+    for (int i = 0; i < 5000; i++) {
+        ray_t r;
+        rand_point(r.o, &g, -2e4, 2e4);
+        if (i % 2)
+            rand_point(r.o, &g, -3, 3);
+        geomcheck_random_dir(r.d, &g);
+        compare(&b, &r, 0, (real)INFINITY);
+    }
+    ck_assert(b.hits > 1000);
+    test_report_cases("a_single_huge_triangle_is_found_from_everywhere", b.rays);
+    free_all(&b);
+    free_scene(&s);
+}
+END_TEST
+
+/* Bad rays are misses, never a crash or a hang. */
+START_TEST(bad_rays_are_misses)
+{
+    meshgen_scene_t s;
+    svet_error e;
+    ck_assert(meshgen_sphere_grid(&s, 2, 2000, &e) == SVET_OK);
+    bench_t b;
+    build_all(&b, s.objs, s.nobjs);
+    const real nan = (real)NAN, inf = (real)INFINITY;
+    ray_t rays[] = { { { 0, 0, 0 }, { 0, 0, 0 } },
+                     { { nan, 0, 0 }, { 1, 0, 0 } },
+                     { { 0, 0, 0 }, { inf, 1, 0 } },
+                     { { inf, 0, 0 }, { -1, 0, 0 } },
+                     { { 1, 1, 1 }, { nan, nan, nan } } };
+    for (int k = 0; k < NKIND; k++)
+        for (int i = 0; i < 5; i++) {
+            accel_hit_t h;
+            ck_assert(!accel_intersect(b.a[k], &rays[i], 0, inf, &h));
+            ck_assert(!accel_occluded(b.a[k], &rays[i], 0, inf));
+        }
+    ray_t ok = { { -5, 0, 0 }, { 1, 0, 0 } };
+    for (int k = 0; k < NKIND; k++) {
+        accel_hit_t h;
+        ck_assert(!accel_intersect(b.a[k], &ok, nan, inf, &h));
+        ck_assert(!accel_intersect(b.a[k], &ok, 0, nan, &h));
+        ck_assert(!accel_intersect(b.a[k], &ok, 5, 5, &h));
+        ck_assert(accel_intersect(b.a[k], &ok, 0, inf, &h));
+    }
+    free_all(&b);
+    meshgen_free_objects(&s);
+}
+END_TEST
+
+/* Queries share nothing mutable: two threads get what one gets. */
+START_TEST(queries_from_two_threads_match_one)
+{
+    meshgen_scene_t s;
+    svet_error e;
+    ck_assert(meshgen_sphere_grid(&s, 3, 20000, &e) == SVET_OK);
+    accel_t *a;
+    accel_params_t p;
+    accel_params_default(&p);
+    p.kind = ACCEL_HGRID;
+    ck_assert(accel_build(&a, s.objs, s.nobjs, &p, &e) == SVET_OK);
+    enum { N = 20000 };
+    ray_t *r = malloc(N * sizeof *r);
+    real *t1 = malloc(N * sizeof *t1), *t2 = malloc(N * sizeof *t2);
+    pcg32_t g;
+    pcg32_seed(&g, 3, 3);
+    for (int i = 0; i < N; i++) {
+        rand_point(r[i].o, &g, -1, 7);
+        geomcheck_random_dir(r[i].d, &g);
+        accel_hit_t h;
+        t1[i] = accel_intersect(a, &r[i], 0, (real)INFINITY, &h) ? h.hit.t : -1;
+    }
+#pragma omp parallel for num_threads(2) schedule(dynamic, 64)
+    for (int i = 0; i < N; i++) {
+        accel_hit_t h;
+        t2[i] = accel_intersect(a, &r[i], 0, (real)INFINITY, &h) ? h.hit.t : -1;
+    }
+    ck_assert(memcmp(t1, t2, N * sizeof *t1) == 0);
+    test_report_cases("queries_from_two_threads_match_one", N);
+    free(r);
+    free(t1);
+    free(t2);
+    accel_free(a);
+    meshgen_free_objects(&s);
+}
+END_TEST
+
+START_TEST(auto_picks_from_the_scene_and_says_why)
+{
+    svet_error e;
+    accel_t *a;
+    accel_stats_t st;
+    /* a handful of objects: brute force */
+    scene_t_ few = { 0 };
+    VECTOR3 c = { 0, 0, 0 };
+    for (int i = 0; i < 5; i++)
+        add(&few, sphere_new(c, 1 + (real)i, &e));
+    ck_assert(accel_build(&a, few.objs, few.n, NULL, &e) == SVET_OK);
+    accel_get_stats(a, &st);
+    ck_assert_int_eq(st.kind, ACCEL_BRUTE);
+    ck_assert(strncmp(accel_describe(a), "brute (auto: 5 primitives", 25) == 0);
+    accel_free(a);
+    free_scene(&few);
+    /* spheres spread evenly: the uniform grid */
+    meshgen_scene_t s;
+    ck_assert(meshgen_sphere_grid(&s, 5, 20000, &e) == SVET_OK);
+    ck_assert(accel_build(&a, s.objs, s.nobjs, NULL, &e) == SVET_OK);
+    accel_get_stats(a, &st);
+    ck_assert_msg(st.kind == ACCEL_GRID, "%s", accel_describe(a));
+    ck_assert(strncmp(accel_describe(a), "grid (auto: ", 12) == 0);
+    accel_free(a);
+    meshgen_free_objects(&s);
+    /* the teapot in a stadium: the hierarchical grid */
+    ck_assert(meshgen_teapot_stadium(&s, 20000, &e) == SVET_OK);
+    ck_assert(accel_build(&a, s.objs, s.nobjs, NULL, &e) == SVET_OK);
+    accel_get_stats(a, &st);
+    ck_assert_msg(st.kind == ACCEL_HGRID, "%s", accel_describe(a));
+    ck_assert(st.bytes > 0 && st.build_seconds >= 0);
+    accel_free(a);
+    meshgen_free_objects(&s);
+    /* names */
+    accel_kind k;
+    ck_assert(accel_kind_parse("hgrid", &k, &e) == SVET_OK && k == ACCEL_HGRID);
+    ck_assert(accel_kind_parse("octree", &k, &e) == SVET_ERR_PARSE);
+    ck_assert_str_eq(e.msg, "unknown acceleration structure 'octree' "
+                            "(expected auto, brute, grid or hgrid)");
+    accel_params_t p;
+    accel_params_default(&p);
+    p.grid_k = -1;
+    ck_assert(accel_build(&a, NULL, 0, &p, &e) == SVET_ERR_RANGE);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("accel");
+    TCase *tc = tcase_create("accel");
+    tcase_set_timeout(tc, 600);
+    tcase_add_test(tc, grids_answer_exactly_what_brute_force_answers);
+    tcase_add_test(tc, grids_agree_on_the_teapot_in_a_stadium);
+    tcase_add_test(tc, empty_and_degenerate_scenes_never_hit);
+    tcase_add_test(tc, a_single_huge_triangle_is_found_from_everywhere);
+    tcase_add_test(tc, bad_rays_are_misses);
+    tcase_add_test(tc, queries_from_two_threads_match_one);
+    tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
+    suite_add_tcase(s, tc);
+    return s;
+}
