@@ -11,6 +11,7 @@
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L /* clock_gettime, mkdtemp, sysconf */
 #endif
+#include "bench.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,36 +35,10 @@
 #define COMPILER "unknown compiler"
 #endif
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void die(const char *what, const svet_error *e)
 {
     fprintf(stderr, "bench_display: %s: %s\n", what, e->msg);
     exit(1);
-}
-
-static void cpu_model(char *out, size_t n)
-{
-    snprintf(out, n, "unknown CPU");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return;
-    char line[512];
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, "model name", 10) == 0) {
-            char *colon = strchr(line, ':');
-            if (colon) {
-                snprintf(out, n, "%s", colon + 2);
-                out[strcspn(out, "\n")] = '\0';
-            }
-            break;
-        }
-    fclose(f);
 }
 
 /* A smooth HDR image with noise (as a render at modest spp): 10^-3 to
@@ -98,19 +73,19 @@ typedef struct {
 static result_t timeit(const char *what, void (*f)(void *), void *ctx)
 {
     result_t r = { what, 0, 0 };
-    double start = now(), best = 1e300;
-    while (r.runs < 3 || now() - start < 1.5) {
-        double t0 = now();
+    double start = bench_now(), best = 1e300;
+    while (r.runs < 3 || bench_now() - start < 1.5) {
+        double t0 = bench_now();
         long reps = 0;
         do {
             f(ctx);
             reps++;
-        } while (now() - t0 < 0.2);
-        double per = (now() - t0) / (double)reps;
+        } while (bench_now() - t0 < 0.2);
+        double per = (bench_now() - t0) / (double)reps;
         if (per < best)
             best = per;
         r.runs++;
-        if (now() - start > 8)
+        if (bench_now() - start > 8)
             break;
     }
     r.mps = (double)BW * BH / best / 1e6;
@@ -241,7 +216,7 @@ int main(int argc, char **argv)
     rmdir(dir);
 
     char cpu[256], table[8192], load[64] = "unknown";
-    cpu_model(cpu, sizeof cpu);
+    bench_cpu_model(cpu, sizeof cpu);
     FILE *lf = fopen("/proc/loadavg", "r");
     if (lf) {
         if (fgets(load, sizeof load, lf))

@@ -15,6 +15,7 @@
  *   bench_geometry --csv FILE        measure, write rows to FILE
  *   bench_geometry --report F D      the Markdown tables from two CSVs
  */
+#include "bench.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -274,13 +275,6 @@ static bool exact_hit(const shape_t *sh, const ray_t *r, real t0, ld p[3])
 
 /* --- measuring ---------------------------------------------------------- */
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void make_rays(ray_t *rays, int n, const COBJECT *o,
                       const shape_t *sh, pcg32_t *g)
 {
@@ -337,12 +331,12 @@ static int run_csv(const char *path)
         long hits = 0;
         for (int rep = 0; rep < 3; rep++) {
             hits = 0;
-            double t0 = now();
+            double t0 = bench_now();
             for (int i = 0; i < nspeed; i++) {
                 hit_t h;
                 hits += o->ops->intersect(o, 0, &rays[i], 0, (real)INFINITY, &h);
             }
-            double dt = now() - t0;
+            double dt = bench_now() - t0;
             if (dt < best)
                 best = dt;
         }
@@ -442,25 +436,6 @@ static int load(const char *path, row_t *rows)
     return n;
 }
 
-static void cpu_model(char *out, size_t n)
-{
-    snprintf(out, n, "unknown CPU");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return;
-    char line[512];
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, "model name", 10) == 0) {
-            char *c = strchr(line, ':');
-            if (c) {
-                snprintf(out, n, "%s", c + 2);
-                out[strcspn(out, "\n")] = '\0';
-            }
-            break;
-        }
-    fclose(f);
-}
-
 static int report(const char *fpath, const char *dpath)
 {
     static row_t fr[MAXROWS], dr[MAXROWS];
@@ -468,7 +443,7 @@ static int report(const char *fpath, const char *dpath)
     if (nf < 0 || nd < 0 || nf != nd)
         return 1;
     char cpu[256];
-    cpu_model(cpu, sizeof cpu);
+    bench_cpu_model(cpu, sizeof cpu);
     printf("## Primitives (app. D): speed and accuracy, float against double\n\n"
            "Machine: %s, %ld cores; %s; one thread; command `make "
            "bench-geometry`.\n\n", cpu, sysconf(_SC_NPROCESSORS_ONLN),

@@ -7,6 +7,7 @@
  * kept in out/bench/cbox-ref.exr for the next run.
  * usage: bench_render [scene] [ref_spp]
  */
+#include "bench.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,13 +19,6 @@
 #include "imgcompare.h"
 #include "render.h"
 #include "scenefile.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void die(const char *what, const svet_error *e)
 {
@@ -40,32 +34,13 @@ static void run(const scene_t *s, long spp, int threads, image_t *img,
     render_t r;
     if (render_init(&r, s, &e) != SVET_OK)
         die("render_init", &e);
-    double t0 = now();
+    double t0 = bench_now();
     render_pass(&r, spp, threads, NULL, NULL);
-    *secs = now() - t0;
+    *secs = bench_now() - t0;
     *rays = (double)r.stats.rays;
     if (img && render_image(&r, img, &e) != SVET_OK)
         die("render_image", &e);
     render_free(&r);
-}
-
-static void cpu_model(char *out, size_t n)
-{
-    snprintf(out, n, "unknown CPU");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return;
-    char line[512];
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, "model name", 10) == 0) {
-            char *c = strchr(line, ':');
-            if (c) {
-                snprintf(out, n, "%s", c + 2);
-                out[strcspn(out, "\n")] = '\0';
-            }
-            break;
-        }
-    fclose(f);
 }
 
 int main(int argc, char **argv)
@@ -78,7 +53,7 @@ int main(int argc, char **argv)
     if (scenefile_read(&s, path, &e) != SVET_OK)
         die(path, &e);
     char cpu[256];
-    cpu_model(cpu, sizeof cpu);
+    bench_cpu_model(cpu, sizeof cpu);
     long px = (long)s.camera.width * s.camera.height;
 
     printf("## Rendering: %s (%dx%d, max depth %d, %s)\n\n", path,

@@ -1,0 +1,51 @@
+/*
+ * bench.h - what every benchmark shares: a monotonic clock and the machine
+ * line each table is printed with (CPU model, cores, compiler), so that a
+ * figure always says where it was measured.
+ */
+#ifndef SVET_BENCH_H
+#define SVET_BENCH_H
+
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+/* Seconds on a monotonic clock. */
+static inline double bench_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The CPU's model name from /proc/cpuinfo, or "unknown CPU". */
+static inline void bench_cpu_model(char *out, size_t n)
+{
+    snprintf(out, n, "unknown CPU");
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    if (!f)
+        return;
+    char line[512];
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, "model name", 10) == 0) {
+            char *c = strchr(line, ':');
+            if (c) {
+                snprintf(out, n, "%s", c + 2);
+                out[strcspn(out, "\n")] = '\0';
+            }
+            break;
+        }
+    fclose(f);
+}
+
+/* "Machine: <cpu>, <n> cores; compiler <version>" */
+static inline void bench_print_machine(FILE *f)
+{
+    char cpu[256];
+    bench_cpu_model(cpu, sizeof cpu);
+    fprintf(f, "Machine: %s, %ld cores; compiler gcc-compatible %s", cpu,
+            sysconf(_SC_NPROCESSORS_ONLN), __VERSION__);
+}
+
+#endif
