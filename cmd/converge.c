@@ -23,6 +23,7 @@
 #include "exrio.h"
 #include "render.h"
 #include "scenefile.h"
+#include "ztest.h"
 
 extern char **environ;
 
@@ -36,6 +37,8 @@ void cmd_converge_help(FILE *f)
 "usage: svet converge SCENE --ref REF.exr [options]\n"
 "       svet converge --report [--metric rel|abs] [--time T] [--error E]\n"
 "                     SERIES.csv ...\n"
+"       svet converge --ztest IMAGE.exr --spp N --ref REF.exr [--var V.exr]\n"
+"                     [--ref-var RV.exr] [--ref-spp M] [--pvalue P.exr]\n"
 "\n"
 "Render SCENE progressively and measure it against the converged reference\n"
 "REF.exr after each sample count of --spp-list (or each time budget of\n"
@@ -74,7 +77,8 @@ void cmd_converge_help(FILE *f)
 "                        relative to the current directory)\n"
 "  -q, --quiet           no progress lines\n"
 "  -h, --help            this text\n"
-"\n"
+"\n");
+    fprintf(f,
 "--report reads the CSV files, the first being the baseline, and prints a\n"
 "Markdown table: each method's error at time T (default: the shortest of\n"
 "the series' longest times), the time it needs to reach error E (default:\n"
@@ -84,6 +88,16 @@ void cmd_converge_help(FILE *f)
 "the default) or absolute (abs) error and variance. Values outside a series\n"
 "are extrapolated by MSE = bias^2 + c / t and marked ~.\n"
 "\n"
+"--ztest compares IMAGE.exr, the mean of N samples per pixel with its\n"
+"variance image (--var; default IMAGE-var.exr, as svet render --variance\n"
+"writes it), with the reference REF.exr (variance --ref-var, default\n"
+"REF-var.exr; spp --ref-spp, default the `spp = ` line of REF.txt) by the\n"
+"Z-test of the regression test (include/ztest.h; tests/reference/README.md):\n"
+"per pixel and on blocks of 4, 16, ... pixels, Sidak-corrected at alpha\n"
+"0.01, each level passing when 99.5%% of its cells pass. Prints one line per\n"
+"level, then pass or FAIL; --pvalue writes the per-pixel p-values. Exit 0\n"
+"when it passes, 5 when it fails. This is how a port checks its images.\n"
+"\n"
 "The plot: when the script exists and gnuplot is on PATH, svet converge runs\n"
 "`gnuplot -e \"files=...; out=...\" SCRIPT` (posix_spawnp) and writes\n"
 "DIR/LABEL.png, the relative RMSE against time on log-log axes; otherwise it\n"
@@ -92,7 +106,7 @@ void cmd_converge_help(FILE *f)
 "\n"
 "exit codes: 0 done; 1 bad command line; 2 the scene, the reference or a CSV\n"
 "is missing or malformed, or they do not fit together; 3 an output could\n"
-"not be written.\n");
+"not be written; 5 --ztest: the image fails the test.\n");
 }
 
 static double now(void)
@@ -342,6 +356,110 @@ done:
 
 /* ------------------------------------------------------------------------ */
 
+/* The spp recorded in a reference's description "<REF>.txt" (the
+ * "spp = N" line of tools/reference.sh), or 0. */
+static double spp_from_description(const char *ref)
+{
+    size_t n = strlen(ref);
+    const char *dot = strrchr(ref, '.'), *slash = strrchr(ref, '/');
+    if (dot && (!slash || dot > slash))
+        n = (size_t)(dot - ref);
+    char path[4096];
+    if (n + 5 > sizeof path)
+        return 0;
+    memcpy(path, ref, n);
+    strcpy(path + n, ".txt");
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    char line[1024];
+    double spp = 0;
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, "spp = ", 6) == 0)
+            spp = strtod(line + 6, NULL);
+    fclose(f);
+    return spp > 0 ? spp : 0;
+}
+
+static char *variance_name(const char *ref);
+
+/* --ztest: the test of tests/test_reference.c on two image files. */
+static int ztest_files(const char *img_path, const char *var_path,
+                       double spp, const char *ref_path,
+                       const char *ref_var_path, double ref_spp,
+                       const char *pvalue_path)
+{
+    image_t img, var, ref, rvar, pv;
+    memset(&img, 0, sizeof img);
+    memset(&var, 0, sizeof var);
+    memset(&ref, 0, sizeof ref);
+    memset(&rvar, 0, sizeof rvar);
+    memset(&pv, 0, sizeof pv);
+    char *vdef = var_path ? NULL : variance_name(img_path);
+    char *rdef = ref_var_path ? NULL : variance_name(ref_path);
+    var_path = var_path ? var_path : vdef;
+    ref_var_path = ref_var_path ? ref_var_path : rdef;
+    if (!(ref_spp > 0))
+        ref_spp = spp_from_description(ref_path);
+    int rc = SVET_EXIT_OK;
+    svet_error err;
+    if (!var_path || !ref_var_path) {
+        fprintf(stderr, "svet converge: out of memory\n");
+        rc = SVET_EXIT_INPUT;
+        goto done;
+    }
+    if (exrio_read(img_path, &img, &err) != SVET_OK ||
+        exrio_read(var_path, &var, &err) != SVET_OK ||
+        exrio_read(ref_path, &ref, &err) != SVET_OK ||
+        exrio_read(ref_var_path, &rvar, &err) != SVET_OK) {
+        fprintf(stderr, "svet converge: %s\n", err.msg);
+        rc = SVET_EXIT_INPUT;
+        goto done;
+    }
+    ztest_image_t A = { &img, &var, spp }, B = { &ref, &rvar, ref_spp };
+    ztest_params_t p;
+    ztest_params_default(&p);
+    ztest_result_t res;
+    if (ztest_run(&A, &B, &p, &res, pvalue_path ? &pv : NULL, &err) !=
+        SVET_OK) {
+        fprintf(stderr, "svet converge: %s\n", err.msg);
+        rc = SVET_EXIT_INPUT;
+        goto done;
+    }
+    printf("# z-test of %s (%g spp) against %s (%g spp): alpha %g over "
+           "%ld values, per-value significance %.3g; a level passes when "
+           "%g%% of its cells pass\n", img_path, spp, ref_path, ref_spp,
+           p.alpha, res.values, res.threshold, 100 * p.min_pass);
+    if (!(spp > 0) || !(ref_spp > 0))
+        printf("# (an spp is unknown: no variance floor)\n");
+    printf("block cells failed min_p worst_z pass\n");
+    for (int l = 0; l < res.nlevels; l++) {
+        const ztest_level_t *L = &res.level[l];
+        printf("%d %ld %ld %.4g %+.4g %s\n", L->block, L->cells, L->failed,
+               L->min_p, L->worst_z, L->pass ? "yes" : "NO");
+    }
+    printf("%s\n", res.pass ? "pass" : "FAIL");
+    if (pvalue_path && exrio_write(pvalue_path, &pv, EXRIO_FLOAT, EXRIO_ZIP,
+                                   &err) != SVET_OK) {
+        fprintf(stderr, "svet converge: %s\n", err.msg);
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    if (!res.pass)
+        rc = SVET_EXIT_DIFFERENT;
+done:
+    image_free(&img);
+    image_free(&var);
+    image_free(&ref);
+    image_free(&rvar);
+    image_free(&pv);
+    free(vdef);
+    free(rdef);
+    return rc;
+}
+
+/* ------------------------------------------------------------------------ */
+
 typedef struct {
     render_t *r;
     const image_t *ref, *ref_var;
@@ -459,7 +577,8 @@ int cmd_converge(int argc, char **argv)
     const char *sets[MAX_SETS];
     char *files[256];
     int nsets = 0, nfiles = 0, nlist = 0;
-    double list[MAX_POINTS], T = 0, E = 0;
+    double list[MAX_POINTS], T = 0, E = 0, zspp = 0, ref_spp = 0;
+    const char *ztest_img = NULL, *ztest_var = NULL, *pvalue_path = NULL;
     converge_metric metric = CONVERGE_REL;
     bool time_mode = false, have_list = false, no_plot = false,
          quiet = false, report_mode = false, seed_set = false;
@@ -520,6 +639,18 @@ int cmd_converge(int argc, char **argv)
             if (end == v || *end || !(x > 0) || !isfinite(x))
                 goto bad_value;
             *(!strcmp(a, "--time") ? &T : &E) = x;
+        } else if (!strcmp(a, "--ztest")) {
+            ztest_img = v;
+        } else if (!strcmp(a, "--var")) {
+            ztest_var = v;
+        } else if (!strcmp(a, "--pvalue")) {
+            pvalue_path = v;
+        } else if (!strcmp(a, "--spp") || !strcmp(a, "--ref-spp")) {
+            char *end;
+            double x = strtod(v, &end);
+            if (end == v || *end || !(x > 0) || x > 1e12)
+                goto bad_value;
+            *(!strcmp(a, "--spp") ? &zspp : &ref_spp) = x;
         } else if (!strcmp(a, "--metric")) {
             if (!strcmp(v, "rel"))
                 metric = CONVERGE_REL;
@@ -562,6 +693,15 @@ int cmd_converge(int argc, char **argv)
     bad_value:
         fprintf(stderr, "svet converge: bad value '%s' for %s\n", v, a);
         return SVET_EXIT_USAGE;
+    }
+    if (ztest_img) {
+        if (!ref_path || !(zspp > 0) || nfiles) {
+            fprintf(stderr, "svet converge: --ztest IMAGE.exr needs --spp N "
+                            "and --ref REF.exr, and no other files\n");
+            return SVET_EXIT_USAGE;
+        }
+        return ztest_files(ztest_img, ztest_var, zspp, ref_path,
+                           ref_var_path, ref_spp, pvalue_path);
     }
     if (report_mode) {
         if (nfiles == 0) {
