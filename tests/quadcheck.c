@@ -72,8 +72,8 @@ long double quadcheck_meridian_distance(const VECTOR3 p, const VECTOR3 a,
 {
     long double w[3], q[3], H2 = 0, h = 0, r2 = 0;
     for (int k = 0; k < 3; k++) {
-        w[k] = (long double)b[k] - a[k];
-        q[k] = (long double)p[k] - a[k];
+        w[k] = (long double)b[k] - (long double)a[k];
+        q[k] = (long double)p[k] - (long double)a[k];
         H2 += w[k] * w[k];
     }
     long double H = sqrtl(H2);
@@ -83,7 +83,7 @@ long double quadcheck_meridian_distance(const VECTOR3 p, const VECTOR3 a,
         long double t = q[k] - h * w[k] / H;
         r2 += t * t;
     }
-    long double rho = sqrtl(r2), best = INFINITY;
+    long double rho = sqrtl(r2), best = (long double)INFINITY;
     for (int i = 0; i < n; i++) {
         /* the nearest point of the segment: clamp the projection */
         long double er = seg[i][2] - seg[i][0], eh = seg[i][3] - seg[i][1];
@@ -106,7 +106,10 @@ static void centre_at(VECTOR3 c, real scale, int away)
 
 static long double support(const VECTOR3 n, const VECTOR3 e)
 {
-    return fabsl(n[X]) * e[X] + fabsl(n[Y]) * e[Y] + fabsl(n[Z]) * e[Z];
+    long double s = 0;
+    for (int k = 0; k < 3; k++)
+        s += fabsl((long double)n[k]) * (long double)e[k];
+    return s;
 }
 
 /* One point of quadcheck_error_bound: dist(p) <= the box's half-width

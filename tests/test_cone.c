@@ -181,9 +181,9 @@ static long double cone_distance(const VECTOR3 p, real scale,
     int v = ctx ? *(const int *)ctx : 0;
     VECTOR3 base, apex;
     ends(base, apex, scale, centre, v);
-    long double R = scale, h2 = 0;
+    long double R = (long double)scale, h2 = 0;
     for (int k = 0; k < 3; k++) {
-        long double d = (long double)apex[k] - base[k];
+        long double d = (long double)apex[k] - (long double)base[k];
         h2 += d * d;
     }
     long double H = sqrtl(h2);

@@ -214,9 +214,9 @@ static long double cylinder_distance(const VECTOR3 p, real scale,
     VECTOR3 base, top;
     ends(base, top, scale, centre, v);
     /* R and H in long double, from the ends as stored */
-    long double R = scale, h2 = 0;
+    long double R = (long double)scale, h2 = 0;
     for (int k = 0; k < 3; k++) {
-        long double d = (long double)top[k] - base[k];
+        long double d = (long double)top[k] - (long double)base[k];
         h2 += d * d;
     }
     long double H = sqrtl(h2);

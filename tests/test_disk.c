@@ -162,20 +162,22 @@ END_TEST
 static long double disk_distance(const VECTOR3 p, real radius,
                                  const VECTOR3 c, void *ctx)
 {
-    const real *n = normals[ctx ? *(const int *)ctx : 0];
-    long double nl = sqrtl((long double)n[X] * n[X] +
-                           (long double)n[Y] * n[Y] +
-                           (long double)n[Z] * n[Z]);
-    long double q[3], h = 0, rho2 = 0;
+    const real *nr = normals[ctx ? *(const int *)ctx : 0];
+    long double n[3], nl = 0, q[3], h = 0, rho2 = 0;
     for (int k = 0; k < 3; k++) {
-        q[k] = (long double)p[k] - c[k];
+        n[k] = (long double)nr[k];
+        nl += n[k] * n[k];
+    }
+    nl = sqrtl(nl);
+    for (int k = 0; k < 3; k++) {
+        q[k] = (long double)p[k] - (long double)c[k];
         h += q[k] * n[k] / nl;
     }
     for (int k = 0; k < 3; k++) {
         long double t = q[k] - h * n[k] / nl;
         rho2 += t * t;
     }
-    long double out = fmaxl(sqrtl(rho2) - radius, 0);
+    long double out = fmaxl(sqrtl(rho2) - (long double)radius, 0);
     return sqrtl(h * h + out * out);
 }
 

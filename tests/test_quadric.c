@@ -69,10 +69,11 @@ START_TEST(roots_keep_full_precision_where_the_textbook_cancels)
         real t[2];
         long double e[2];
         int n = quadric_roots(a, B, c, disc, t);
-        int m = roots_ld(a, B, c, e);
+        int m = roots_ld((long double)a, (long double)B, (long double)c, e);
         ck_assert_int_eq(n, m);
         for (int k = 0; k < n; k++)
-            ck_assert_msg(fabsl(t[k] - e[k]) <= 8 * REAL_EPSILON * fabsl(e[k]),
+            ck_assert_msg(fabsl((long double)t[k] - e[k]) <=
+                              8 * (long double)REAL_EPSILON * fabsl(e[k]),
                           "root %d of (%g, %g, %g): %.9g vs %.9Lg", k,
                           (double)a, (double)B, (double)c, (double)t[k], e[k]);
     }
@@ -94,10 +95,12 @@ START_TEST(kahan_difference_of_products_is_within_two_ulps)
         real b = ldexp(floor(ldexp(pcg32_real(&g), 24)), -22) - 2;
         real c = a + ldexp(floor(ldexp(pcg32_real(&g), 14)), -30);
         real d = b; /* a b - c d nearly cancels */
-        long double e = (long double)a * b - (long double)c * d;
+        long double e = (long double)a * (long double)b -
+                        (long double)c * (long double)d;
         real r = quadric_diff_of_products(a, b, c, d);
         /* Jeannerod et al. 2013: |error| <= 2 u |result| */
-        ck_assert_msg(fabsl(r - e) <= REAL_EPSILON * fabsl(e),
+        ck_assert_msg(fabsl((long double)r - e) <=
+                          (long double)REAL_EPSILON * fabsl(e),
                       "%.9g vs %.9Lg", (double)r, e);
     }
     test_report_cases("kahan_difference_of_products_is_within_two_ulps",
@@ -220,16 +223,18 @@ START_TEST(axis_frame_defect_is_a_quarter_of_its_bound)
         vec_normalize(w, a);
         quadric_frame_t f;
         quadric_frame_init(&f, zero, w);
-        long double al = sqrtl((long double)a[X] * a[X] +
-                               (long double)a[Y] * a[Y] +
-                               (long double)a[Z] * a[Z]);
+        long double al = 0;
+        for (int p = 0; p < 3; p++)
+            al += (long double)a[p] * (long double)a[p];
+        al = sqrtl(al);
         const real *e[3] = { f.e1, f.e2, f.w };
         double defect = 0;
         for (int p = 0; p < 3; p++) {
             defect = fmax(defect, fabs(1 - (double)vec_length(e[p])));
             for (int q = p + 1; q < 3; q++)
                 defect = fmax(defect, fabs((double)SVECTOR3(e[p], e[q])));
-            defect = fmax(defect, (double)fabsl(e[2][p] - a[p] / al));
+            defect = fmax(defect, (double)fabsl((long double)e[2][p] -
+                                                (long double)a[p] / al));
         }
         /* right-handed: e1 x e2 = w */
         VECTOR3 c;
@@ -263,9 +268,11 @@ START_TEST(frame_points_are_within_their_rounding_bound)
         /* with the frame as computed, the sum in long double: only the
          * gamma(4) part of the bound is at stake here */
         for (int k = 0; k < 3; k++) {
-            long double e = (long double)at[k] + (long double)x * f.e1[k] +
-                            (long double)y * f.e2[k] + (long double)z * f.w[k];
-            ck_assert(fabsl(p[k] - e) <= err[k]);
+            long double e = (long double)at[k] +
+                            (long double)x * (long double)f.e1[k] +
+                            (long double)y * (long double)f.e2[k] +
+                            (long double)z * (long double)f.w[k];
+            ck_assert(fabsl((long double)p[k] - e) <= (long double)err[k]);
         }
     }
     test_report_cases("frame_points_are_within_their_rounding_bound", cases);

@@ -55,7 +55,7 @@ static ld norm(const ld a[3])
 static void to_ld(ld out[3], const float in[3])
 {
     for (int i = 0; i < 3; i++)
-        out[i] = in[i];
+        out[i] = (ld)in[i];
 }
 
 static void unit(ld a[3])
@@ -127,7 +127,7 @@ static expect_t trace(const shape_t *s, const float fo[3], const float fd[3])
 {
     expect_t e;
     memset(&e, 0, sizeof e);
-    ld o[3], d[3], a[3], b[3], R = s->radius;
+    ld o[3], d[3], a[3], b[3], R = (ld)s->radius;
     to_ld(o, fo);
     to_ld(d, fd);
     to_ld(a, s->a);
@@ -315,7 +315,8 @@ static void close_out(out_t *o)
 
 static double maxabs3(const float a[3])
 {
-    return fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    return fmax(fabs((double)a[0]),
+                fmax(fabs((double)a[1]), fabs((double)a[2])));
 }
 
 static void print3(FILE *f, const float a[3])
@@ -351,7 +352,7 @@ static void row(out_t *out, const char *name, const shape_t *s,
         S = fmax(S, fabs((double)e.p[k]));
     double cosine = exact ? 1 : (double)e.cosine;
     double curv = e.curvature > 0 ? S / (cosine * (double)e.curvature) : 0;
-    const double eps[2] = { FLT_EPSILON, DBL_EPSILON };
+    const double eps[2] = { (double)FLT_EPSILON, DBL_EPSILON };
     fprintf(f, ",1,%.17Lg,%.17Lg,%.17Lg,%.17Lg,%.17Lg,%.17Lg,%.17Lg", e.t,
             e.p[0], e.p[1], e.p[2], e.n[0], e.n[1], e.n[2]);
     for (int b = 0; b < 2; b++)
@@ -377,7 +378,7 @@ static bool robust(const shape_t *s, const float o[3], const float d[3])
         return false;
     /* keep away from the cone's apex, where the normal turns fast */
     return !(s->kind == CONE && e.face == 0 &&
-             e.curvature < 0.05L * s->radius);
+             e.curvature < 0.05L * (ld)s->radius);
 }
 
 static void random_rows(out_t *out, pcg32_t *g, int n)
