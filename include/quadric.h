@@ -56,11 +56,11 @@ static inline real quadric_unscale_t(real ts, int k)
 }
 
 /* Scale q in place to length len (> 0): the re-projection of a point onto
- * a sphere or circle (pbrt-v3 sec. 3.9.4). q is first scaled by a power of
- * two (exact) so that |q| is of order one and len / |q| cannot overflow
- * when q is tiny; then each component is rounded three times (|q| by
- * hypot to 1 ulp twice, the quotient, the product): the result is within
- * gamma(6) |q_i| of a vector exactly len long. Returns false, leaving q
+ * a sphere or circle (pbrt-v3 sec. 3.9.4). A q of extreme length is first
+ * scaled by a power of two (quadric_scale_dir, exact), so that len / |q|
+ * cannot overflow when q is tiny; then each component is rounded three
+ * times (|q| by hypot to 1 ulp twice, the quotient, the product): the
+ * result is within gamma(6) |q_i| of a vector exactly len long. Returns false, leaving q
  * unchanged, when q is zero or not finite. This function can't fail. */
 bool quadric_project(VECTOR3 q, real len);
 

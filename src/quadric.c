@@ -7,7 +7,6 @@
 #include "quadric.h"
 #include "shape.h"
 
-
 int quadric_roots(real a, real bh, real c, real disc, real t[2])
 {
     if (!(disc >= 0))
