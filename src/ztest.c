@@ -13,7 +13,7 @@ void ztest_params_default(ztest_params_t *p)
     p->alpha = ZTEST_ALPHA;
     p->min_pass = ZTEST_MIN_PASS;
     p->block_factor = ZTEST_BLOCK_FACTOR;
-    p->zero_var_rel = ZTEST_ZERO_VAR_REL;
+    p->round_rel = ZTEST_ROUND_REL;
 }
 
 double ztest_pvalue(double z)
@@ -62,10 +62,10 @@ static svet_status check_inputs(const ztest_image_t *a, const ztest_image_t *b,
                                   ma->width, ma->height);
     if (!(p->alpha > 0 && p->alpha < 1) || !(p->min_pass >= 0 &&
         p->min_pass <= 1) || p->block_factor < 1 ||
-        !(p->zero_var_rel >= 0))
+        !(p->round_rel >= 0))
         return svet_error_set(err, SVET_ERR_RANGE, "z-test: parameters out "
                               "of range (alpha in (0,1), min_pass in [0,1], "
-                              "block_factor >= 1, zero_var_rel >= 0)");
+                              "block_factor >= 1, round_rel >= 0)");
     if (!(a->spp >= 0) || !(b->spp >= 0))
         return svet_error_set(err, SVET_ERR_RANGE, "z-test: negative spp");
     return SVET_OK;
@@ -114,26 +114,28 @@ static int level_sides(int W, int H, int f, int side[ZTEST_MAX_LEVELS])
 
 /* Test one value: returns its p-value and sets *z. */
 static double test_value(double ma, double va, double mb, double vb,
-                         double zero_rel, double *z)
+                         double round_rel, double *z)
 {
     if (!isfinite(ma) || !isfinite(mb) || !isfinite(va) || !isfinite(vb) ||
         va < 0 || vb < 0) {
         *z = (double)NAN;
         return 0;
     }
-    double d = ma - mb, s2 = va + vb;
+    /* the difference beyond rounding, with its sign */
+    double d = ma - mb;
+    double excess =
+        fmax(0.0, fabs(d) - round_rel * fmax(fabs(ma), fabs(mb)));
+    double s2 = va + vb;
+    if (excess == 0) {
+        *z = 0;
+        return 1;
+    }
     if (s2 == 0) {
-        /* Nothing random on either side: a deterministic value (a black
-         * background, an emitter seen through the whole pixel) must be
-         * the same up to the rounding of its mean. */
-        if (fabs(d) <= zero_rel * fmax(fabs(ma), fabs(mb))) {
-            *z = 0;
-            return 1;
-        }
+        /* nothing random on either side, and more than rounding apart */
         *z = d > 0 ? (double)INFINITY : -(double)INFINITY;
         return 0;
     }
-    *z = d / sqrt(s2);
+    *z = copysign(excess, d) / sqrt(s2);
     return ztest_pvalue(*z);
 }
 
@@ -172,7 +174,7 @@ static void run_level(const values_t *v, int W, int H, int side,
                 vb /= k * k;
                 if (va + vb == 0 && (va != 0 || vb != 0))
                     va = vb = 0; /* underflow of tiny variances */
-                double z, pv = test_value(ma, va, mb, vb, p->zero_var_rel, &z);
+                double z, pv = test_value(ma, va, mb, vb, p->round_rel, &z);
                 if (va == 0 && vb == 0)
                     L->zero_var++;
                 if (pv < L->min_p) {
