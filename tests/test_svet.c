@@ -5,48 +5,20 @@
  * `make test` (which builds it first) tests the matching REAL.
  */
 #include "testutil.h"
+#include "cmdtest.h"
 #include "imgtest.h"
 #include "imageio.h"
 #include "netpbm.h"
 #include "exrio.h"
 #include "colour.h"
 
-#include <libgen.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-static char svet_path[1024];
-
-static const char *svet(void)
-{
-    if (!svet_path[0]) {
-        char self[1024];
-        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-        ck_assert(n > 0);
-        self[n] = '\0';
-        char *tests_dir = dirname(self); /* <build>/tests */
-        snprintf(svet_path, sizeof svet_path, "%s/../svet", tests_dir);
-        ck_assert_msg(access(svet_path, X_OK) == 0, "%s is not built (make "
-                      "%s builds it)", svet_path, "build/<real>/svet");
-    }
-    return svet_path;
-}
-
-/* Run `svet ARGS` (a shell fragment), return its exit code; its stdout and
- * stderr together go into out. */
 static int run(char *out, size_t cap, const char *args)
 {
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", svet(), args);
-    FILE *p = popen(cmd, "r");
-    ck_assert_ptr_nonnull(p);
-    size_t n = fread(out, 1, cap - 1, p);
-    out[n] = '\0';
-    int status = pclose(p);
-    ck_assert(WIFEXITED(status));
-    return WEXITSTATUS(status);
+    return cmdtest_run(out, cap, args);
 }
 
 /* The value printed on the line "name value". */
