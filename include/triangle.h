@@ -45,8 +45,85 @@ typedef struct {
     bool ok;          /* false for a zero or non-finite d: nothing is hit */
 } triangle_ray_t;
 
-/* Prepare r for triangle_intersect_prepared. This function can't fail. */
-void triangle_ray_prepare(triangle_ray_t *pr, const ray_t *r);
+/* The rare part of triangle_ray_prepare: d far from unit length. */
+void triangle_ray_prepare_scaled(triangle_ray_t *pr, const ray_t *r);
+
+/* Prepare r for triangle_intersect_prepared. Inline, so that a shape made
+ * of a few triangles (the parallelogram) keeps the prepared ray in
+ * registers. This function can't fail. */
+static inline void triangle_ray_prepare(triangle_ray_t *pr, const ray_t *r)
+{
+    /* Woop et al. sec. 3: permute the axes so that the ray's largest
+     * component is z, and shear so that the ray runs along +z. */
+    vec_copy(pr->o, r->o);
+    int kz = vec_max_axis(r->d);
+    real dz = r->d[kz];
+    pr->kz = kz;
+    pr->kx = kz == 2 ? 0 : kz + 1;
+    pr->ky = pr->kx == 2 ? 0 : pr->kx + 1;
+    pr->scale = 0;
+    /* |d_z| in [2^-16, 2^17), i.e. ilogb(d_z) in [-16, 16]: no rescaling
+     * (the comparisons are false for 0, NaN and infinity) */
+    real ad = fabs(dz);
+    if (!(ad >= REAL_C(0x1p-16) && ad < REAL_C(0x1p17))) {
+        triangle_ray_prepare_scaled(pr, r);
+        return;
+    }
+    pr->ok = true;
+    /* one division per ray; sx, sy carry two roundings */
+    real inv = 1 / dz;
+    pr->sx = -r->d[pr->kx] * inv;
+    pr->sy = -r->d[pr->ky] * inv;
+    pr->sz = inv;
+}
+
+/* A vertex in the prepared ray's space: translated to the ray's origin
+ * and sheared (Woop et al. sec. 3), x and y across the ray; az is the
+ * translated coordinate along the axis kz, before the scaling by sz. */
+typedef struct {
+    real x, y, az;
+} triangle_sheared_t;
+
+/* v = vertex p in the space of pr. Every vertex is transformed on its own,
+ * so a vertex shared by two triangles lands on the same point in both:
+ * the root of watertightness. This function can't fail. */
+static inline void triangle_shear(triangle_sheared_t *v, const VECTOR3 p,
+                                  const triangle_ray_t *pr)
+{
+    real ax = p[pr->kx] - pr->o[pr->kx], ay = p[pr->ky] - pr->o[pr->ky];
+    real az = p[pr->kz] - pr->o[pr->kz];
+    v->x = ax + pr->sx * az;
+    v->y = ay + pr->sy * az;
+    v->az = az;
+}
+
+/* The edge function of the sheared vertices a, b: a.x b.y - a.y b.x, twice
+ * the signed area of the triangle (ray, a, b) in the projection along the
+ * ray. Swapping a and b negates the value exactly (the same two products,
+ * subtracted the other way round), so two triangles that share the edge
+ * see one value with opposite signs. Its sign is exact when it is not
+ * zero: rounding is monotonic, so fl(p) - fl(q) never has the opposite
+ * sign of p - q. A zero may be rounding: the caller recomputes exactly
+ * (triangle_intersect_prepared does). This function can't fail. */
+static inline real triangle_edge(const triangle_sheared_t *a,
+                                 const triangle_sheared_t *b)
+{
+    return a->x * b->y - a->y * b->x;
+}
+
+/* The rest of the watertight test, for the sheared vertices v0 v1 v2 and
+ * their edge functions e0 = edge(v1, v2), e1 = edge(v2, v0),
+ * e2 = edge(v0, v1) as triangle_edge computes them, or, when one of those
+ * is zero, as triangle_intersect_prepared recomputes all three exactly:
+ * the inside test, t and its error bound, b. Given those, the same answers
+ * bit for bit as triangle_intersect_prepared, but for the degeneracy test,
+ * which is the caller's (a shape can make it once, when it is built).
+ * This function can't fail. */
+bool triangle_hit_sheared(const triangle_sheared_t *v0,
+                          const triangle_sheared_t *v1,
+                          const triangle_sheared_t *v2, real e0, real e1,
+                          real e2, const triangle_ray_t *pr, real tmin,
+                          real tmax, real *t, real b[3]);
 
 /* triangle_intersect_watertight with the ray prepared once: the same
  * answers, bit for bit. For meshes and shapes made of triangles. This

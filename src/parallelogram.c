@@ -13,6 +13,8 @@ typedef struct {
     VECTOR3 c[4];   /* corners c0 c1 c2 c3 */
     VECTOR3 e1, e2; /* c1 - c0, c3 - c0 */
     VECTOR3 n;      /* unit e1 x e2 */
+    VECTOR3 u, v;   /* the frame of every point: shape_frame(n, e1) */
+    bool degenerate[2]; /* triangle_is_degenerate of A and B: never hit */
     real area;
 } para_shape;
 
@@ -34,31 +36,93 @@ static void point_at(const para_shape *sh, real s, real t, VECTOR3 p,
 
 static real clamp01(real x)
 {
-    return fmin(fmax(x, REAL_C(0.0)), REAL_C(1.0));
+    return real_min(real_max(x, REAL_C(0.0)), REAL_C(1.0));
 }
 
+/* The edge functions of one triangle have mixed signs: the ray passes
+ * outside it (triangle_hit_sheared's inside test). */
+static bool mixed(real e0, real e1, real e2)
+{
+    return (e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0);
+}
+
+/* (s, t) of a hit of triangle A or B from its barycentrics:
+ * A: p = c0 + (b1 + b2) e1 + b2 e2; B: p = c0 + b1 e1 + (b1 + b2) e2. */
+static void st_of(int tri, const real b[3], real st[2])
+{
+    st[0] = tri == 0 ? b[1] + b[2] : b[1];
+    st[1] = tri == 0 ? b[2] : b[1] + b[2];
+}
+
+/* The two triangles one after the other, each with its own exact
+ * recomputation of a zero edge function (triangle.c): the way of a ray
+ * through a corner, an edge or the diagonal. */
+static bool two_triangles(const para_shape *sh, const triangle_ray_t *pr,
+                          real tmin, real tmax, real *t, real st[2])
+{
+    real b[3];
+    bool any = false;
+    if (triangle_intersect_prepared(sh->c[0], sh->c[1], sh->c[2], pr, tmin,
+                                    tmax, t, b)) {
+        any = true;
+        tmax = *t; /* B only if nearer */
+        st_of(0, b, st);
+    }
+    if (triangle_intersect_prepared(sh->c[0], sh->c[2], sh->c[3], pr, tmin,
+                                    tmax, t, b)) {
+        any = true;
+        st_of(1, b, st);
+    }
+    return any;
+}
+
+/* The watertight test of the two triangles A = (c0, c1, c2) and
+ * B = (c0, c2, c3), sharing what they share: the ray is prepared once,
+ * each corner is sheared once, and the diagonal's edge function once
+ * (B's edge (c0, c2) is -edge(c2, c0) exactly, triangle.h). Each triangle
+ * then gets exactly the numbers it would get on its own, so the answers
+ * are those of two triangle tests bit for bit, and watertight as they
+ * are: a parallelogram sharing an edge with another shears the same two
+ * corners into the same points. Only a zero edge function, which needs
+ * the exact recomputation, takes the way of two separate tests. */
 static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
                            real tmin, real tmax, hit_t *hit)
 {
     const para_shape *sh = obj->shape;
-    real t, b[3], st[2];
-    bool any = false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
-    /* triangle A: p = c0 + (b1 + b2) e1 + b2 e2 */
-    if (triangle_intersect_prepared(sh->c[0], sh->c[1], sh->c[2], &pr, tmin,
-                                    tmax, &t, b)) {
-        any = true;
-        tmax = t;
-        st[0] = b[1] + b[2];
-        st[1] = b[2];
-    }
-    /* triangle B: p = c0 + b1 e1 + (b1 + b2) e2; only if nearer */
-    if (triangle_intersect_prepared(sh->c[0], sh->c[2], sh->c[3], &pr, tmin,
-                                    tmax, &t, b)) {
-        any = true;
-        st[0] = b[1];
-        st[1] = b[1] + b[2];
+    if (!pr.ok)
+        return false;
+    triangle_sheared_t v0, v1, v2, v3;
+    triangle_shear(&v0, sh->c[0], &pr);
+    triangle_shear(&v1, sh->c[1], &pr);
+    triangle_shear(&v2, sh->c[2], &pr);
+    triangle_shear(&v3, sh->c[3], &pr);
+    real e01 = triangle_edge(&v0, &v1), e12 = triangle_edge(&v1, &v2);
+    real e20 = triangle_edge(&v2, &v0), e23 = triangle_edge(&v2, &v3);
+    real e30 = triangle_edge(&v3, &v0);
+    real t, st[2];
+    bool any = false;
+    if (e01 == 0 || e12 == 0 || e20 == 0 || e23 == 0 || e30 == 0) {
+        any = two_triangles(sh, &pr, tmin, tmax, &t, st);
+    } else {
+        bool out_a = mixed(e12, e20, e01), out_b = mixed(e23, e30, -e20);
+        if (out_a && out_b)
+            return false; /* the usual answer, at the price of 4 shears */
+        real b[3];
+        if (!out_a && !sh->degenerate[0] &&
+            triangle_hit_sheared(&v0, &v1, &v2, e12, e20, e01, &pr, tmin,
+                                 tmax, &t, b)) {
+            any = true;
+            tmax = t;
+            st_of(0, b, st);
+        }
+        if (!out_b && !sh->degenerate[1] &&
+            triangle_hit_sheared(&v0, &v2, &v3, e23, e30, -e20, &pr, tmin,
+                                 tmax, &t, b)) {
+            any = true;
+            st_of(1, b, st);
+        }
     }
     if (!any)
         return false;
@@ -82,7 +146,8 @@ static void para_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     vec_copy(pp->dpdt, sh->e2);
     vec_copy(pp->ng, sh->n);
     vec_copy(pp->n, sh->n);
-    shape_frame(pp->u, pp->v, pp->n, sh->e1);
+    vec_copy(pp->u, sh->u);
+    vec_copy(pp->v, sh->v);
 }
 
 static void para_bounds(const COBJECT *obj, int prim, bbox_t *b)
@@ -151,6 +216,9 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
     vec_copy(sh->e1, e1);
     vec_copy(sh->e2, e2);
     vec_copy(sh->n, n);
+    shape_frame(sh->u, sh->v, sh->n, sh->e1);
+    sh->degenerate[0] = triangle_is_degenerate(c0, c1, c2);
+    sh->degenerate[1] = triangle_is_degenerate(c0, c2, c3);
     sh->area = area;
     return obj;
 }

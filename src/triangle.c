@@ -29,29 +29,18 @@ static real diff_of_products_exact(real a, real b, real c, real d)
 #endif
 }
 
-/* max of two finite reals without a libm call (fmax must handle NaN) */
-static inline real max2(real a, real b)
-{
-    return a > b ? a : b;
-}
-
+/* max |a|, |b|, |c| of finite reals without fmax's libm call */
 static inline real max3a(real a, real b, real c)
 {
-    return max2(fabs(a), max2(fabs(b), fabs(c)));
+    return real_max(fabs(a), real_max(fabs(b), fabs(c)));
 }
 
-void triangle_ray_prepare(triangle_ray_t *pr, const ray_t *r)
+void triangle_ray_prepare_scaled(triangle_ray_t *pr, const ray_t *r)
 {
-    /* Woop et al. sec. 3: permute the axes so that the ray's largest
-     * component is z, and shear so that the ray runs along +z. */
-    vec_copy(pr->o, r->o);
-    int kz = vec_max_axis(r->d);
+    const int kz = pr->kz;
     real dz = r->d[kz];
     pr->ok = dz != 0 && isfinite(dz);
     pr->scale = 0;
-    pr->kz = kz;
-    pr->kx = kz == 2 ? 0 : kz + 1;
-    pr->ky = pr->kx == 2 ? 0 : pr->kx + 1;
     if (!pr->ok) {
         pr->sx = pr->sy = pr->sz = 0;
         return;
@@ -60,53 +49,22 @@ void triangle_ray_prepare(triangle_ray_t *pr, const ray_t *r)
      * from 1, so that 1/d_z and the sheared z's cannot overflow; the ray
      * parameter then scales back by the same power (o + t d = o + t' d'). */
     VECTOR3 d;
-    vec_copy(d, r->d);
-    real ad = fabs(dz);
-    if (ad < REAL_C(0x1p-16) || ad >= REAL_C(0x1p17)) {
-        pr->scale = ilogb(dz);
-        for (int i = 0; i < 3; i++)
-            d[i] = ldexp(d[i], -pr->scale);
-    }
-    /* one division per ray; sx, sy carry two roundings */
+    pr->scale = ilogb(dz);
+    for (int i = 0; i < 3; i++)
+        d[i] = ldexp(r->d[i], -pr->scale);
+    /* as triangle_ray_prepare: one division, sx and sy two roundings */
     real inv = 1 / d[kz];
     pr->sx = -d[pr->kx] * inv;
     pr->sy = -d[pr->ky] * inv;
     pr->sz = inv;
 }
 
-bool triangle_intersect_prepared(const VECTOR3 p0, const VECTOR3 p1,
-                                 const VECTOR3 p2, const triangle_ray_t *pr,
-                                 real tmin, real tmax, real *t, real b[3])
+bool triangle_hit_sheared(const triangle_sheared_t *v0,
+                          const triangle_sheared_t *v1,
+                          const triangle_sheared_t *v2, real e0, real e1,
+                          real e2, const triangle_ray_t *pr, real tmin,
+                          real tmax, real *t, real b[3])
 {
-    if (!pr->ok)
-        return false;
-    /* Translate the vertices to the ray origin and shear them into ray
-     * space. Every vertex is transformed on its own, so a vertex shared by
-     * two triangles lands on the same point in both: the root of
-     * watertightness. */
-    const int kx = pr->kx, ky = pr->ky, kz = pr->kz;
-    const real sx = pr->sx, sy = pr->sy;
-    VECTOR3 a0, a1, a2;
-    vec_sub(a0, p0, pr->o);
-    vec_sub(a1, p1, pr->o);
-    vec_sub(a2, p2, pr->o);
-    real x0 = a0[kx] + sx * a0[kz], y0 = a0[ky] + sy * a0[kz];
-    real x1 = a1[kx] + sx * a1[kz], y1 = a1[ky] + sy * a1[kz];
-    real x2 = a2[kx] + sx * a2[kz], y2 = a2[ky] + sy * a2[kz];
-
-    /* Edge functions (2D cross products) of the projected vertices: e_i is
-     * the signed double area opposite vertex i, i.e. its unnormalised
-     * barycentric. The shared edge of two triangles gives x1*y2 - y1*x2 in
-     * one and x2*y1 - y2*x1 = -(x1*y2 - y1*x2) in the other, exactly. */
-    real e0 = x1 * y2 - y1 * x2;
-    real e1 = x2 * y0 - y2 * x0;
-    real e2 = x0 * y1 - y0 * x1;
-    /* A zero may be rounding: recompute exactly (Woop et al. sec. 3.3). */
-    if (e0 == 0 || e1 == 0 || e2 == 0) {
-        e0 = diff_of_products_exact(x1, y2, y1, x2);
-        e1 = diff_of_products_exact(x2, y0, y2, x0);
-        e2 = diff_of_products_exact(x0, y1, y0, x1);
-    }
     /* Inside when all three have one sign; zero counts for both sides, so
      * a ray through an edge is inside both triangles that share it. */
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0))
@@ -119,9 +77,17 @@ bool triangle_intersect_prepared(const VECTOR3 p0, const VECTOR3 p1,
 
     /* t = sum e_i z_i / det with the sheared z's (Woop et al. eq. 8). */
     const real sz = pr->sz;
-    real z0 = sz * a0[kz], z1 = sz * a1[kz], z2 = sz * a2[kz];
+    real z0 = sz * v0->az, z1 = sz * v1->az, z2 = sz * v2->az;
     real tt = (e0 * z0 + e1 * z1 + e2 * z2) / det;
     if (!isfinite(tt))
+        return false;
+    /* The cheap rejections first: the order of the tests below does not
+     * change which hits pass. With tmin >= 0 a tt <= 0 fails either the
+     * error bound (dt >= 0) or the interval. */
+    if (tmin >= 0 && !(tt > 0))
+        return false;
+    real tw = pr->scale != 0 ? ldexp(tt, -pr->scale) : tt;
+    if (!(tw > tmin && tw < tmax))
         return false;
 
     /* pbrt-v3 sec. 3.9.6: a conservative bound dt on the error of tt.
@@ -137,9 +103,9 @@ bool triangle_intersect_prepared(const VECTOR3 p0, const VECTOR3 p1,
      * asking for t < 0 still gets it. */
     if (tmin >= 0) {
         real max_z = max3a(z0, z1, z2);
-        real max_az = max3a(a0[kz], a1[kz], a2[kz]);
-        real max_x = max3a(x0, x1, x2);
-        real max_y = max3a(y0, y1, y2);
+        real max_az = max3a(v0->az, v1->az, v2->az);
+        real max_x = max3a(v0->x, v1->x, v2->x);
+        real max_y = max3a(v0->y, v1->y, v2->y);
         real dz = ray_gamma(3) * max_z;
         real dx = ray_gamma(5) * (max_x + max_az);
         real dy = ray_gamma(5) * (max_y + max_az);
@@ -151,19 +117,48 @@ bool triangle_intersect_prepared(const VECTOR3 p0, const VECTOR3 p1,
         if (tt <= dt)
             return false;
     }
-    if (pr->scale != 0)
-        tt = ldexp(tt, -pr->scale);
-    if (!(tt > tmin && tt < tmax))
+    *t = tw;
+    /* All e_i have det's sign and sum to it: each b_i lies in [0, 1]. */
+    b[0] = e0 / det;
+    b[1] = e1 / det;
+    b[2] = e2 / det;
+    return true;
+}
+
+bool triangle_intersect_prepared(const VECTOR3 p0, const VECTOR3 p1,
+                                 const VECTOR3 p2, const triangle_ray_t *pr,
+                                 real tmin, real tmax, real *t, real b[3])
+{
+    if (!pr->ok)
+        return false;
+    triangle_sheared_t v0, v1, v2;
+    triangle_shear(&v0, p0, pr);
+    triangle_shear(&v1, p1, pr);
+    triangle_shear(&v2, p2, pr);
+
+    /* Edge functions (2D cross products) of the projected vertices: e_i is
+     * the signed double area opposite vertex i, i.e. its unnormalised
+     * barycentric. The shared edge of two triangles gives x1*y2 - y1*x2 in
+     * one and x2*y1 - y2*x1 = -(x1*y2 - y1*x2) in the other, exactly. */
+    real e0 = triangle_edge(&v1, &v2);
+    real e1 = triangle_edge(&v2, &v0);
+    real e2 = triangle_edge(&v0, &v1);
+    /* A zero may be rounding: recompute exactly (Woop et al. sec. 3.3). */
+    if (e0 == 0 || e1 == 0 || e2 == 0) {
+        e0 = diff_of_products_exact(v1.x, v2.y, v1.y, v2.x);
+        e1 = diff_of_products_exact(v2.x, v0.y, v2.y, v0.x);
+        e2 = diff_of_products_exact(v0.x, v1.y, v0.y, v1.x);
+    }
+    real tt, bb[3];
+    if (!triangle_hit_sheared(&v0, &v1, &v2, e0, e1, e2, pr, tmin, tmax, &tt,
+                              bb))
         return false;
     /* Only now, on the rare path of a hit: a triangle of no area has no
      * normal, so it is never hit (it would give NaN normals downstream). */
     if (triangle_is_degenerate(p0, p1, p2))
         return false;
     *t = tt;
-    /* All e_i have det's sign and sum to it: each b_i lies in [0, 1]. */
-    b[0] = e0 / det;
-    b[1] = e1 / det;
-    b[2] = e2 / det;
+    vec_copy(b, bb);
     return true;
 }
 

@@ -10,6 +10,7 @@
 #include "geomcheck.h"
 #include "parallelogram.h"
 #include "primcheck.h"
+#include "triangle.h"
 
 #include <string.h>
 
@@ -180,6 +181,115 @@ START_TEST(no_ray_slips_through_a_closed_box_of_parallelograms)
     for (int i = 0; i < 6; i++)
         cobject_free(wall[i]);
     test_report_cases("no_ray_slips_through_a_closed_box_of_parallelograms", n);
+}
+END_TEST
+
+/* The parallelogram as two separate watertight triangle tests, A =
+ * (c0, c1, c2) then B = (c0, c2, c3) if nearer: what parallelogram.c
+ * shares between the two must not change a bit of this. */
+static bool two_triangle_reference(const VECTOR3 c[4], const ray_t *r,
+                                   real tmin, real tmax, hit_t *h)
+{
+    real t, b[3], st[2];
+    bool any = false;
+    if (triangle_intersect_watertight(c[0], c[1], c[2], r, tmin, tmax, &t,
+                                      b)) {
+        any = true;
+        tmax = t;
+        st[0] = b[1] + b[2];
+        st[1] = b[2];
+    }
+    if (triangle_intersect_watertight(c[0], c[2], c[3], r, tmin, tmax, &t,
+                                      b)) {
+        any = true;
+        st[0] = b[1];
+        st[1] = b[1] + b[2];
+    }
+    if (any) {
+        h->t = t;
+        h->b[0] = fmin(fmax(st[0], REAL_C(0.0)), REAL_C(1.0));
+        h->b[1] = fmin(fmax(st[1], REAL_C(0.0)), REAL_C(1.0));
+    }
+    return any;
+}
+
+START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
+{
+    /* Random parallelograms, and small-integer ones whose edge functions
+     * come out exactly zero for rays through corners, edges and the
+     * diagonal (the exact recomputation); rays aimed at such points, with
+     * directions of every length from 2^-40 to 2^40 (the rescaled
+     * preparation), over (0, inf), (-inf, inf) and a finite tmax. */
+    pcg32_t g;
+    pcg32_seed(&g, 31, 32);
+    long n = 0, hits = 0;
+    for (int i = 0; i < 4000; i++) {
+        VECTOR3 c[4];
+        bool grid = i % 2 == 0;
+        for (int k = 0; k < 3; k++) {
+            c[0][k] = grid ? (real)pcg32_bounded(&g, 5) - 2
+                           : 4 * pcg32_real(&g) - 2;
+            c[1][k] = grid ? (real)pcg32_bounded(&g, 5) - 2
+                           : 4 * pcg32_real(&g) - 2;
+            c[3][k] = grid ? (real)pcg32_bounded(&g, 5) - 2
+                           : 4 * pcg32_real(&g) - 2;
+        }
+        svet_error err;
+        COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+        if (!o)
+            continue; /* degenerate draw */
+        for (int k = 0; k < 3; k++)
+            c[2][k] = c[1][k] + (c[3][k] - c[0][k]); /* as the constructor */
+        for (int j = 0; j < 20; j++, n++) {
+            /* a point of the plane at (s, t): the diagonal s = t, an edge,
+             * a corner, or anywhere in and around the parallelogram */
+            real s = REAL_C(1.4) * pcg32_real(&g) - REAL_C(0.2);
+            real t = REAL_C(1.4) * pcg32_real(&g) - REAL_C(0.2);
+            int kind = j % 4;
+            if (kind == 0)
+                t = s;
+            else if (kind == 1)
+                s = (real)pcg32_bounded(&g, 2);
+            else if (kind == 2)
+                s = (real)pcg32_bounded(&g, 2), t = (real)pcg32_bounded(&g, 2);
+            VECTOR3 target, e1, e2;
+            vec_sub(e1, c[1], c[0]);
+            vec_sub(e2, c[3], c[0]);
+            for (int k = 0; k < 3; k++)
+                target[k] = c[0][k] + s * e1[k] + t * e2[k];
+            ray_t r;
+            for (int k = 0; k < 3; k++)
+                r.o[k] = grid ? (real)pcg32_bounded(&g, 9) - 4
+                              : 8 * pcg32_real(&g) - 4;
+            vec_sub(r.d, target, r.o);
+            if (j % 5 == 0)
+                vec_scale(r.d, r.d,
+                          ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 81) - 40));
+            const real tmins[3] = { 0, -(real)INFINITY, 0 };
+            const real tmaxs[3] = { (real)INFINITY, (real)INFINITY,
+                                    REAL_C(0.5) };
+            for (int q = 0; q < 3; q++) {
+                real tmax = tmaxs[q];
+                if (q == 2 && j % 5 == 0)
+                    tmax = (real)INFINITY; /* t is scaled there */
+                hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+                bool a = two_triangle_reference((const VECTOR3 *)c, &r,
+                                                tmins[q], tmax, &h1);
+                bool b = o->ops->intersect(o, 0, &r, tmins[q], tmax, &h2);
+                ck_assert_msg(a == b, "parallelogram %d ray %d: hit %d vs %d",
+                              i, j, (int)a, (int)b);
+                if (a) {
+                    hits++;
+                    ck_assert(memcmp(&h1.t, &h2.t, sizeof h1.t) == 0);
+                    ck_assert(memcmp(h1.b, h2.b, 2 * sizeof h1.b[0]) == 0);
+                }
+            }
+        }
+        cobject_free(o);
+    }
+    ck_assert(hits > n / 2);
+    test_report_cases("parallelogram_answers_as_its_two_triangles_bit_for_bit",
+                      3 * n);
 }
 END_TEST
 
@@ -358,6 +468,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, parallelogram_respects_the_interval_and_parallel_rays_miss);
     tcase_add_test(tc, cornell_box_rectangles_face_into_the_box);
     tcase_add_test(tc, no_ray_slips_through_a_closed_box_of_parallelograms);
+    tcase_add_test(tc, parallelogram_answers_as_its_two_triangles_bit_for_bit);
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);
