@@ -30,6 +30,11 @@
 #define HGRID_DEPTH_DEFAULT 3
 /* No grid has more cells than this, at any level (4 B each). */
 #define GRID_MAX_CELLS (1L << 25)
+/* The most cell entries the bounds of n primitives may span in the top
+ * level: a finer grid over large primitives is coarsened (k times 0.7)
+ * until they fit, so that no input makes the build run for long. */
+#define GRID_SPAN_MAX(n) \
+    ((double)(n) * 32 > 0x1p27 ? 0x1p27 : fmax(0x1p22, (double)(n) * 32))
 
 typedef struct {
     double k;       /* top level: cells per axis = k N^(1/3) */

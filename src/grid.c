@@ -632,12 +632,13 @@ svet_status grid_build(grid_t **out, const primset_t *ps,
     int res[3];
     double k = p->k > 0 ? p->k : GRID_K_DEFAULT;
     /* A primitive larger than the cells goes into many of them: when the
-     * bounds span more than 2^27 cell slots in all, coarsen (the build
-     * could otherwise take without end; 2^27 slots fill in seconds). */
+     * bounds span more than GRID_SPAN_MAX cell slots in all, coarsen (the
+     * build could otherwise take without end). */
     for (;;) {
         choose_res(ext, k, ps->nbounded, res);
         node_init(&top.node, lo, hi, res, 0);
-        if (span_sum(&B, &top.node, NULL, ps->nbounded) <= 0x1p27 ||
+        if (span_sum(&B, &top.node, NULL, ps->nbounded) <=
+                GRID_SPAN_MAX(ps->nbounded) ||
             node_cells(&top.node) <= 1)
             break;
         k *= 0.7;

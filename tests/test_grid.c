@@ -1,0 +1,329 @@
+/*
+ * test_grid.c - the grids of ch. 7 as structures: the resolution rule
+ * (about k^3 N cells over the box's aspect), every triangle listed in
+ * every cell it overlaps (checked against clipping the triangle to the
+ * cell, an independent method), the 3D-DDA's cell counts on rays whose
+ * path is known, the hierarchy's refinement and its limits.
+ * Agreement with brute force: tests/test_accel.c.
+ */
+#include "testutil.h"
+#include "grid.h"
+#include "mesh.h"
+#include "meshgen.h"
+#include "primset.h"
+#include "rng.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static grid_t *build(const primset_t *ps, double k, int depth)
+{
+    grid_params_t p;
+    if (depth > 0)
+        grid_params_hierarchical(&p);
+    else
+        grid_params_uniform(&p);
+    p.k = k;
+    p.max_depth = depth;
+    grid_t *g;
+    svet_error e;
+    ck_assert_msg(grid_build(&g, ps, &p, &e) == SVET_OK, "%s", e.msg);
+    return g;
+}
+
+static long cells_of(const grid_node_t *nd)
+{
+    return (long)nd->res[0] * nd->res[1] * nd->res[2];
+}
+
+START_TEST(resolution_follows_k_cubed_n_over_the_aspect)
+{
+    meshgen_scene_t s;
+    svet_error e;
+    /* 4 x 4 x 4 spheres: a cubic box */
+    ck_assert(meshgen_sphere_grid(&s, 4, 20000, &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, s.objs, s.nobjs, &e) == SVET_OK);
+    for (double k = 0.5; k <= 3; k += 1.25) {
+        grid_t *g = build(&ps, k, 0);
+        const grid_node_t *top = &g->nodes[0];
+        double want = k * k * k * ps.nbounded, got = (double)cells_of(top);
+        /* each axis is rounded: within (1 +- 1/res)^3 of the target */
+        double slack = 3.0 / top->res[0] + 3.0 / (top->res[0] * top->res[0]);
+        ck_assert_msg(fabs(got / want - 1) <= slack, "k %g: %g cells, want %g",
+                      k, got, want);
+        ck_assert_int_eq(top->res[0], top->res[1]);
+        ck_assert_int_eq(top->res[1], top->res[2]);
+        ck_assert_int_eq(g->nnodes, 1);
+        grid_free(g);
+    }
+    primset_free(&ps);
+    meshgen_free_objects(&s);
+    /* a flat terrain: one cell across its thickness, the rest in x, y */
+    COBJECT *t;
+    VECTOR3 c = { 0, 0, 0 };
+    ck_assert(meshgen_terrain(&t, c, 100, REAL_C(0.01), 60, 1, &e) ==
+              SVET_OK);
+    ck_assert(primset_build(&ps, &t, 1, &e) == SVET_OK);
+    grid_t *g = build(&ps, 2, 0);
+    const grid_node_t *top = &g->nodes[0];
+    ck_assert_int_eq(top->res[Z], 1);
+    ck_assert_int_eq(top->res[X], top->res[Y]);
+    double want = 8.0 * ps.nbounded;
+    ck_assert(fabs((double)cells_of(top) / want - 1) < 0.05);
+    grid_free(g);
+    primset_free(&ps);
+    cobject_free(t);
+}
+END_TEST
+
+/* Sutherland-Hodgman: clip the polygon v[0..n) to x_a >= lo (sign +1) or
+ * x_a <= hi (sign -1); returns the new count (in double, on exact
+ * corners of floats). */
+static int clip(double (*v)[3], int n, int a, double bound, int sign,
+                double (*out)[3])
+{
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const double *p = v[i], *q = v[(i + 1) % n];
+        double dp = sign * (p[a] - bound), dq = sign * (q[a] - bound);
+        if (dp >= 0)
+            memcpy(out[m++], p, sizeof(double[3]));
+        if ((dp >= 0) != (dq >= 0)) {
+            double t = dp / (dp - dq);
+            for (int k = 0; k < 3; k++)
+                out[m][k] = p[k] + t * (q[k] - p[k]);
+            m++;
+        }
+    }
+    return m;
+}
+
+/* Does the triangle q meet the box, shrunk by `inset` on every side? */
+static bool clipped_nonempty(const real *q, const double lo[3],
+                             const double hi[3], double inset)
+{
+    double a[12][3], b[12][3];
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++)
+            a[i][k] = (double)q[3 * i + k];
+    int n = 3;
+    for (int ax = 0; ax < 3 && n > 0; ax++) {
+        n = clip(a, n, ax, lo[ax] + inset, 1, b);
+        n = clip(b, n, ax, hi[ax] - inset, -1, a);
+    }
+    return n > 0;
+}
+
+/* Every triangle is in every cell it truly meets; a triangle listed in a
+ * cell comes within the padding of it. Tori tilted every way and a
+ * terrain, on grids coarse and fine. */
+START_TEST(every_triangle_is_in_every_cell_it_overlaps)
+{
+    svet_error e;
+    COBJECT *objs[3];
+    VECTOR3 c0 = { 0, 0, 0 }, c1 = { 3, 1, -2 }, c2 = { -2, 2, 1 };
+    ck_assert(meshgen_torus(&objs[0], c0, 2, REAL_C(0.7), 16, 7, &e) == 0);
+    ck_assert(meshgen_uv_sphere(&objs[1], c1, REAL_C(1.3), 12, 7, &e) == 0);
+    ck_assert(meshgen_terrain(&objs[2], c2, 5, 1, 7, 4, &e) == 0);
+    primset_t ps;
+    ck_assert(primset_build(&ps, objs, 3, &e) == SVET_OK);
+    long checked = 0;
+    for (double k = 0.7; k < 3; k *= 3) {
+        grid_t *g = build(&ps, k, 0);
+        const grid_node_t *nd = &g->nodes[0];
+        char *in = malloc(ps.ntri);
+        for (int z = 0; z < nd->res[2]; z++)
+            for (int y = 0; y < nd->res[1]; y++)
+                for (int x = 0; x < nd->res[0]; x++) {
+                    long c = nd->first + x + nd->res[0] * (y + (long)nd->res[1] * z);
+                    memset(in, 0, ps.ntri);
+                    for (uint32_t i = g->cells[c]; i < g->cells[c + 1]; i++)
+                        in[g->items[i]] = 1;
+                    int ix[3] = { x, y, z };
+                    double lo[3], hi[3];
+                    for (int a = 0; a < 3; a++) {
+                        lo[a] = nd->min[a] + ix[a] * nd->w[a];
+                        hi[a] = lo[a] + nd->w[a];
+                    }
+                    for (uint32_t t = 0; t < ps.ntri; t++) {
+                        /* meets the cell shrunk by a hair: must be in */
+                        if (!in[t])
+                            ck_assert_msg(!clipped_nonempty(ps.tri[t], lo, hi,
+                                                            1e-9),
+                                          "triangle %u missing from cell "
+                                          "(%d %d %d)", t, x, y, z);
+                        /* listed: meets the cell grown by the padding */
+                        else
+                            ck_assert(clipped_nonempty(ps.tri[t], lo, hi,
+                                                       -2 * ps.pad));
+                        checked++;
+                    }
+                }
+        free(in);
+        grid_free(g);
+    }
+    test_report_cases("every_triangle_is_in_every_cell_it_overlaps", checked);
+    primset_free(&ps);
+    for (int i = 0; i < 3; i++)
+        cobject_free(objs[i]);
+}
+END_TEST
+
+/* Rays whose cells are known: along a row of an n^3 grid, n cells; along
+ * a diagonal slightly off the corners, 3n - 2 (each step crosses one
+ * plane: n - 1 per axis, plus the first cell). Nothing is hit: a tiny
+ * mesh sits in a corner, so the walk goes to the end. */
+START_TEST(the_walk_visits_the_cells_a_ray_crosses)
+{
+    /* two tiny triangles at opposite corners of [0, 10]^3 */
+    mesh_t m = { 0 };
+    m.nverts = 6;
+    m.ntris = 2;
+    m.p = calloc(6, sizeof *m.p);
+    m.tri = calloc(2, sizeof *m.tri);
+    vec_set(m.p[1], REAL_C(0.01), 0, 0);
+    vec_set(m.p[2], 0, REAL_C(0.01), 0);
+    vec_set(m.p[3], 10, 10, 10);
+    vec_set(m.p[4], REAL_C(9.99), 10, 10);
+    vec_set(m.p[5], 10, REAL_C(9.99), 10);
+    for (int k = 0; k < 6; k++)
+        m.tri[k / 3][k % 3] = k;
+    COBJECT *o;
+    svet_error e;
+    ck_assert(mesh_new(&o, &m, &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, &o, 1, &e) == SVET_OK);
+    ck_assert_uint_eq(ps.ntri, 2);
+    grid_params_t p;
+    grid_params_uniform(&p);
+    p.k = 4; /* 4^3 * 2 = 128 cells: 5 per axis */
+    grid_t *g;
+    ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
+    int n = g->nodes[0].res[0];
+    ck_assert_int_eq(n, 5);
+    ray_t rows[3] = { { { -1, 5, 5 }, { 1, 0, 0 } },
+                      { { 5, REAL_C(5.5), -3 }, { 0, 0, 2 } },
+                      { { REAL_C(4.1), 20, REAL_C(6.3) }, { 0, -1, 0 } } };
+    for (int i = 0; i < 3; i++) {
+        primset_query_t q;
+        primset_query_init(&q, &rows[i], 0, (real)INFINITY);
+        ck_assert(!grid_intersect(g, &q));
+        ck_assert_int_eq(q.cells, n);
+    }
+    ray_t diag = { { REAL_C(-0.5), REAL_C(-0.4), REAL_C(-0.45) },
+                   { 1, 1, 1 } };
+    primset_query_t q;
+    primset_query_init(&q, &diag, 0, (real)INFINITY);
+    ck_assert(!grid_intersect(g, &q));
+    ck_assert_int_eq(q.cells, 3 * n - 2);
+    /* a short tmax stops the walk: from x = -1 to x = 3.9 covers cells
+     * 0..1 (cell width 2.0...) */
+    primset_query_init(&q, &rows[0], 0, REAL_C(3.5));
+    grid_intersect(g, &q);
+    ck_assert_int_le(q.cells, 2);
+    grid_free(g);
+    primset_free(&ps);
+    cobject_free(o);
+}
+END_TEST
+
+/* The teapot's cell gets a child grid; the child lies inside its parent
+ * cell (padded); budgets hold; a uniform grid of the same scene holds
+ * the teapot in a handful of crowded cells. */
+START_TEST(a_crowded_cell_gets_a_child_grid)
+{
+    meshgen_scene_t s;
+    svet_error e;
+    ck_assert(meshgen_teapot_stadium(&s, 30000, &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, s.objs, s.nobjs, &e) == SVET_OK);
+    grid_t *u = build(&ps, GRID_K_DEFAULT, 0);
+    ck_assert_uint_ge(u->max_items, 5000);
+    grid_t *h = build(&ps, HGRID_K_DEFAULT, HGRID_DEPTH_DEFAULT);
+    ck_assert_uint_gt(h->nnodes, 1);
+    ck_assert_int_ge(h->depth, 1);
+    ck_assert_int_le(h->depth, HGRID_DEPTH_DEFAULT);
+    ck_assert_uint_lt(h->max_items, u->max_items / 10);
+    for (uint32_t i = 1; i < h->nnodes; i++) {
+        const grid_node_t *c = &h->nodes[i];
+        ck_assert(c->depth >= 1);
+        for (int a = 0; a < 3; a++)
+            ck_assert(c->max[a] > c->min[a] && c->res[a] >= 1);
+    }
+    /* every child is referenced exactly once, from a shallower node */
+    int *refd = calloc(h->nnodes, sizeof *refd);
+    for (uint32_t n = 0; n < h->nnodes; n++) {
+        const grid_node_t *nd = &h->nodes[n];
+        for (long c = 0; c < cells_of(nd); c++)
+            for (uint32_t k = h->cells[nd->first + c];
+                 k < h->cells[nd->first + c + 1]; k++)
+                if (h->items[k] & GRID_CHILD) {
+                    uint32_t ch = h->items[k] & ~GRID_CHILD;
+                    ck_assert_uint_lt(ch, h->nnodes);
+                    ck_assert_int_eq(h->nodes[ch].depth, nd->depth + 1);
+                    refd[ch]++;
+                }
+    }
+    for (uint32_t n = 1; n < h->nnodes; n++)
+        ck_assert_int_eq(refd[n], 1);
+    free(refd);
+    ck_assert_uint_le(h->ncells, (uint32_t)1 << 26);
+    grid_free(u);
+    grid_free(h);
+    primset_free(&ps);
+    meshgen_free_objects(&s);
+}
+END_TEST
+
+/* Thousands of huge overlapping triangles would put millions of entries
+ * in a fine grid: the build coarsens instead of taking forever. */
+START_TEST(huge_primitives_coarsen_the_grid_instead_of_exploding)
+{
+    int n = 3000;
+    mesh_t m = { 0 };
+    m.nverts = 3 * n;
+    m.ntris = n;
+    m.p = malloc((size_t)m.nverts * sizeof *m.p);
+    m.tri = malloc((size_t)n * sizeof *m.tri);
+    pcg32_t g;
+    pcg32_seed(&g, 4, 4);
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < 3; k++) {
+            for (int a = 0; a < 3; a++)
+                m.p[3 * i + k][a] = 100 * (2 * pcg32_real(&g) - 1);
+            m.tri[i][k] = 3 * i + k;
+        }
+    }
+    COBJECT *o;
+    svet_error e;
+    ck_assert(mesh_new(&o, &m, &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, &o, 1, &e) == SVET_OK);
+    grid_t *u = build(&ps, 4, 0), *h = build(&ps, 4, 3);
+    /* k^3 N = 192000 cells would hold ~1e8 entries: the budget (grid.c,
+     * GRID_SPAN_MAX) coarsens the grid until they fit */
+    ck_assert_uint_le(u->nitems, GRID_SPAN_MAX(n));
+    ck_assert_uint_lt(u->ncells, 64u * 3000);
+    ck_assert_uint_le(h->nitems, 2 * GRID_SPAN_MAX(n));
+    grid_free(u);
+    grid_free(h);
+    primset_free(&ps);
+    cobject_free(o);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("grid");
+    TCase *tc = tcase_create("grid");
+    tcase_set_timeout(tc, 300);
+    tcase_add_test(tc, resolution_follows_k_cubed_n_over_the_aspect);
+    tcase_add_test(tc, every_triangle_is_in_every_cell_it_overlaps);
+    tcase_add_test(tc, the_walk_visits_the_cells_a_ray_crosses);
+    tcase_add_test(tc, a_crowded_cell_gets_a_child_grid);
+    tcase_add_test(tc, huge_primitives_coarsen_the_grid_instead_of_exploding);
+    suite_add_tcase(s, tc);
+    return s;
+}
