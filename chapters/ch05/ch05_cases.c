@@ -41,6 +41,11 @@
  * error would come out too small. */
 #define REF_SEED UINT64_C(0x5EED0C05)
 
+/* The reference must be much better than what it judges: its own relative
+ * variance above this fraction of the smallest relMSE it judged is
+ * reported as a warning with the table. */
+#define REF_MAX_RATIO 0.2
+
 /* --- the strategies ------------------------------------------------------- */
 
 enum { ST_BSDF, ST_NEE, ST_PATH, ST_DIRECT, ST_COUNT };
@@ -111,7 +116,6 @@ typedef struct {
     image_t img, var;
     long spp;
     double seconds;
-    double rays;
 } run_t;
 
 static void run_free(run_t *r)
@@ -141,7 +145,6 @@ static svet_status render_for(scene_t *s, scene_integrator mode,
              r.spp_done < SCENE_MAX_SPP);
     out->spp = r.spp_done;
     out->seconds = t;
-    out->rays = (double)r.stats.rays;
     st = render_image(&r, &out->img, err);
     if (st == SVET_OK)
         st = render_variance(&r, &out->var, err);
@@ -330,7 +333,7 @@ static svet_status write_side(const char *path, const image_t *top,
 typedef struct {
     const char *scene, *strategy;
     long spp;
-    double seconds, rays;
+    double seconds;
     double rmse, relmse, relvar; /* relvar: the image's own, estimated */
     double noise_ratio;          /* relMSE / (relvar + the reference's):
                                     about 1 unless the image is biased */
@@ -407,7 +410,6 @@ static svet_status run_case(const case_t *c, const opts_t *o, row_t *rows,
             r->strategy = STRATEGY[k].name;
             r->spp = run.spp;
             r->seconds = run.seconds;
-            r->rays = run.rays;
             r->rmse = pt.rmse;
             r->relmse = pt.mse[CONVERGE_REL];
             r->relvar = pt.variance[CONVERGE_REL];
@@ -522,6 +524,12 @@ static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
             r->seconds, r->relvar, r->min_relmse,
             r->min_relmse > 0 ? r->relvar / r->min_relmse : 0);
     }
+    for (int i = 0; i < nrefs; i++)
+        if (refs[i].relvar > REF_MAX_RATIO * refs[i].min_relmse)
+            out("\n**Warning:** the reference of %s is too noisy to judge "
+                "by: its own relvar is more than %g of the smallest relMSE "
+                "it judged. Give it more time (--ref-factor).\n",
+                refs[i].scene, REF_MAX_RATIO);
     out("\nrelMSE: mean over R, G, B of (a - b)^2 / (b^2 + 0.01) against the "
         "reference b (its noise included); own relvar: the same mean of the "
         "image's own variance of the mean (render_variance); relMSE / noise: "
