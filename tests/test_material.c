@@ -601,6 +601,131 @@ START_TEST(no_nan_or_inf_over_a_dense_sweep)
 }
 END_TEST
 
+/* --- the test vectors ---------------------------------------------------------- */
+
+static RADIANCE csv_rgb(testcsv_t *c, const char *prefix)
+{
+    char n[3][48];
+    snprintf(n[0], sizeof n[0], "%s_r", prefix);
+    snprintf(n[1], sizeof n[1], "%s_g", prefix);
+    snprintf(n[2], sizeof n[2], "%s_b", prefix);
+    return rad_make((real)testcsv_num(c, n[0]), (real)testcsv_num(c, n[1]),
+                    (real)testcsv_num(c, n[2]));
+}
+
+static const brdf_t *find_kind(const material_t *m, brdf_kind kind)
+{
+    for (int k = 0; k < m->ncomp; k++)
+        if (m->comp[k].kind == kind)
+            return &m->comp[k];
+    return NULL;
+}
+
+static void near3(RADIANCE got, RADIANCE want, double tol, const char *what,
+                  int line)
+{
+    ck_assert_msg(fabs((double)got.r - (double)want.r) <= tol &&
+                      fabs((double)got.g - (double)want.g) <= tol &&
+                      fabs((double)got.b - (double)want.b) <= tol,
+                  "materials.csv:%d: %s = (%.9g, %.9g, %.9g), expected "
+                  "(%.9g, %.9g, %.9g) within %.3g", line, what,
+                  (double)got.r, (double)got.g, (double)got.b,
+                  (double)want.r, (double)want.g, (double)want.b, tol);
+}
+
+START_TEST(materials_match_the_vectors)
+{
+    /* f, the delta components and the refracted direction against the
+     * long double values within the file's tolerances; the albedo by
+     * Monte Carlo (material_sample, 20000 samples) against the quadrature
+     * within 5 standard errors (as material_albedo_never_exceeds_one)
+     * plus the quadrature's own tolerance. */
+#ifdef SVET_DOUBLE
+    const char *tf = "tol_f_double", *ts = "tol_spec_double";
+#else
+    const char *tf = "tol_f_float", *ts = "tol_spec_float";
+#endif
+    testcsv_t c;
+    testcsv_open(&c, "materials.csv");
+    long rows = 0, albedos = 0;
+    char last[256] = "";
+    while (testcsv_next(&c)) {
+        rows++;
+        material_params p;
+        material_params_default(&p);
+        p.rho_d = csv_rgb(&c, "rho_d");
+        p.rho_s = csv_rgb(&c, "rho_s");
+        p.rho_g = csv_rgb(&c, "rho_g");
+        p.rho_t = csv_rgb(&c, "rho_t");
+        p.rho_dt = csv_rgb(&c, "rho_dt");
+        const char *gl = testcsv_str(&c, "gloss");
+        p.gloss = strcmp(gl, "phong") == 0  ? MATERIAL_GLOSS_PHONG
+                  : strcmp(gl, "ward") == 0 ? MATERIAL_GLOSS_WARD
+                                            : MATERIAL_GLOSS_WARD_BOUNDED;
+        p.e = (real)testcsv_num(&c, "e");
+        p.alpha_x = (real)testcsv_num(&c, "alpha_x");
+        p.alpha_y = (real)testcsv_num(&c, "alpha_y");
+        p.eta = (real)testcsv_num(&c, "eta");
+        material_t m = build(&p);
+        VECTOR3 wo = { (real)testcsv_num(&c, "wo_x"), (real)testcsv_num(&c, "wo_y"),
+                       (real)testcsv_num(&c, "wo_z") };
+        VECTOR3 wi = { (real)testcsv_num(&c, "wi_x"), (real)testcsv_num(&c, "wi_y"),
+                       (real)testcsv_num(&c, "wi_z") };
+        vec_normalize(wo, wo);
+        vec_normalize(wi, wi);
+
+        near3(material_eval(&m, wi, wo), csv_rgb(&c, "f"),
+              testcsv_num(&c, tf), "f", c.line);
+
+        double tol_s = testcsv_num(&c, ts);
+        const brdf_t *mir = find_kind(&m, BRDF_MIRROR);
+        const brdf_t *tr = find_kind(&m, BRDF_SPECULAR_TRANSMISSION);
+        RADIANCE black = rad_grey(0);
+        near3(mir ? brdf_nominal(mir, wo) : black, csv_rgb(&c, "spec_r"),
+              tol_s, "spec_r", c.line);
+        RADIANCE st = csv_rgb(&c, "spec_t");
+        near3(tr ? brdf_nominal(tr, wo) : black, st, tol_s, "spec_t", c.line);
+        if (tr) {
+            real u[2] = { 0, 0 };
+            brdf_sample_t s;
+            if (brdf_sample(tr, wo, u, &s)) {
+                RADIANCE t = rad_make(s.wi[X], s.wi[Y], s.wi[Z]);
+                RADIANCE want = rad_make((real)testcsv_num(&c, "t_x"),
+                                         (real)testcsv_num(&c, "t_y"),
+                                         (real)testcsv_num(&c, "t_z"));
+                near3(t, want, tol_s, "t", c.line);
+            } else {
+                ck_assert_msg((double)rad_max(st) <= tol_s,
+                              "materials.csv:%d: no refraction, but "
+                              "spec_t = %g", c.line, (double)st.r);
+            }
+        }
+
+        char key[256];
+        snprintf(key, sizeof key, "%s %s %s %s", testcsv_str(&c, "material"),
+                 testcsv_str(&c, "wo_x"), testcsv_str(&c, "wo_y"),
+                 testcsv_str(&c, "wo_z"));
+        if (strcmp(key, last) != 0) {
+            snprintf(last, sizeof last, "%s", key);
+            albedos++;
+            mc3_t a = albedo_mc(&m, wo, 20000, 900 + (uint64_t)albedos);
+            RADIANCE want = csv_rgb(&c, "albedo");
+            double tq = testcsv_num(&c, "tol_albedo");
+            const double w[3] = { (double)want.r, (double)want.g,
+                                  (double)want.b };
+            for (int k = 0; k < 3; k++)
+                ck_assert_msg(fabs(a.mean[k] - w[k]) <= tol3(&a, k) + tq,
+                              "materials.csv:%d: %s albedo[%d] by Monte "
+                              "Carlo %.6f +- %.2g, quadrature %.6f", c.line,
+                              key, k, a.mean[k], a.se[k], w[k]);
+        }
+    }
+    testcsv_close(&c);
+    ck_assert(rows >= 700);
+    test_report_cases("materials_match_the_vectors", rows + albedos);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("material (" REAL_NAME ")");
@@ -614,6 +739,7 @@ Suite *test_suite(void)
     tcase_add_test(t, material_albedo_never_exceeds_one);
     tcase_add_test(t, lossless_mixtures_conserve_energy_exactly);
     tcase_add_test(t, no_nan_or_inf_over_a_dense_sweep);
+    tcase_add_test(t, materials_match_the_vectors);
     tcase_add_test(t, mixed_materials_sample_wi_with_their_pdf);
     tcase_add_test(t, a_wrong_mixture_pdf_fails_the_chi2_test);
     suite_add_tcase(s, t);
