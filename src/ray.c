@@ -21,9 +21,9 @@ void ray_offset_origin(VECTOR3 po, const VECTOR3 p, const VECTOR3 p_error,
         /* The sum was rounded; one more ulp away from the surface makes the
          * offset at least what was asked. */
         if (offset[i] > 0)
-            q = nextafter(q, (real)INFINITY);
+            q = real_next_up(q);
         else if (offset[i] < 0)
-            q = nextafter(q, -(real)INFINITY);
+            q = real_next_down(q);
         po[i] = q;
     }
 }

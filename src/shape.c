@@ -51,9 +51,10 @@ static int normalise_exponent(VECTOR3 s, const VECTOR3 a)
         vec_copy(s, a);
         return 0;
     }
-    int e = ilogb(m);
+    /* the bits' exponent and one exact product each: no libm call */
+    int e = real_ilogb(m);
     for (int i = 0; i < 3; i++)
-        s[i] = ldexp(a[i], -e);
+        s[i] = real_ldexp(a[i], -e);
     return e;
 }
 
@@ -72,7 +73,7 @@ real shape_cross_length(const VECTOR3 a, const VECTOR3 b)
     int ea = normalise_exponent(sa, a);
     int eb = normalise_exponent(sb, b);
     VVECTOR3(c, sa, sb);
-    return ldexp(vec_length(c), ea + eb);
+    return real_ldexp(vec_length(c), ea + eb);
 }
 
 void shape_frame(VECTOR3 u, VECTOR3 v, const VECTOR3 n, const VECTOR3 dpds)

@@ -285,19 +285,22 @@ static const cobject_ops xform_ops;
 static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
 {
     VECTOR3 d;
-    real m = shape_max_abs(r->d);
+    /* no libm in this inner loop: plain comparisons for the max (a NaN
+     * component makes ro->d NaN below whatever m is), and ilogb only for
+     * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
+    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
     *k = 0;
-    if (m > 0 && isfinite(m)) {
-        int e = ilogb(m);
-        if (e < -16 || e > 16)
-            *k = e;
-    }
-    for (int i = 0; i < 3; i++)
-        d[i] = *k ? ldexp(r->d[i], -*k) : r->d[i];
+    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)) && m > 0 && isfinite(m))
+        *k = real_ilogb(m);
+    if (*k)
+        for (int i = 0; i < 3; i++)
+            d[i] = real_ldexp(r->d[i], -*k);
+    else
+        vec_copy(d, r->d);
     apply(MAT(sh->x.inv), ro->o, r->o, true);
     apply(MAT(sh->x.inv), ro->d, d, false);
     return vec_is_finite(ro->o) && vec_is_finite(ro->d) &&
-           shape_max_abs(ro->d) > 0;
+           (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
 static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
