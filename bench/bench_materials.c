@@ -13,54 +13,18 @@
  * the path given as argv[1]; "-" for stdout only).
  */
 #ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf, open_memstream */
 #endif
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
 
+#include "bench.h"
 #include "material.h"
 #include "rng.h"
 #include "sample.h"
 
-#ifdef __clang__
-#define COMPILER "clang " __clang_version__
-#elif defined(__GNUC__)
-#define COMPILER "gcc " __VERSION__
-#else
-#define COMPILER "unknown compiler"
-#endif
-
 #define PI_D 3.14159265358979323846
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static void cpu_model(char *out, size_t n)
-{
-    snprintf(out, n, "unknown CPU");
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (!f)
-        return;
-    char line[512];
-    while (fgets(line, sizeof line, f))
-        if (strncmp(line, "model name", 10) == 0) {
-            char *colon = strchr(line, ':');
-            if (colon) {
-                colon += 2;
-                colon[strcspn(colon, "\n")] = '\0';
-                snprintf(out, n, "%s", colon);
-            }
-            break;
-        }
-    fclose(f);
-}
 
 static void die(const char *what, const svet_error *e)
 {
@@ -134,7 +98,7 @@ static double rate(const material_t *m, const pre_t *pre, bool sample)
     double best = 0;
     for (int run = 0; run < 3; run++) {
         long n = 0;
-        double t0 = now(), t;
+        double t0 = bench_now(), t;
         double acc = 0;
         do {
             for (int k = 0; k < NPRE; k++) {
@@ -149,7 +113,7 @@ static double rate(const material_t *m, const pre_t *pre, bool sample)
                 }
             }
             n += NPRE;
-            t = now() - t0;
+            t = bench_now() - t0;
         } while (t < 0.2);
         sink += acc;
         if (n / t > best)
@@ -200,8 +164,6 @@ int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "bench/results/materials.md";
     bool to_file = strcmp(path, "-") != 0;
-    char cpu[256];
-    cpu_model(cpu, sizeof cpu);
     char *buf = NULL;
     size_t len = 0;
     FILE *out = open_memstream(&buf, &len);
@@ -212,10 +174,9 @@ int main(int argc, char **argv)
 
     fprintf(out, "# Materials: speed and variance (ch. 1 materials, ch. 4 "
                  "sampling)\n\n");
-    fprintf(out, "Machine: %ld cores, %s; %s; `real` = %s; command: `make "
-                 "bench-materials%s`.\n\n", sysconf(_SC_NPROCESSORS_ONLN), cpu,
-            COMPILER, REAL_NAME,
-            sizeof(real) == sizeof(double) ? " REAL=double" : "");
+    bench_print_machine(out);
+    fprintf(out, "; `real` = %s; command: `make bench-materials%s`.\n\n",
+            REAL_NAME, sizeof(real) == sizeof(double) ? " REAL=double" : "");
     fprintf(out, "The machine was shared with other jobs while this ran, so "
                  "the rates are noisy (best of 3 runs of >= 0.2 s each); the "
                  "variances do not depend on the machine (fixed seeds).\n\n");
