@@ -478,8 +478,10 @@ static void render_to(run_t *u, long spp_end)
     u->render_secs += now() - t;
 }
 
-/* Measure the image as it is and append a point. */
-static svet_status measure(run_t *u, svet_error *err)
+/* Measure the image as it is, append a point and rewrite the CSV (so an
+ * interrupted series keeps its points). */
+static svet_status measure(run_t *u, const char *csv, const char *method,
+                           const char *comment, svet_error *err)
 {
     image_t img, var;
     svet_status st = render_image(u->r, &img, err);
@@ -507,7 +509,7 @@ static svet_status measure(run_t *u, svet_error *err)
                 p->spp, p->seconds, converge_error(p, CONVERGE_ABS),
                 converge_error(p, CONVERGE_REL),
                 converge_efficiency(p, CONVERGE_REL));
-    return SVET_OK;
+    return converge_csv_write(csv, method, comment, u->pts, u->n, err);
 }
 
 /* The time-budget series: passes sized from the measured rate so that
@@ -530,9 +532,7 @@ static svet_status run_times(run_t *u, const double *budget, int nb,
                 step = SCENE_MAX_SPP - done;
             render_to(u, done + step);
         }
-        svet_status st = measure(u, err);
-        if (st == SVET_OK)
-            st = converge_csv_write(csv, method, comment, u->pts, u->n, err);
+        svet_status st = measure(u, csv, method, comment, err);
         if (st != SVET_OK)
             return st;
     }
@@ -545,9 +545,7 @@ static svet_status run_spps(run_t *u, const double *spp, int ns,
 {
     for (int k = 0; k < ns; k++) {
         render_to(u, (long)spp[k]);
-        svet_status st = measure(u, err);
-        if (st == SVET_OK)
-            st = converge_csv_write(csv, method, comment, u->pts, u->n, err);
+        svet_status st = measure(u, csv, method, comment, err);
         if (st != SVET_OK)
             return st;
     }

@@ -11,13 +11,20 @@
 # usage: sh tools/reference.sh SVET [SCENE.scn ...]
 #   SVET     the svet binary (make reference passes build/float/svet)
 #   SCENE    only these scenes (default: every scenes/*.scn)
+#        sh tools/reference.sh --table
+#            only rewrite the table of tests/reference/README.md
 # environment: REF_SPP (samples per pixel, default 4096), REF_DIR (default
 # tests/reference), REF_THREADS (default 0: every core).
 set -eu
 
 svet=${1:?usage: sh tools/reference.sh SVET [SCENE.scn ...]}
 shift
-[ -x "$svet" ] || { echo "reference.sh: $svet is not built" >&2; exit 1; }
+table_only=no
+if [ "$svet" = --table ]; then
+    table_only=yes
+elif [ ! -x "$svet" ]; then
+    echo "reference.sh: $svet is not built" >&2; exit 1
+fi
 spp=${REF_SPP:-4096}
 dir=${REF_DIR:-tests/reference}
 threads=${REF_THREADS:-0}
@@ -40,6 +47,7 @@ scene_size() {
 }
 
 total0=$(date +%s)
+[ "$table_only" = yes ] && set --
 for scene in "$@"; do
     name=$(basename "$scene" .scn)
     size=$(scene_size "$scene")
@@ -78,4 +86,42 @@ for scene in "$@"; do
     echo "reference.sh: $name: $secs s" >&2
 done
 total1=$(date +%s)
+[ "$table_only" = yes ] ||
 echo "reference.sh: $(( total1 - total0 )) s in all; $(du -ch "$dir"/*.exr | tail -n 1 | cut -f 1) of EXR in $dir" >&2
+
+# The table of every reference in the directory, between the markers
+# <!-- reference-table ... --> and <!-- /reference-table --> of its README.
+table() {
+    echo "| scene | resolution | spp | render time | files (EXR + variance + PNG) |"
+    echo "|---|---|---:|---:|---:|"
+    total=0
+    for t in "$dir"/*.txt; do
+        n=$(basename "$t" .txt)
+        bytes=$(cat "$dir/$n.exr" "$dir/$n-var.exr" "$dir/$n.png" 2>/dev/null | wc -c)
+        total=$(( total + bytes ))
+        printf '| `%s` | %s | %s | %s s | %s kB |\n' \
+            "$(sed -n 's/^scene = //p' "$t")" "$(sed -n 's/^resolution = //p' "$t")" \
+            "$(sed -n 's/^spp = //p' "$t")" "$(sed -n 's/^render_seconds = //p' "$t")" \
+            $(( (bytes + 512) / 1024 ))
+    done
+    echo
+    echo "In all $(awk -v b="$total" 'BEGIN { printf "%.1f", b / 1048576 }') MB;" \
+         "render times as measured by make reference" \
+         "($(sed -n 's/^machine = //p' "$t"); see each NAME.txt)."
+}
+readme="$dir/README.md"
+if [ -f "$readme" ] && grep -q '^<!-- reference-table' "$readme"; then
+    table > "$dir/.table"
+    awk -v tf="$dir/.table" '
+        /^<!-- reference-table/ { print; while ((getline l < tf) > 0) print l; skip = 1; next }
+        /^<!-- \/reference-table -->/ { skip = 0 }
+        !skip' "$readme" > "$readme.tmp"
+    grep -q '^<!-- /reference-table -->' "$readme.tmp" || {
+        # first time: close the block after the table
+        awk -v tf="$dir/.table" '
+            /^<!-- reference-table/ { print; while ((getline l < tf) > 0) print l;
+                                      print "<!-- /reference-table -->"; next } { print }' \
+            "$readme" > "$readme.tmp"; }
+    mv "$readme.tmp" "$readme"
+    rm -f "$dir/.table"
+fi
