@@ -601,9 +601,10 @@ START_TEST(specular_transmission_albedo_is_the_books_rho_t)
             }
             ck_assert(s.wi[Z] * wo[Z] < 0);
             /* Snell: n_o sin(theta_o) = n_i sin(theta_i) */
-            long double n_o = wo[Z] > 0 ? 1 : etas[e];
-            long double n_i = wo[Z] > 0 ? etas[e] : 1;
-            long double so = hypotl(wo[X], wo[Y]), si = hypotl(s.wi[X], s.wi[Y]);
+            long double eta = (long double)etas[e];
+            long double n_o = wo[Z] > 0 ? 1 : eta, n_i = wo[Z] > 0 ? eta : 1;
+            long double so = hypotl((long double)wo[X], (long double)wo[Y]);
+            long double si = hypotl((long double)s.wi[X], (long double)s.wi[Y]);
             ck_assert_near(n_o * so, n_i * si, 1e2 * EPS);
             /* the absolute rounding of the cosine near the critical angle
              * is amplified by 5 (1 - c)^4 <= 5 */
@@ -798,7 +799,7 @@ START_TEST(constructors_reject_what_is_not_physical)
     brdf_t b;
     svet_error err;
     const real nan = (real)NAN, inf = (real)INFINITY;
-    const RADIANCE bad_rho[] = { rad_make(nan, 0, 0), rad_make(0, -0.1f, 0),
+    const RADIANCE bad_rho[] = { rad_make(nan, 0, 0), rad_make(0, -REAL_C(0.1), 0),
                                  rad_make(0, 0, REAL_C(1.01)),
                                  rad_make(inf, 0, 0) };
     int n = 0;

@@ -66,7 +66,36 @@ static const mat_t mats[] = {
 };
 #define NMATS ((int)(sizeof mats / sizeof *mats))
 
-static bool black(const float c[3])
+/* The same material in long double, which every formula below uses. */
+typedef struct {
+    ld rho_d[3], rho_s[3], rho_g[3], rho_t[3], rho_dt[3];
+    const char *gloss;
+    ld e, ax, ay, eta;
+} matl_t;
+
+static void widen3(ld out[3], const float in[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = (ld)in[k];
+}
+
+static matl_t widen(const mat_t *m)
+{
+    matl_t l;
+    widen3(l.rho_d, m->rho_d);
+    widen3(l.rho_s, m->rho_s);
+    widen3(l.rho_g, m->rho_g);
+    widen3(l.rho_t, m->rho_t);
+    widen3(l.rho_dt, m->rho_dt);
+    l.gloss = m->gloss;
+    l.e = (ld)m->e;
+    l.ax = (ld)m->ax;
+    l.ay = (ld)m->ay;
+    l.eta = (ld)m->eta;
+    return l;
+}
+
+static bool black(const ld c[3])
 {
     return c[0] == 0 && c[1] == 0 && c[2] == 0;
 }
@@ -88,7 +117,7 @@ static void normalize(ld a[3])
 static void from_float(ld a[3], const float f[3])
 {
     for (int k = 0; k < 3; k++)
-        a[k] = f[k];
+        a[k] = (ld)f[k];
     normalize(a);
 }
 
@@ -105,7 +134,7 @@ static void rotate(ld r[3], const ld v[3], const ld k[3], ld t)
 /* --- the book's formulas, long double ------------------------------------ */
 
 /* f of the non-delta components, channel ch; unit wi, wo */
-static ld f_ref(const mat_t *m, int ch, const ld wi[3], const ld wo[3])
+static ld f_ref(const matl_t *m, int ch, const ld wi[3], const ld wo[3])
 {
     if (fabsl(wi[2]) < COS_MIN || fabsl(wo[2]) < COS_MIN)
         return 0;
@@ -161,14 +190,14 @@ static bool thin_cos(ld cos_o, ld eta, ld *c)
     return true;
 }
 
-static bool has_interface(const mat_t *m)
+static bool has_interface(const matl_t *m)
 {
     return !black(m->rho_s) || !black(m->rho_t);
 }
 
 /* rho_s(theta) of the material's mirror: Schlick (1.7) rising to
  * 1 - rho_d - rho_g - rho_dt (material.h, the Fresnel coupling) */
-static ld spec_r_ref(const mat_t *m, int ch, const ld wo[3])
+static ld spec_r_ref(const matl_t *m, int ch, const ld wo[3])
 {
     if (!has_interface(m) || fabsl(wo[2]) < COS_MIN)
         return 0;
@@ -181,7 +210,7 @@ static ld spec_r_ref(const mat_t *m, int ch, const ld wo[3])
 
 /* ch. 1: rho_t(theta) = rho_t(0) (1 - (1 - cos theta)^5), and the
  * refracted direction t by Snell (0 when none) */
-static ld spec_t_ref(const mat_t *m, int ch, const ld wo[3], ld t[3])
+static ld spec_t_ref(const matl_t *m, int ch, const ld wo[3], ld t[3])
 {
     t[0] = t[1] = t[2] = 0;
     ld c;
@@ -371,7 +400,7 @@ static ld ward_outer_f(ld phi, void *p)
     return v;
 }
 
-static ld ward_albedo(const mat_t *m, const ld wo[3], ld *err)
+static ld ward_albedo(const matl_t *m, const ld wo[3], ld *err)
 {
     ward_q w = { m->ax, m->ay, { wo[0], wo[1], fabsl(wo[2]) },
                  strcmp(m->gloss, "ward") == 0, 0, 1 };
@@ -380,7 +409,7 @@ static ld ward_albedo(const mat_t *m, const ld wo[3], ld *err)
 
 /* albedo of the whole material at wo, channel ch; gloss = the albedo of
  * the glossy lobe with rho = 1 (the same for every channel) */
-static ld albedo_ref(const mat_t *m, int ch, const ld wo[3], ld gloss)
+static ld albedo_ref(const matl_t *m, int ch, const ld wo[3], ld gloss)
 {
     if (fabsl(wo[2]) < COS_MIN)
         return 0;
@@ -389,7 +418,7 @@ static ld albedo_ref(const mat_t *m, int ch, const ld wo[3], ld gloss)
            spec_t_ref(m, ch, wo, t) + m->rho_g[ch] * gloss;
 }
 
-static ld gloss_albedo(const mat_t *m, const ld wo[3], ld *err)
+static ld gloss_albedo(const matl_t *m, const ld wo[3], ld *err)
 {
     if (black(m->rho_g) || fabsl(wo[2]) < COS_MIN)
         return 0;
@@ -428,8 +457,8 @@ static void self_check(void)
         }
     }
     /* Ward, small alpha, book form: albedo -> cos(theta_o) */
-    mat_t w = mats[6];
-    w.ax = w.ay = 1e-3f;
+    matl_t w = widen(&mats[6]);
+    w.ax = w.ay = 1e-3L;
     ld wo[3] = { 0.6L, 0, 0.8L };
     ld a = ward_albedo(&w, wo, &err);
     if (fabsl(a - 0.8L) > 1e-4L) {
@@ -453,9 +482,9 @@ static void self_check(void)
  * double's ulp (2^-29 of it) and adds 64 double ulps. Near a discontinuity (the edge of a Phong lobe, the
  * horizon, the critical angle) the measured change is the jump itself.
  */
-typedef ld (*val_fn)(const mat_t *m, int ch, const ld wi[3], const ld wo[3]);
+typedef ld (*val_fn)(const matl_t *m, int ch, const ld wi[3], const ld wo[3]);
 
-static ld sensitivity(val_fn v, const mat_t *m, int ch, const ld wi[3],
+static ld sensitivity(val_fn v, const matl_t *m, int ch, const ld wi[3],
                       const ld wo[3])
 {
     ld base = v(m, ch, wi, wo), worst = 0;
@@ -501,12 +530,12 @@ static ld sensitivity(val_fn v, const mat_t *m, int ch, const ld wi[3],
     return worst;
 }
 
-static ld val_f(const mat_t *m, int ch, const ld wi[3], const ld wo[3])
+static ld val_f(const matl_t *m, int ch, const ld wi[3], const ld wo[3])
 {
     return f_ref(m, ch, wi, wo);
 }
 
-static ld val_spec(const mat_t *m, int ch, const ld wi[3], const ld wo[3])
+static ld val_spec(const matl_t *m, int ch, const ld wi[3], const ld wo[3])
 {
     (void)wi;
     ld t[3];
@@ -579,7 +608,9 @@ int main(int argc, char **argv)
     unsigned long long rng = 0x9e3779b97f4a7c15ULL;
     int rows = 0;
     for (int mi = 0; mi < NMATS; mi++) {
-        const mat_t *m = &mats[mi];
+        const mat_t *mf = &mats[mi]; /* as printed */
+        matl_t ml = widen(mf);
+        const matl_t *m = &ml;
         for (int j = 0; j < nco; j++) {
             /* wo as a float, then its exact normalised value */
             ld phi = 0.3L + 0.7L * j, c = cos_o[j], s = sqrtl(1 - c * c);
@@ -630,15 +661,15 @@ int main(int argc, char **argv)
                     sf = fmaxl(sf, 2 * ss + 64 * 0x1p-24L * mag);
                     sd = fmaxl(sd, 2 * ss * 0x1p-29L + 64 * 0x1p-53L * mag);
                 }
-                fprintf(f, "%s,", m->name);
-                put3f(f, m->rho_d);
-                put3f(f, m->rho_s);
-                put3f(f, m->rho_g);
-                fprintf(f, "%s,%.17g,%.17g,%.17g,", m->gloss, (double)m->e,
-                        (double)m->ax, (double)m->ay);
-                put3f(f, m->rho_t);
-                put3f(f, m->rho_dt);
-                fprintf(f, "%.17g,", (double)m->eta);
+                fprintf(f, "%s,", mf->name);
+                put3f(f, mf->rho_d);
+                put3f(f, mf->rho_s);
+                put3f(f, mf->rho_g);
+                fprintf(f, "%s,%.17g,%.17g,%.17g,", mf->gloss, (double)mf->e,
+                        (double)mf->ax, (double)mf->ay);
+                put3f(f, mf->rho_t);
+                put3f(f, mf->rho_dt);
+                fprintf(f, "%.17g,", (double)mf->eta);
                 put3f(f, wo_f);
                 put3f(f, wi_f);
                 fprintf(f, "%.17Lg,%.17Lg,%.17Lg,%.3Lg,%.3Lg,", flush(fv[0]),
