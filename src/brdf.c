@@ -232,9 +232,9 @@ static void no_sample(brdf_sample_t *s)
 static bool diffuse_sample(const brdf_t *b, const VECTOR3 wo, const real u[2],
                            bool same, brdf_sample_t *s)
 {
-    sample_cosine_hemisphere(s->wi, u);
-    bool below = (wo[Z] < 0) == same;
-    if (below)
+    sample_cosine_hemisphere(s->wi, u); /* about +z */
+    bool want_below = same ? wo[Z] < 0 : wo[Z] > 0;
+    if (want_below)
         s->wi[Z] = -s->wi[Z];
     real c = fabs(s->wi[Z]);
     if (c < BRDF_COS_MIN)
