@@ -206,13 +206,16 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # --- reference output and the speed/accuracy measurements -----------------
 # `make reference` renders tests/reference/ from every scenes/*.scn with the
 # float build (tools/reference.sh: half resolution, 4096 spp; its README
-# gives the time); `make tradeoffs` measures every knob of the renderer
+# gives the time), then checks the new files with their regression suite;
+# `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
 .PHONY: reference tradeoffs
 reference:
-	$(MAKE) REAL=float BUILD=build/float build/float/svet
+	$(MAKE) REAL=float BUILD=build/float build/float/svet \
+	    build/float/tests/test_reference
 	sh tools/reference.sh build/float/svet
+	build/float/tests/test_reference
 
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
