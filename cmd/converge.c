@@ -58,10 +58,10 @@ void cmd_converge_help(FILE *f)
 "  --ref FILE.exr        the converged reference (required); its size sets\n"
 "                        the render's resolution when the aspect ratio agrees\n"
 "  --ref-var FILE.exr    the reference's variance image (default: REF-var.exr\n"
-"                        beside it, if it exists); its noise is then taken out\n"
-"                        of the error\n"
-"  --spp-list A,B,...    increasing sample counts (default 1,2,4,... up to the\n"
-"                        scene's spp)\n"
+"                        beside it, if it exists); its noise is then taken\n"
+"                        out of the error\n"
+"  --spp-list A,B,...    increasing sample counts (default 1,2,4,... up to\n"
+"                        the scene's spp)\n"
 "  --time-list S,T,...   increasing time budgets in seconds, instead\n"
 "  --out DIR             where the CSV and the plot go (default out/converge)\n"
 "  --label NAME          the method's name: file names and the CSV's method\n"
@@ -552,6 +552,18 @@ static svet_status run_spps(run_t *u, const double *spp, int ns,
     return SVET_OK;
 }
 
+static const char *integrator_name(scene_integrator i)
+{
+    switch (i) {
+    case SCENE_INTEGRATOR_PATH: return "path";
+    case SCENE_INTEGRATOR_DIRECT: return "direct";
+    case SCENE_INTEGRATOR_BSDF: return "bsdf";
+    case SCENE_INTEGRATOR_AO: return "ao";
+    case SCENE_INTEGRATOR_NEE: return "nee";
+    }
+    return "?";
+}
+
 /* "a/b/REF.exr" -> "a/b/REF-var.exr" (malloc'ed) */
 static char *variance_name(const char *ref)
 {
@@ -824,7 +836,8 @@ int cmd_converge(int argc, char **argv)
 
     int len = snprintf(comment, 8192,
         "svet converge %s --ref %s%s%s: %s\n"
-        "method %s: seed %llu, %d x %d, %s %d, roulette %s, %s build "
+        "method %s: seed %llu, %d x %d, integrator %s, maxdepth %d, "
+        "roulette %s, %s build "
         "(%s)\n"
         "accel: %s\n"
         "threads %d (0 = every core); seconds = wall-clock render set-up "
@@ -835,10 +848,7 @@ int cmd_converge(int argc, char **argv)
         ref_var_path ? ref_var_path : "",
         time_mode ? "time budgets" : "sample counts", method,
         (unsigned long long)scene.render.seed, cam->width, cam->height,
-        scene.render.integrator == SCENE_INTEGRATOR_PATH     ? "path, maxdepth"
-        : scene.render.integrator == SCENE_INTEGRATOR_DIRECT ? "direct, maxdepth"
-        : scene.render.integrator == SCENE_INTEGRATOR_BSDF   ? "bsdf, maxdepth"
-                                                             : "ao, maxdepth",
+        integrator_name(scene.render.integrator),
         scene.render.max_depth, scene.render.roulette ? "on" : "off",
         REAL_NAME, __VERSION__, r.accel_choice, scene.render.threads,
         CONVERGE_PSNR_PEAK);

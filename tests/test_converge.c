@@ -102,6 +102,10 @@ static void series(converge_point_t *p, int n, const double *t, double c,
     }
 }
 
+/* The absolute metric's readings of a 5-point series p. */
+#define ERROR_AT(t, how) converge_error_at(p, 5, CONVERGE_ABS, t, how)
+#define TIME_TO(e, how) converge_time_to(p, 5, CONVERGE_ABS, e, how)
+
 START_TEST(an_unbiased_series_is_read_exactly_off_its_power_law)
 {
     const double t[] = { 0.5, 1, 2, 4, 8 }, c = 0.02;
@@ -112,25 +116,24 @@ START_TEST(an_unbiased_series_is_read_exactly_off_its_power_law)
     /* between points: log-log interpolation of e = sqrt(c / t) is exact */
     const double ts[] = { 0.5, 0.7, 3, 5.5, 8 };
     for (int i = 0; i < 5; i++) {
-        ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, ts[i], &how), sqrt(c / ts[i]),
-                      1e-12, 0);
+        ck_assert_rel(ERROR_AT(ts[i], &how), sqrt(c / ts[i]), 1e-12, 0);
         ck_assert_int_eq(how, CONVERGE_MEASURED);
-        ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, sqrt(c / ts[i]), &how), ts[i],
-                      1e-12, 0);
+        ck_assert_rel(TIME_TO(sqrt(c / ts[i]), &how), ts[i], 1e-12, 0);
         ck_assert_int_eq(how, ts[i] == 0.5 ? CONVERGE_EXTRAPOLATED
                                            : CONVERGE_MEASURED);
     }
     /* beyond them: the 1/t law from the nearest end */
-    ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, 100, &how), sqrt(c / 100), 1e-12, 0);
+    ck_assert_rel(ERROR_AT(100, &how), sqrt(c / 100), 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
-    ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, 0.1, &how), sqrt(c / 0.1), 1e-12, 0);
-    ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, sqrt(c / 100), &how), 100, 1e-12, 0);
+    ck_assert_rel(ERROR_AT(0.1, &how), sqrt(c / 0.1), 1e-12, 0);
+    ck_assert_rel(TIME_TO(sqrt(c / 100), &how), 100, 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
-    ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, sqrt(c / 0.1), &how), 0.1, 1e-12, 0);
+    ck_assert_rel(TIME_TO(sqrt(c / 0.1), &how), 0.1, 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
     /* efficiency 1 / (variance t) = 1 / c at every point */
     for (int i = 0; i < 5; i++)
-        ck_assert_rel(converge_efficiency(&p[i], CONVERGE_ABS), 1 / c, 1e-12, 0);
+        ck_assert_rel(converge_efficiency(&p[i], CONVERGE_ABS), 1 / c, 1e-12,
+                      0);
     /* the relative metric reads its own columns: 3 times the MSE */
     ck_assert_rel(converge_error_at(p, 5, CONVERGE_REL, 3, &how),
                   sqrt(3 * c / 3), 1e-12, 0);
@@ -153,15 +156,14 @@ START_TEST(a_biased_series_never_falls_below_its_bias)
     ck_assert(converge_biased(p, 5, CONVERGE_ABS, &b));
     ck_assert_rel(b, 0.1, 1e-12, 0);
     converge_how how;
-    ck_assert_rel(converge_error_at(p, 5, CONVERGE_ABS, 1000, &how), sqrt(b2 + c / 1000),
-                  1e-12, 0);
+    ck_assert_rel(ERROR_AT(1000, &how), sqrt(b2 + c / 1000), 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
-    ck_assert(converge_time_to(p, 5, CONVERGE_ABS, 0.1, &how) == (double)INFINITY);
+    ck_assert(TIME_TO(0.1, &how) == (double)INFINITY);
     ck_assert_int_eq(how, CONVERGE_NEVER);
-    ck_assert(converge_time_to(p, 5, CONVERGE_ABS, 0.05, &how) == (double)INFINITY);
+    ck_assert(TIME_TO(0.05, &how) == (double)INFINITY);
     /* an error above the bias but below the last point: b^2 + c / t = e^2 */
     double e = sqrt(b2 + c / 20);
-    ck_assert_rel(converge_time_to(p, 5, CONVERGE_ABS, e, &how), 20, 1e-12, 0);
+    ck_assert_rel(TIME_TO(e, &how), 20, 1e-12, 0);
     ck_assert_int_eq(how, CONVERGE_EXTRAPOLATED);
     /* the same law with b^2 below the noise at t = 8 is not called biased */
     series(p, 5, t, c, 0.001);

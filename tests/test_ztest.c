@@ -93,7 +93,8 @@ START_TEST(levels_run_from_pixels_to_the_whole_image)
     ztest_result_t r;
     ck_assert_int_eq(ztest_run(&A, &A, &p, &r, NULL, NULL), SVET_OK);
     /* blocks of 1, 4, 16, 64 pixels, then one block of the whole image */
-    static const int side[] = { 1, 4, 16, 64, 160 }, cols[] = { 160, 40, 10, 3, 1 },
+    static const int side[] = { 1, 4, 16, 64, 160 },
+                     cols[] = { 160, 40, 10, 3, 1 },
                      rows[] = { 120, 30, 8, 2, 1 };
     ck_assert_int_eq(r.nlevels, 5);
     long values = 0;
@@ -144,7 +145,8 @@ START_TEST(renders_of_the_same_image_pass)
         image_free(&vb);
     }
     test_report_cases("renders_of_the_same_image_pass", T);
-    ck_assert_msg(failures <= 4, "%d of %d unbiased trials failed", failures, T);
+    ck_assert_msg(failures <= 4, "%d of %d unbiased trials failed", failures,
+                  T);
 }
 END_TEST
 
