@@ -17,7 +17,7 @@
 #include "radiance.h"
 #include "vec.h"
 
-/* --- limits (documented in scenes/README.md) -----------------------------*/
+/* --- limits (documented in scenes/README.md) ----------------------------- */
 #define SCENE_MAX_RESOLUTION 16384    /* pixels on either side of the image */
 #define SCENE_MAX_PIXELS (1L << 26)   /* width * height: 64 Mpixel */
 #define SCENE_MAX_SPP (1L << 24)      /* samples per pixel */
@@ -25,7 +25,7 @@
 #define SCENE_MAX_THREADS 1024        /* render threads */
 #define SCENE_MAX_NAME 64             /* bytes of a material name */
 
-/* --- the camera (ch. 5; its ray formula is in scenes/README.md) ----------*/
+/* --- the camera (ch. 5; its ray formula is in scenes/README.md) ---------- */
 
 /* Which extent of the image the field of view spans. */
 typedef enum {
@@ -54,7 +54,7 @@ typedef struct {
                                 pixel itself) */
 } scene_camera_t;
 
-/* --- render settings -----------------------------------------------------*/
+/* --- render settings ----------------------------------------------------- */
 
 typedef enum {
     SCENE_INTEGRATOR_PATH = 0,   /* path tracing: NEE + BSDF sampling + MIS */
@@ -129,7 +129,7 @@ typedef struct {
      *    struct: photon maps (ch. 8), the irradiance cache (ch. 9). -- */
 } scene_render_t;
 
-/* --- lights (ch. 5) ------------------------------------------------------*/
+/* --- lights (ch. 5) ------------------------------------------------------ */
 
 /* A point isotropic source: radiant intensity I (W/sr) in every direction,
  * so its power is Phi = 4 pi I. */
@@ -154,7 +154,7 @@ typedef struct {
     struct material *material; /* material_t of material.h */
 } scene_material_t;
 
-/* --- the scene -----------------------------------------------------------*/
+/* --- the scene ----------------------------------------------------------- */
 
 typedef struct {
     char *path;                 /* the file it was read from, or NULL. Owned */
