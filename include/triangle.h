@@ -84,17 +84,31 @@ typedef struct {
     real x, y, az;
 } triangle_sheared_t;
 
-/* v = vertex p in the space of pr. Every vertex is transformed on its own,
- * so a vertex shared by two triangles lands on the same point in both:
- * the root of watertightness. This function can't fail. */
+/* v = vertex p in the space of pr, in two steps: triangle_shear_z sets
+ * v->az, triangle_shear_xy then v->x and v->y (a shape may look at the
+ * z's of its vertices before it shears them across the ray). Every vertex
+ * is transformed on its own, so a vertex shared by two triangles lands on
+ * the same point in both: the root of watertightness. These functions
+ * can't fail. */
+static inline void triangle_shear_z(triangle_sheared_t *v, const VECTOR3 p,
+                                    const triangle_ray_t *pr)
+{
+    v->az = p[pr->kz] - pr->o[pr->kz];
+}
+
+static inline void triangle_shear_xy(triangle_sheared_t *v, const VECTOR3 p,
+                                     const triangle_ray_t *pr)
+{
+    real ax = p[pr->kx] - pr->o[pr->kx], ay = p[pr->ky] - pr->o[pr->ky];
+    v->x = ax + pr->sx * v->az;
+    v->y = ay + pr->sy * v->az;
+}
+
 static inline void triangle_shear(triangle_sheared_t *v, const VECTOR3 p,
                                   const triangle_ray_t *pr)
 {
-    real ax = p[pr->kx] - pr->o[pr->kx], ay = p[pr->ky] - pr->o[pr->ky];
-    real az = p[pr->kz] - pr->o[pr->kz];
-    v->x = ax + pr->sx * az;
-    v->y = ay + pr->sy * az;
-    v->az = az;
+    triangle_shear_z(v, p, pr);
+    triangle_shear_xy(v, p, pr);
 }
 
 /* The edge function of the sheared vertices a, b: a.x b.y - a.y b.x, twice
@@ -118,7 +132,13 @@ static inline real triangle_edge(const triangle_sheared_t *a,
  * the inside test, t and its error bound, b. Given those, the same answers
  * bit for bit as triangle_intersect_prepared, but for the degeneracy test,
  * which is the caller's (a shape can make it once, when it is built).
- * This function can't fail. */
+ * What a caller may rely on to skip the test: t is computed as
+ * (sum e_i z_i / det) 2^-scale with z_i = sz az_i (pr's sz and scale),
+ * a mean of the z_i with the weights e_i / det, which are >= 0 and sum to
+ * 1 on a hit; with the roundings of the sums and the division it lies
+ * within [min z_i - gamma(8) M, max z_i + gamma(8) M] 2^-scale, M =
+ * max |z_i| (tests/test_triangle.c checks this). This function can't
+ * fail. */
 bool triangle_hit_sheared(const triangle_sheared_t *v0,
                           const triangle_sheared_t *v1,
                           const triangle_sheared_t *v2, real e0, real e1,

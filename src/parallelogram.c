@@ -16,6 +16,9 @@ typedef struct {
     VECTOR3 u, v;   /* the frame of every point: shape_frame(n, e1) */
     bool degenerate[2]; /* triangle_is_degenerate of A and B: never hit */
     real area;
+    real h_lo, h_hi; /* min and max of the computed n . c_i: the slab
+                        h_lo <= n . p <= h_hi holds the parallelogram */
+    real c_max;      /* max |c_i| over corners and axes */
 } para_shape;
 
 /* The surface point at (s, t): in triangle A = (c0, c1, c2) where s >= t,
@@ -76,6 +79,55 @@ static bool two_triangles(const para_shape *sh, const triangle_ray_t *pr,
     return any;
 }
 
+/* Scale of the slab's padding below, in units of the unit roundoff. */
+#define SLAB_PAD (128 * REAL_UNIT_ROUNDOFF)
+#define DIR_PAD (16 * REAL_UNIT_ROUNDOFF)
+
+/* True when the ray leaves the parallelogram's plane behind it: its
+ * origin lies beyond the slab h_lo <= n . p <= h_hi (padded) and it
+ * moves away from it, so no hit at t > 0 can be reported. A test of a
+ * few products before any shear, true for about half the parallelograms
+ * of a closed room.
+ *   Why no reported hit is lost. The watertight test reports a hit only
+ * where the ray meets the triangle whose corners are the computed sheared
+ * ones, i.e. each corner moved across the ray (along the axes kx, ky) by
+ * at most gamma(5) (max|x| + max|a_z|) <= 3 gamma(5) A, A = max|c_i - o|
+ * <= c_max + max|o| (|sx|, |sy| <= 1); and its error bound dt makes sure
+ * that meeting is at t > 0 (triangle.c). Every point of that triangle
+ * has n . p within eta = (|n_kx| + |n_ky|) 3 gamma(5) A < 22 u A of
+ * [h_lo, h_hi] beyond the gamma(3) sqrt(3) c_max < 6 u c_max to which the
+ * computed n . c_i are exact. The ray's points at t > 0 have n . p =
+ * n . o + t n . d >= n . o > h_hi + eta when n . d >= 0; n . o and n . d
+ * are computed within sqrt(3) gamma(3) max|o| and sqrt(3) gamma(3)
+ * max|d| (< 6 u of each). So a pad of 128 u (c_max + max|o|), more than
+ * three times the 34 u needed with the rounding of the test's own sums,
+ * and n . d >= 16 u max|d| keep every reported hit. */
+static bool leaves_plane(const para_shape *sh, const ray_t *r)
+{
+    real s = SVECTOR3(sh->n, r->o), dn = SVECTOR3(sh->n, r->d);
+    real o_max = real_max(fabs(r->o[X]),
+                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
+    real d_max = real_max(fabs(r->d[X]),
+                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+    real pad = SLAB_PAD * (sh->c_max + o_max), dpad = DIR_PAD * d_max;
+    /* a NaN anywhere makes both comparisons false: no early answer */
+    return (s > sh->h_hi + pad && dn >= dpad) ||
+           (s < sh->h_lo - pad && dn <= -dpad);
+}
+
+/* True when the ray is outside (tmin, tmax) all along the parallelogram
+ * in the ray's own axis kz: the t the watertight test reports is a mean
+ * of the corners' z_i = sz a_z (triangle.h), within gamma(8) max|z_i| of
+ * their range; gamma(16) covers that and the rounding of this test. Only
+ * for a ray that needed no rescaling (scale = 0). */
+static bool outside_interval(const real z[4], real tmin, real tmax)
+{
+    real lo = real_min(real_min(z[0], z[1]), real_min(z[2], z[3]));
+    real hi = real_max(real_max(z[0], z[1]), real_max(z[2], z[3]));
+    real pad = ray_gamma(16) * real_max(fabs(lo), fabs(hi));
+    return hi + pad <= tmin || lo - pad >= tmax;
+}
+
 /* The watertight test of the two triangles A = (c0, c1, c2) and
  * B = (c0, c2, c3), sharing what they share: the ray is prepared once,
  * each corner is sheared once, and the diagonal's edge function once
@@ -89,15 +141,27 @@ static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
                            real tmin, real tmax, hit_t *hit)
 {
     const para_shape *sh = obj->shape;
+    if (tmin >= 0 && leaves_plane(sh, r))
+        return false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
     if (!pr.ok)
         return false;
     triangle_sheared_t v0, v1, v2, v3;
-    triangle_shear(&v0, sh->c[0], &pr);
-    triangle_shear(&v1, sh->c[1], &pr);
-    triangle_shear(&v2, sh->c[2], &pr);
-    triangle_shear(&v3, sh->c[3], &pr);
+    triangle_shear_z(&v0, sh->c[0], &pr);
+    triangle_shear_z(&v1, sh->c[1], &pr);
+    triangle_shear_z(&v2, sh->c[2], &pr);
+    triangle_shear_z(&v3, sh->c[3], &pr);
+    if (pr.scale == 0) {
+        const real z[4] = { pr.sz * v0.az, pr.sz * v1.az, pr.sz * v2.az,
+                            pr.sz * v3.az };
+        if (outside_interval(z, tmin, tmax))
+            return false;
+    }
+    triangle_shear_xy(&v0, sh->c[0], &pr);
+    triangle_shear_xy(&v1, sh->c[1], &pr);
+    triangle_shear_xy(&v2, sh->c[2], &pr);
+    triangle_shear_xy(&v3, sh->c[3], &pr);
     real e01 = triangle_edge(&v0, &v1), e12 = triangle_edge(&v1, &v2);
     real e20 = triangle_edge(&v2, &v0), e23 = triangle_edge(&v2, &v3);
     real e30 = triangle_edge(&v3, &v0);
@@ -220,6 +284,16 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
     sh->degenerate[0] = triangle_is_degenerate(c0, c1, c2);
     sh->degenerate[1] = triangle_is_degenerate(c0, c2, c3);
     sh->area = area;
+    sh->h_lo = (real)INFINITY;
+    sh->h_hi = -(real)INFINITY;
+    sh->c_max = 0;
+    for (int i = 0; i < 4; i++) {
+        real h = SVECTOR3(n, sh->c[i]);
+        sh->h_lo = real_min(sh->h_lo, h);
+        sh->h_hi = real_max(sh->h_hi, h);
+        for (int k = 0; k < 3; k++)
+            sh->c_max = real_max(sh->c_max, fabs(sh->c[i][k]));
+    }
     return obj;
 }
 

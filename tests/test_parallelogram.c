@@ -293,6 +293,107 @@ START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
 }
 END_TEST
 
+/* One ray against o over (tmin, tmax): the same answer, bit for bit, as
+ * the two triangles. Returns whether it hit. */
+static bool agrees_with_two_triangles(const COBJECT *o, const VECTOR3 c[4],
+                                      const ray_t *r, real tmin, real tmax)
+{
+    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+    bool a = two_triangle_reference(c, r, tmin, tmax, &h1);
+    bool b = o->ops->intersect(o, 0, r, tmin, tmax, &h2);
+    ck_assert_msg(a == b, "hit %d vs %d: o (%a %a %a) d (%a %a %a) "
+                  "(%a, %a)", (int)a, (int)b, (double)r->o[X],
+                  (double)r->o[Y], (double)r->o[Z], (double)r->d[X],
+                  (double)r->d[Y], (double)r->d[Z], (double)tmin,
+                  (double)tmax);
+    if (a) {
+        ck_assert(memcmp(&h1.t, &h2.t, sizeof h1.t) == 0);
+        ck_assert(memcmp(h1.b, h2.b, 2 * sizeof h1.b[0]) == 0);
+    }
+    return a;
+}
+
+START_TEST(parallelogram_early_rejections_lose_no_hit)
+{
+    /* The parallelogram rejects a ray early when it leaves the plane
+     * behind it and when it is outside (tmin, tmax) all along the corners
+     * (parallelogram.c). Probe both where they are closest to wrong:
+     * origins at 2^-k of the size off the plane on either side (and on
+     * it), directions grazing the plane from either side, and intervals
+     * that end one ulp before, at and after the hit. */
+    pcg32_t g;
+    pcg32_seed(&g, 41, 42);
+    long n = 0, hits = 0;
+    for (int i = 0; i < 3000; i++) {
+        VECTOR3 c[4], e1, e2, nrm;
+        real size = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 21) - 10);
+        for (int k = 0; k < 3; k++) {
+            c[0][k] = size * (4 * pcg32_real(&g) - 2);
+            c[1][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
+            c[3][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
+        }
+        if (i % 3 == 0) /* axis-aligned, as the Cornell box's walls */
+            for (int j = 1; j < 4; j += 2)
+                c[j][i % 9 / 3] = c[0][i % 9 / 3];
+        svet_error err;
+        COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+        if (!o)
+            continue;
+        for (int k = 0; k < 3; k++)
+            c[2][k] = c[1][k] + (c[3][k] - c[0][k]);
+        vec_sub(e1, c[1], c[0]);
+        vec_sub(e2, c[3], c[0]);
+        VVECTOR3(nrm, e1, e2);
+        vec_normalize(nrm, nrm);
+        for (int j = 0; j < 30; j++) {
+            /* origin off the plane by +-2^-k size (or on it), over a point
+             * in or around the parallelogram */
+            real off = pcg32_bounded(&g, 8) == 0
+                           ? 0
+                           : ldexp(size, -(int)pcg32_bounded(&g, 40));
+            if (pcg32_next(&g) & 1)
+                off = -off;
+            ray_t r;
+            real s0 = REAL_C(3.0) * pcg32_real(&g) - 1;
+            real t0 = REAL_C(3.0) * pcg32_real(&g) - 1;
+            for (int k = 0; k < 3; k++)
+                r.o[k] = c[0][k] + s0 * e1[k] + t0 * e2[k] + off * nrm[k];
+            /* toward a point of the parallelogram (or near it) lifted off
+             * the plane by a tiny amount: grazing either way */
+            real s1 = REAL_C(1.2) * pcg32_real(&g) - REAL_C(0.1);
+            real t1 = REAL_C(1.2) * pcg32_real(&g) - REAL_C(0.1);
+            real lift = ldexp(size, -(int)pcg32_bounded(&g, 50)) *
+                        (pcg32_next(&g) & 1 ? 1 : -1);
+            for (int k = 0; k < 3; k++)
+                r.d[k] = c[0][k] + s1 * e1[k] + t1 * e2[k] + lift * nrm[k] -
+                         r.o[k];
+            if (pcg32_next(&g) & 1)
+                vec_neg(r.d, r.d); /* and away from it */
+            n++;
+            if (!agrees_with_two_triangles(o, (const VECTOR3 *)c, &r, 0,
+                                           (real)INFINITY))
+                continue;
+            hits++;
+            /* the interval's ends around the hit */
+            hit_t h;
+            two_triangle_reference((const VECTOR3 *)c, &r, 0,
+                                   (real)INFINITY, &h);
+            const real ends[3] = { nextafter(h.t, -(real)INFINITY), h.t,
+                                   nextafter(h.t, (real)INFINITY) };
+            for (int q = 0; q < 3; q++, n += 2) {
+                agrees_with_two_triangles(o, (const VECTOR3 *)c, &r, 0,
+                                          ends[q]);
+                agrees_with_two_triangles(o, (const VECTOR3 *)c, &r,
+                                          ends[q], (real)INFINITY);
+            }
+        }
+        cobject_free(o);
+    }
+    ck_assert(hits > n / 20);
+    test_report_cases("parallelogram_early_rejections_lose_no_hit", n);
+}
+END_TEST
+
 START_TEST(parallelogram_rejects_degenerate_and_non_parallelogram_input)
 {
     svet_error err;
@@ -469,6 +570,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, cornell_box_rectangles_face_into_the_box);
     tcase_add_test(tc, no_ray_slips_through_a_closed_box_of_parallelograms);
     tcase_add_test(tc, parallelogram_answers_as_its_two_triangles_bit_for_bit);
+    tcase_add_test(tc, parallelogram_early_rejections_lose_no_hit);
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);

@@ -262,6 +262,64 @@ START_TEST(a_prepared_ray_gives_the_same_answers_bit_for_bit)
 }
 END_TEST
 
+START_TEST(reported_t_is_a_mean_of_the_vertex_z)
+{
+    /* triangle.h promises that t 2^scale lies within gamma(8) max|z_i| of
+     * the range of the vertices' z_i = sz (p_i - o)_kz, whatever the
+     * angle: the parallelogram relies on it to skip a test early. Grazing
+     * rays (direction 2^-k off the plane) are where t is least certain. */
+    pcg32_t g;
+    pcg32_seed(&g, 18, 19);
+    long n = 0, hits = 0;
+    for (int i = 0; i < 200000; i++) {
+        VECTOR3 p[3], e1, e2, nrm, q, dir;
+        for (int k = 0; k < 9; k++)
+            p[k / 3][k % 3] = 2 * pcg32_real(&g) - 1;
+        vec_sub(e1, p[1], p[0]);
+        vec_sub(e2, p[2], p[0]);
+        VVECTOR3(nrm, e1, e2);
+        if (vec_normalize(nrm, nrm) == 0)
+            continue;
+        /* aim at a point of (or near) the triangle along a direction in
+         * its plane, tilted by 2^-k */
+        real b1 = pcg32_real(&g), b2 = pcg32_real(&g) * (1 - b1);
+        for (int k = 0; k < 3; k++)
+            q[k] = p[0][k] + b1 * e1[k] + b2 * e2[k];
+        if (i % 3 == 0) /* at a vertex: t at an end of the range */
+            vec_copy(q, p[i % 9 / 3]);
+        geomcheck_random_dir(dir, &g);
+        vec_add_scaled(dir, dir, -SVECTOR3(dir, nrm), nrm);
+        vec_add_scaled(dir, dir,
+                       ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 30)), nrm);
+        ray_t r;
+        vec_add_scaled(r.o, q, -(2 * pcg32_real(&g)), dir);
+        vec_scale(r.d, dir, ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 60) - 30));
+        triangle_ray_t pr;
+        triangle_ray_prepare(&pr, &r);
+        real t, b[3];
+        n++;
+        if (!triangle_intersect_prepared(p[0], p[1], p[2], &pr, 0,
+                                         (real)INFINITY, &t, b))
+            continue;
+        hits++;
+        real z[3], lo = (real)INFINITY, hi = -(real)INFINITY, m = 0;
+        for (int k = 0; k < 3; k++) {
+            z[k] = pr.sz * (p[k][pr.kz] - pr.o[pr.kz]);
+            lo = fmin(lo, z[k]);
+            hi = fmax(hi, z[k]);
+            m = fmax(m, fabs(z[k]));
+        }
+        real ts = ldexp(t, pr.scale);
+        ck_assert_msg(ts >= lo - ray_gamma(8) * m &&
+                          ts <= hi + ray_gamma(8) * m,
+                      "t %a outside [%a, %a]", (double)ts, (double)lo,
+                      (double)hi);
+    }
+    ck_assert(hits > n / 4);
+    test_report_cases("reported_t_is_a_mean_of_the_vertex_z", n);
+}
+END_TEST
+
 /* --- closed meshes -------------------------------------------------------- */
 
 typedef struct {
@@ -671,6 +729,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, rays_parallel_to_the_triangle_never_hit);
     tcase_add_test(tc, degenerate_triangles_never_hit_and_never_give_nan);
     tcase_add_test(tc, a_prepared_ray_gives_the_same_answers_bit_for_bit);
+    tcase_add_test(tc, reported_t_is_a_mean_of_the_vertex_z);
     tcase_add_test(tc, no_ray_slips_through_a_closed_octahedron);
     tcase_add_test(tc, no_ray_slips_through_a_subdivided_icosahedron);
     tcase_add_test(tc, triangle_spawned_rays_never_rehit_at_any_scale);
