@@ -274,6 +274,14 @@ typedef struct {
     xform_t x;
     real absdet; /* |det M| */
     real area;
+    /* A sphere in the world around a transformed box, padded so that a ray
+     * that passes outside it cannot be reported as a hit (sphere_pad()):
+     * most rays are turned away by it before they are mapped to object
+     * space. cull is false for other primitives and extreme transforms. */
+    bool cull;
+    VECTOR3 centre;
+    real radius;
+    real pad0, pad_o, pad_oc; /* pad = pad0 + pad_o |o| + pad_oc |c - o|_1 */
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -303,10 +311,39 @@ static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
+/* True when the ray (over t >= 0) stays outside the culling sphere: its
+ * line passes the centre farther than the radius, or it starts outside
+ * the sphere and moves away from the centre. Evaluated with margins for
+ * its own rounding (the squares carry gamma(3), the difference of
+ * c2 dd and b^2 cancels down to what 32 u c2 dd covers, b carries
+ * gamma(3) |c - o|_1 max|d|). A NaN makes every comparison false: no
+ * early answer. */
+static bool misses_sphere(const xf_shape *sh, const ray_t *r)
+{
+    VECTOR3 oc;
+    vec_sub(oc, sh->centre, r->o);
+    real oc1 = fabs(oc[X]) + fabs(oc[Y]) + fabs(oc[Z]);
+    real o_max = real_max(fabs(r->o[X]),
+                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
+    real rho = sh->radius + (sh->pad0 + sh->pad_o * o_max + sh->pad_oc * oc1);
+    real rho2 = rho * rho;
+    real c2 = SVECTOR3(oc, oc), b = SVECTOR3(oc, r->d);
+    real dd = SVECTOR3(r->d, r->d);
+    const real u = REAL_UNIT_ROUNDOFF;
+    /* the distance of the line from the centre, squared, times dd */
+    if (c2 * dd - b * b > (rho2 + 32 * u * c2) * dd)
+        return true;
+    real d_max = real_max(fabs(r->d[X]),
+                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+    return b + 4 * u * oc1 * d_max <= 0 && c2 > rho2 * (1 + 8 * u);
+}
+
 static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
                          real tmin, real tmax, hit_t *hit)
 {
     const xf_shape *sh = obj->shape;
+    if (sh->cull && tmin >= 0 && misses_sphere(sh, r))
+        return false;
     ray_t ro;
     int k;
     if (!object_ray(sh, r, &ro, &k))
@@ -564,6 +601,82 @@ static real transformed_area(const xf_shape *sh)
     return quadrature_area(sh);
 }
 
+/* --- the culling sphere ---------------------------------------------------- */
+
+/* max row sum of |A| for the linear part of a 3x4 matrix, in long double */
+static ld norm_inf(const real *a)
+{
+    ld n = 0;
+    for (int i = 0; i < 3; i++) {
+        ld row = fabsl((ld)AT(a, i, 0)) + fabsl((ld)AT(a, i, 1)) +
+                 fabsl((ld)AT(a, i, 2));
+        n = row > n ? row : n;
+    }
+    return n;
+}
+
+/* The sphere and its pad for a transformed box (sh->inner a "box").
+ *   Why a ray that passes outside cannot be reported as a hit. Write W for
+ * the exact map p -> M p + m, kappa = |M| |M^-1| (infinity norms).
+ * xf_intersect maps the ray to o' = M^-1 o + t_inv and d' = M^-1 d 2^-k,
+ * each rounded within gamma(4) (|M^-1| |.| + |t_inv|); the box reports t
+ * only where the exact o' + t d' lies within gamma(9) (|o'| + |box|) of
+ * the box on every axis (box.c: two roundings of each slab distance, the
+ * exit pushed by 2 gamma(3) and rounded twice more). And M inv differs from I by what check()
+ * allows, 64 epsilon |row|_1 |col|_1 per entry: at most 384 u kappa. Going
+ * back through W, the world point o + t d then lies within
+ *   E = K kappa (|o| + |m| + t |d|) + gamma(9) |M| |box|,  K = 512 u
+ * (the sum of those terms, 400 u kappa, rounded up) of W(box), which lies
+ * in the sphere of radius R about c (the transformed corners, in long
+ * double, rounded up). A hit is near the sphere, so t |d| <= |c - o| + R
+ * + sqrt(3) E; with K kappa <= 1/64 that gives the Euclidean pad
+ *   sqrt(3) E <= 4 (K kappa (|m| + R + |c|) + gamma(9) |M| |box|)
+ *                + 2 K kappa |o| + 2 K kappa |c - o|_1,
+ * with factor 4 for the rounding of c, of R and of the pad itself. */
+static void set_culling(xf_shape *sh)
+{
+    sh->cull = false;
+    if (strcmp(sh->inner->ops->name, "box") != 0)
+        return;
+    bbox_t b;
+    sh->inner->ops->bounds(sh->inner, -1, &b);
+    const real *m = MAT(sh->x.m);
+    ld kappa = norm_inf(m) * norm_inf(MAT(sh->x.inv));
+    ld K = 512 * (ld)REAL_UNIT_ROUNDOFF;
+    if (!(K * kappa <= 1.0L / 64) || !isfinite(kappa))
+        return;
+    ld c[3], r2 = 0, box = 0, mt = 0, cmax = 0;
+    for (int i = 0; i < 3; i++) {
+        c[i] = AT(m, i, 3);
+        for (int j = 0; j < 3; j++)
+            c[i] += (ld)AT(m, i, j) * (0.5L * b.min[j] + 0.5L * b.max[j]);
+        mt = fmaxl(mt, fabsl((ld)AT(m, i, 3)));
+        box = fmaxl(box, fmaxl(fabsl((ld)b.min[i]), fabsl((ld)b.max[i])));
+        cmax = fmaxl(cmax, fabsl(c[i]));
+    }
+    for (int corner = 0; corner < 8; corner++) {
+        ld d2 = 0;
+        for (int i = 0; i < 3; i++) {
+            ld p = AT(m, i, 3);
+            for (int j = 0; j < 3; j++)
+                p += (ld)AT(m, i, j) *
+                     ((corner >> j) & 1 ? (ld)b.max[j] : (ld)b.min[j]);
+            d2 += (p - c[i]) * (p - c[i]);
+        }
+        r2 = fmaxl(r2, d2);
+    }
+    ld R = sqrtl(r2);
+    ld pad0 = 4 * (K * kappa * (mt + R + cmax) +
+                   (ld)ray_gamma(9) * norm_inf(m) * box);
+    for (int i = 0; i < 3; i++)
+        sh->centre[i] = (real)c[i];
+    sh->radius = real_next_up((real)R);
+    sh->pad0 = real_next_up((real)pad0);
+    sh->pad_o = sh->pad_oc = real_next_up((real)(2 * K * kappa));
+    sh->cull = vec_is_finite(sh->centre) && isfinite(sh->radius) &&
+               isfinite(sh->pad0) && isfinite(sh->pad_o);
+}
+
 /* --- construction ------------------------------------------------------------ */
 
 static svet_status check(const xform_t *x, svet_error *err)
@@ -639,6 +752,7 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     bool regular;
     sh->absdet = (real)fabsl(det3(MAT(x.m), &regular));
     sh->area = transformed_area(sh);
+    set_culling(sh);
     obj->nprims = inner->nprims;
     return obj;
 }

@@ -479,6 +479,104 @@ START_TEST(a_mirrored_box_keeps_outward_normals)
 }
 END_TEST
 
+/* A transformed box, and a box to test the same ray in object space by
+ * hand: the reference without xform's culling sphere. */
+START_TEST(the_culling_sphere_never_turns_away_a_hit)
+{
+    /* xform_intersect first tests a padded sphere about a transformed box
+     * (xform.c). Against the box hit by hand in object space - the ray
+     * mapped by the same matrix, then box_intersect - the answers must be
+     * the same bits. The rays that come nearest to the sphere's boundary
+     * while hitting the box are those through its corners (on the
+     * sphere) and along its edges, and along the edges through a corner;
+     * origins from 2^-4 to 2^20 away, and on the box itself leaving it. */
+    pcg32_t g;
+    pcg32_seed(&g, 61, 62);
+    long n = 0, hits = 0;
+    for (int i = 0; i < 400; i++) {
+        VECTOR3 lo, hi;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = 4 * pcg32_real(&g) - 2;
+            hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(&g);
+        }
+        /* every other box a slab: its short edges are nearly tangent to
+         * the sphere through its corners */
+        if (i % 2)
+            hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 16));
+        xform_t x = random_xform(&g);
+        svet_error err;
+        COBJECT *box = box_new(lo, hi, &err);
+        COBJECT *o = xform_new(box_new(lo, hi, &err), &x, &err);
+        ck_assert_msg(box && o, "%s", err.msg);
+        const xform_t *xf = xform_of(o);
+        xform_t inv = *xf;
+        memcpy(inv.m, xf->inv, sizeof inv.m);
+        for (int j = 0; j < 100; j++) {
+            /* a corner, the middle of an edge, or a point of a face, moved
+             * off by up to 2^-20 of the box */
+            VECTOR3 q;
+            int kind = j % 3;
+            for (int k = 0; k < 3; k++) {
+                real f = kind == 0 ? (real)pcg32_bounded(&g, 2)
+                                   : pcg32_real(&g);
+                if (kind == 1 && k == j % 9 / 3)
+                    f = REAL_C(0.5);
+                q[k] = lo[k] + f * (hi[k] - lo[k]) +
+                       ldexp(2 * pcg32_real(&g) - 1, -20);
+            }
+            VECTOR3 target, dir;
+            xform_point(xf, target, q);
+            geomcheck_random_dir(dir, &g);
+            if (j % 4 == 3) {
+                /* along an edge through a corner, tilted by 2^-k: the
+                 * grazing hits; along a thin box's short edge they pass
+                 * the centre at nearly the sphere's radius */
+                VECTOR3 e = { 0, 0, 0 }, ew;
+                for (int k = 0; k < 3; k++)
+                    q[k] = pcg32_bounded(&g, 2) ? hi[k] : lo[k];
+                e[j % 12 / 4] = 1;
+                xform_point(xf, target, q);
+                xform_vector(xf, ew, e);
+                vec_normalize(ew, ew);
+                real tilt = ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 30));
+                vec_add_scaled(dir, ew, tilt, dir);
+                vec_normalize(dir, dir);
+            }
+            ray_t r;
+            bool leaving = pcg32_bounded(&g, 4) == 0;
+            real dist = leaving ? 0
+                                : ldexp(REAL_C(1.0),
+                                        (int)pcg32_bounded(&g, 25) - 4);
+            vec_add_scaled(r.o, target, dist, dir);
+            if (leaving)
+                vec_copy(r.d, dir); /* from the surface, either way */
+            else
+                vec_neg(r.d, dir);
+            ray_t ro;
+            xform_point(&inv, ro.o, r.o);
+            xform_vector(&inv, ro.d, r.d);
+            real m = fmax(fabs(r.d[X]), fmax(fabs(r.d[Y]), fabs(r.d[Z])));
+            ck_assert(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17));
+            hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+            bool a = box->ops->intersect(box, 0, &ro, 0, (real)INFINITY, &h1);
+            bool b = o->ops->intersect(o, 0, &r, 0, (real)INFINITY, &h2);
+            ck_assert_msg(a == b, "box %d ray %d: %d vs %d", i, j, (int)a,
+                          (int)b);
+            if (a) {
+                hits++;
+                ck_assert(memcmp(&h1.t, &h2.t, sizeof h1.t) == 0);
+                ck_assert(h1.b[0] == h2.b[0]);
+            }
+            n++;
+        }
+        cobject_free(box);
+        cobject_free(o);
+    }
+    ck_assert(hits > n / 3);
+    test_report_cases("the_culling_sphere_never_turns_away_a_hit", n);
+}
+END_TEST
+
 /* --- the geomcheck harness -------------------------------------------------- */
 
 enum { INNER_BOX, INNER_PARA, INNER_SPHERE };
@@ -634,6 +732,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, ellipsoid_samples_carry_their_exact_density);
     tcase_add_test(tc, nested_transforms_merge_into_one);
     tcase_add_test(tc, a_mirrored_box_keeps_outward_normals);
+    tcase_add_test(tc, the_culling_sphere_never_turns_away_a_hit);
     tcase_add_test(tc, transformed_spawned_rays_never_rehit_at_any_scale);
     tcase_add_test(tc, transformed_sampled_points_are_hit_at_any_scale);
     tcase_add_test(tc, transformed_shadow_rays_between_points_miss_at_any_scale);
