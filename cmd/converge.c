@@ -96,7 +96,8 @@ void cmd_converge_help(FILE *f)
 "per pixel and on blocks of 4, 16, ... pixels, Sidak-corrected at alpha\n"
 "0.01, each level passing when 99.5%% of its cells pass. Prints one line per\n"
 "level, then pass or FAIL; --pvalue writes the per-pixel p-values. Exit 0\n"
-"when it passes, 5 when it fails. This is how a port checks its images.\n"
+"when it passes, 5 when it fails, 2 when a file holds a value that is not\n"
+"finite or is negative. This is how a port checks its images.\n"
 "\n"
 "The plot: when the script exists and gnuplot is on PATH, svet converge runs\n"
 "`gnuplot -e \"files=...; out=...\" SCRIPT` (posix_spawnp) and writes\n"
@@ -383,6 +384,28 @@ static double spp_from_description(const char *ref)
 
 static char *variance_name(const char *ref);
 
+/* Radiance images and their variances are finite and never negative; a
+ * file holding other values is corrupt (OpenEXR 3.1's ZIP writer stores a
+ * chunk whose deflated size equals its raw size without marking it, and
+ * such a chunk reads back as noise: openexr issue 2306). False, with a
+ * message, at the first bad value. */
+static bool values_ok(const image_t *img, const char *path)
+{
+    for (int y = 0; y < img->height; y++)
+        for (int x = 0; x < img->width; x++)
+            for (int c = 0; c < 3; c++) {
+                float v = image_at(img, x, y)[c];
+                if (!isfinite(v) || v < 0) {
+                    fprintf(stderr, "svet converge: %s: value %g at (%d, %d) "
+                                    "channel %d: a radiance or variance is "
+                                    "finite and >= 0; the file is corrupt\n",
+                            path, (double)v, x, y, c);
+                    return false;
+                }
+            }
+    return true;
+}
+
 /* --ztest: the test of tests/test_reference.c on two image files. */
 static int ztest_files(const char *img_path, const char *var_path,
                        double spp, const char *ref_path,
@@ -413,6 +436,11 @@ static int ztest_files(const char *img_path, const char *var_path,
         exrio_read(ref_path, &ref, &err) != SVET_OK ||
         exrio_read(ref_var_path, &rvar, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s\n", err.msg);
+        rc = SVET_EXIT_INPUT;
+        goto done;
+    }
+    if (!values_ok(&img, img_path) || !values_ok(&var, var_path) ||
+        !values_ok(&ref, ref_path) || !values_ok(&rvar, ref_var_path)) {
         rc = SVET_EXIT_INPUT;
         goto done;
     }
