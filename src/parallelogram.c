@@ -18,7 +18,11 @@ typedef struct {
     real area;
     real h_lo, h_hi; /* min and max of the computed n . c_i: the slab
                         h_lo <= n . p <= h_hi holds the parallelogram */
+    real h_mid, h_half; /* its middle plane n . p = h_mid, half-width */
     real c_max;      /* max |c_i| over corners and axes */
+    VECTOR3 a, b;    /* dual to e1, e2 in the plane: (p - c0) . a = s,
+                        (p - c0) . b = t for p = c0 + s e1 + t e2 */
+    real a1, b1;     /* |a|_1, |b|_1, rounded up */
 } para_shape;
 
 /* The surface point at (s, t): in triangle A = (c0, c1, c2) where s >= t,
@@ -83,36 +87,94 @@ static bool two_triangles(const para_shape *sh, const triangle_ray_t *pr,
 #define SLAB_PAD (128 * REAL_UNIT_ROUNDOFF)
 #define DIR_PAD (16 * REAL_UNIT_ROUNDOFF)
 
+/* What the two plane tests below need of the ray: n . o, n . d, max|o|,
+ * max|d|. */
+typedef struct {
+    real s, dn, o_max, d_max;
+} plane_ray_t;
+
+static void plane_ray(const para_shape *sh, const ray_t *r, plane_ray_t *pl)
+{
+    pl->s = SVECTOR3(sh->n, r->o);
+    pl->dn = SVECTOR3(sh->n, r->d);
+    pl->o_max = real_max(fabs(r->o[X]),
+                         real_max(fabs(r->o[Y]), fabs(r->o[Z])));
+    pl->d_max = real_max(fabs(r->d[X]),
+                         real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+}
+
+/* The two tests below rest on one fact of the watertight test
+ * (triangle.c): it reports a hit only where the exact ray meets the
+ * triangle whose corners are the computed sheared ones, i.e. each corner
+ * moved across the ray (along the axes kx, ky) by at most
+ * xi = gamma(5) (max|x| + max|a_z|) <= 3 gamma(5) A, A = max|c_i - o|
+ * <= c_max + max|o| (|sx|, |sy| <= 1). Every point of that triangle has
+ * n . p within eta = (|n_kx| + |n_ky|) xi < 22 u A of [h_lo, h_hi],
+ * beyond the gamma(3) sqrt(3) c_max < 6 u c_max to which the computed
+ * n . c_i are exact; and it lies within sqrt(2) xi of the parallelogram.
+ * n . o and n . d are computed within sqrt(3) gamma(3) max|o| and
+ * sqrt(3) gamma(3) max|d|, less than 6 u of each. */
+
 /* True when the ray leaves the parallelogram's plane behind it: its
  * origin lies beyond the slab h_lo <= n . p <= h_hi (padded) and it
  * moves away from it, so no hit at t > 0 can be reported. A test of a
  * few products before any shear, true for about half the parallelograms
- * of a closed room.
- *   Why no reported hit is lost. The watertight test reports a hit only
- * where the ray meets the triangle whose corners are the computed sheared
- * ones, i.e. each corner moved across the ray (along the axes kx, ky) by
- * at most gamma(5) (max|x| + max|a_z|) <= 3 gamma(5) A, A = max|c_i - o|
- * <= c_max + max|o| (|sx|, |sy| <= 1); and its error bound dt makes sure
- * that meeting is at t > 0 (triangle.c). Every point of that triangle
- * has n . p within eta = (|n_kx| + |n_ky|) 3 gamma(5) A < 22 u A of
- * [h_lo, h_hi] beyond the gamma(3) sqrt(3) c_max < 6 u c_max to which the
- * computed n . c_i are exact. The ray's points at t > 0 have n . p =
- * n . o + t n . d >= n . o > h_hi + eta when n . d >= 0; n . o and n . d
- * are computed within sqrt(3) gamma(3) max|o| and sqrt(3) gamma(3)
- * max|d| (< 6 u of each). So a pad of 128 u (c_max + max|o|), more than
- * three times the 34 u needed with the rounding of the test's own sums,
- * and n . d >= 16 u max|d| keep every reported hit. */
-static bool leaves_plane(const para_shape *sh, const ray_t *r)
+ * of a closed room. Why no reported hit is lost: the watertight test's
+ * error bound dt makes sure the ray meets the moved triangle at t > 0,
+ * where n . p = n . o + t n . d >= n . o > h_hi + eta when n . d >= 0. So
+ * a pad of 128 u (c_max + max|o|), more than three times the 34 u needed
+ * with the rounding of the test's own sums, and n . d >= 16 u max|d|
+ * keep every reported hit. */
+static bool leaves_plane(const para_shape *sh, const plane_ray_t *pl)
 {
-    real s = SVECTOR3(sh->n, r->o), dn = SVECTOR3(sh->n, r->d);
-    real o_max = real_max(fabs(r->o[X]),
-                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
-    real d_max = real_max(fabs(r->d[X]),
-                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
-    real pad = SLAB_PAD * (sh->c_max + o_max), dpad = DIR_PAD * d_max;
+    real pad = SLAB_PAD * (sh->c_max + pl->o_max);
+    real dpad = DIR_PAD * pl->d_max;
     /* a NaN anywhere makes both comparisons false: no early answer */
-    return (s > sh->h_hi + pad && dn >= dpad) ||
-           (s < sh->h_lo - pad && dn <= -dpad);
+    return (pl->s > sh->h_hi + pad && pl->dn >= dpad) ||
+           (pl->s < sh->h_lo - pad && pl->dn <= -dpad);
+}
+
+/* True when the ray's line crosses the middle plane n . p = h_mid
+ * clearly outside the parallelogram: (s, t) of the crossing outside
+ * [0, 1]^2 by more than the margins below. The watertight test would
+ * then reject it too, after the shear and five edge functions: in a
+ * closed room this is the usual answer for every wall the ray does not
+ * hit. Not for grazing rays (|n . d| < 16 u max|d|), whose crossing is
+ * too uncertain.
+ *   Why no reported hit is lost. A reported hit means the exact line meets
+ * the moved triangle at some q' (see above), within sqrt(2) xi < 5 u A of
+ * a point q of the parallelogram (which, with c2 = c1 + c3 - c0 rounded,
+ * lies within 11 u c_max of the exact parallelogram on c0, e1, e2). With
+ * |n . q' - h_mid| <= h_half + eta + 7 u c_max, the line's crossing p* of
+ * the middle plane lies within G (h_half + eta + 7 u c_max) of q', G =
+ * |d| / |n . d| <= 4 max|d| / |computed n . d| (the dot's error is below
+ * 6/16 of it). The computed crossing p = o + t d, t = (h_mid - n . o) /
+ * n . d, is within 11 G u (|t d| + A) of p* (the errors of n . o and
+ * n . d over |n . d|, two roundings of t, two of p). Its (s, t) carry
+ * 6 u |a|_1 (|p| + c_max) more (p - c0, the dot, a's rounding). All
+ * told, with room to spare for the rounding of the margin itself:
+ *   dist = G (h_half + 64 u (A + |t| max|d|)) + 32 u (A + max|p|),
+ * and |a|_1 dist, |b|_1 dist bound the distance in s and t. */
+static bool misses_quad(const para_shape *sh, const ray_t *r,
+                        const plane_ray_t *pl)
+{
+    const real u = REAL_UNIT_ROUNDOFF;
+    real adn = fabs(pl->dn);
+    if (!(adn >= DIR_PAD * pl->d_max))
+        return false;
+    real t = (sh->h_mid - pl->s) / pl->dn;
+    VECTOR3 p, q;
+    vec_add_scaled(p, r->o, t, r->d);
+    vec_sub(q, p, sh->c[0]);
+    real s = SVECTOR3(q, sh->a), tt = SVECTOR3(q, sh->b);
+    real A = sh->c_max + pl->o_max;
+    real p_max = real_max(fabs(p[X]), real_max(fabs(p[Y]), fabs(p[Z])));
+    real G = 4 * pl->d_max / adn;
+    real dist = G * (sh->h_half + 64 * u * (A + fabs(t) * pl->d_max)) +
+                32 * u * (A + p_max);
+    real ms = sh->a1 * dist, mt = sh->b1 * dist;
+    /* a NaN or an infinity makes every comparison false */
+    return s < -ms || s > 1 + ms || tt < -mt || tt > 1 + mt;
 }
 
 /* True when the ray is outside (tmin, tmax) all along the parallelogram
@@ -141,7 +203,9 @@ static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
                            real tmin, real tmax, hit_t *hit)
 {
     const para_shape *sh = obj->shape;
-    if (tmin >= 0 && leaves_plane(sh, r))
+    plane_ray_t pl;
+    plane_ray(sh, r, &pl);
+    if ((tmin >= 0 && leaves_plane(sh, &pl)) || misses_quad(sh, r, &pl))
         return false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
@@ -243,6 +307,40 @@ static const cobject_ops parallelogram_ops = {
     para_sample, NULL
 };
 
+/* a and b of para_shape, in long double from the exact edges c1 - c0 and
+ * c3 - c0 and the stored n: a = (E2 x n) / (E1 . (E2 x n)) has a . E1 = 1,
+ * a . E2 = a . n = 0; b likewise with E1 and E2 swapped. If they do not
+ * come out finite (an edge far below the scale of the corners), a1 and b1
+ * are infinite and misses_quad never answers early. */
+static void dual_vectors(para_shape *sh)
+{
+    long double E1[3], E2[3], n[3], x[3], y[3];
+    for (int k = 0; k < 3; k++) {
+        E1[k] = (long double)sh->c[1][k] - sh->c[0][k];
+        E2[k] = (long double)sh->c[3][k] - sh->c[0][k];
+        n[k] = sh->n[k];
+    }
+    for (int k = 0; k < 3; k++) {
+        int i = (k + 1) % 3, j = (k + 2) % 3;
+        x[k] = E2[i] * n[j] - E2[j] * n[i]; /* E2 x n */
+        y[k] = n[i] * E1[j] - n[j] * E1[i]; /* n x E1 */
+    }
+    long double da = E1[0] * x[0] + E1[1] * x[1] + E1[2] * x[2];
+    long double db = E2[0] * y[0] + E2[1] * y[1] + E2[2] * y[2];
+    sh->a1 = sh->b1 = 0;
+    for (int k = 0; k < 3; k++) {
+        sh->a[k] = (real)(x[k] / da);
+        sh->b[k] = (real)(y[k] / db);
+        sh->a1 += fabs(sh->a[k]);
+        sh->b1 += fabs(sh->b[k]);
+    }
+    sh->a1 = real_next_up(real_next_up(sh->a1));
+    sh->b1 = real_next_up(real_next_up(sh->b1));
+    if (!vec_is_finite(sh->a) || !vec_is_finite(sh->b) || !isfinite(sh->a1) ||
+        !isfinite(sh->b1))
+        sh->a1 = sh->b1 = (real)INFINITY;
+}
+
 /* The checks both constructors share, and the object. */
 static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
                      const VECTOR3 c3, svet_error *err)
@@ -294,6 +392,9 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
         for (int k = 0; k < 3; k++)
             sh->c_max = real_max(sh->c_max, fabs(sh->c[i][k]));
     }
+    sh->h_mid = REAL_C(0.5) * sh->h_lo + REAL_C(0.5) * sh->h_hi;
+    sh->h_half = real_next_up(REAL_C(0.5) * (sh->h_hi - sh->h_lo));
+    dual_vectors(sh);
     return obj;
 }
 
