@@ -95,7 +95,7 @@ static void face_fill(const box_shape *s, int f, PATHPOINT *pp)
         real e = s->ext[ax[i]];
         real x = e > 0 ? (pp->cross_point[ax[i]] - s->min[ax[i]]) / e
                        : REAL_C(0.5);
-        pp->st[i] = fmin(fmax(x, REAL_C(0.0)), REAL_C(1.0));
+        pp->st[i] = real_min(real_max(x, REAL_C(0.0)), REAL_C(1.0));
     }
     pp->prim = f;
 }
@@ -119,7 +119,9 @@ static void box_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
          * exact hit lies, can only bring it closer. */
         real td = hit->t * r->d[j];
         real q = r->o[j] + td;
-        pp->cross_point[j] = fmin(fmax(q, s->min[j]), s->max[j]);
+        /* real_min/real_max: no libm call, and the same answers as
+         * fmin/fmax here, a NaN q included (it yields the bound) */
+        pp->cross_point[j] = real_min(real_max(q, s->min[j]), s->max[j]);
         pp->p_error[j] = ray_gamma(11) * (fabs(r->o[j]) + fabs(td));
         if (!isfinite(pp->p_error[j]))
             pp->p_error[j] = s->ext[j];

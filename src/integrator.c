@@ -275,7 +275,10 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
          * that dim paths end early, and is at least 0.05 */
         real urr = pcg32_real(g);
         if (it->roulette && depth + 1 >= it->roulette_depth) {
-            real q = fmin(REAL_C(1.0), fmax(REAL_C(0.05), rad_max(beta)));
+            /* as fmin(1, fmax(0.05, .)), a NaN throughput included, without
+             * the libm calls */
+            real q = real_min(real_max(rad_max(beta), REAL_C(0.05)),
+                              REAL_C(1.0));
             if (urr >= q)
                 break;
             beta = rad_scale(beta, 1 / q);

@@ -409,8 +409,14 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     world_point(sh, pp->cross_point, pp->p_error, p, e);
     vec_copy(pp->cross_point, p);
     vec_copy(pp->p_error, e);
+    /* the shading normal is the geometric one for most primitives: map it
+     * once */
+    bool same = memcmp(pp->n, pp->ng, sizeof pp->n) == 0;
     world_normal(sh, pp->ng, pp->ng);
-    world_normal(sh, pp->n, pp->n);
+    if (same)
+        vec_copy(pp->n, pp->ng);
+    else
+        world_normal(sh, pp->n, pp->n);
     xform_vector(&sh->x, pp->dpds, pp->dpds);
     xform_vector(&sh->x, pp->dpdt, pp->dpdt);
     shape_frame(pp->u, pp->v, pp->n, pp->dpds);
