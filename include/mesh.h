@@ -106,17 +106,20 @@ static inline void mesh_ray_prepare(mesh_ray_t *mr, const ray_t *r)
     mr->r = r;
     int kz = vec_max_axis(r->d);
     real dz = r->d[kz];
-    int e = (dz != 0 && isfinite(dz)) ? ilogb(dz) : 99;
-    /* triangle.c rescales d when this exponent is outside [-16, 16]; such
-     * rays go the slow way, so that both give bit-identical answers. */
-    mr->fast = e >= -16 && e <= 16;
+    /* triangle.c rescales d when ilogb(d_z) is outside [-16, 16], i.e.
+     * |d_z| outside [2^-16, 2^17) (or zero, or not finite); such rays go
+     * the slow way, so that both give bit-identical answers. */
+    real adz = fabs(dz);
+    mr->fast = adz >= REAL_C(0x1p-16) && adz < REAL_C(0x1p17);
     mr->kz = kz;
     mr->kx = kz == 2 ? 0 : kz + 1;
     mr->ky = mr->kx == 2 ? 0 : mr->kx + 1;
     if (mr->fast) {
-        mr->sx = -r->d[mr->kx] / dz;
-        mr->sy = -r->d[mr->ky] / dz;
-        mr->sz = 1 / dz;
+        /* as triangle_ray_prepare computes them: one division */
+        real inv = 1 / dz;
+        mr->sx = -r->d[mr->kx] * inv;
+        mr->sy = -r->d[mr->ky] * inv;
+        mr->sz = inv;
     } else {
         mr->sx = mr->sy = mr->sz = 0;
     }

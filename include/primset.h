@@ -160,7 +160,7 @@ static inline bool primset_test(const primset_t *ps, primset_query_t *q,
     q->found = true;
     q->ref = ref;
     q->tmax = t;
-    q->tmax_tie = nextafter(t, (real)INFINITY);
+    q->tmax_tie = real_next_up(t); /* nextafter(t, +inf), no libm call */
     return true;
 }
 
