@@ -316,8 +316,8 @@ static int report(int nfiles, char **files, converge_metric m, double T,
     double eff0 = converge_efficiency(&s[0].p[s[0].n - 1], m);
     double t0 = converge_time_to(s[0].p, s[0].n, m, E, NULL);
     const char *what = m == CONVERGE_REL ? "relative RMSE" : "RMSE";
-    printf("Error at %.3g s and time to a %s of %.3g (what %s, the "
-           "baseline, reaches at %.3g s), the reference's noise removed; "
+    printf("Error at %.3g s, and time to reach the %s of %.3g that the "
+           "baseline (%s) reaches at %.3g s; the reference's noise removed; "
            "efficiency "
            "1/(variance x time) with the %s variance. ~ marks a value "
            "extrapolated by MSE = bias^2 + c/t.\n\n",

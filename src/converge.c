@@ -177,8 +177,10 @@ double converge_time_to(const converge_point_t *p, int n, converge_metric m,
         return (double)NAN;
     }
     for (int i = 0; i < n; i++) {
+        /* e read off this very series (converge_error_at) may come back a
+         * rounding above its own point: that point still reaches it */
         double ei = converge_error(&p[i], m);
-        if (ei > e)
+        if (ei > e * (1 + 1e-12))
             continue;
         if (i > 0) {
             *how = CONVERGE_MEASURED;
