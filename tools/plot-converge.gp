@@ -50,6 +50,10 @@ stats first using (column("seconds") == t_last ? column(col) : NaN) nooutput
 e_last = STATS_max
 guide(t) = e_last * sqrt(t_last / t)
 
+# gnuplot cycles 8 colours: series 9 to 16 are dashed, each with its own
+# point type
 plot for [i = 1:words(files)] word(files, i) using "seconds":col \
-         with linespoints pt 7 ps 0.6 lw 1.5 title title_of(i), \
-     guide(x) with lines dt 2 lc rgb "#888888" title "1/sqrt(t)"
+         with linespoints lc i dashtype 1 + (i - 1) / 8 \
+         pointtype ((i - 1) % 13 + 1) pointsize 0.8 linewidth 1.5 \
+         title title_of(i), \
+     guide(x) with lines dt 3 lw 1.5 lc rgb "#444444" title "1/sqrt(t)"
