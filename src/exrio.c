@@ -124,6 +124,26 @@ static int channel_index(const char *name)
     return -1;
 }
 
+/* OpenEXRCore before 3.4.8 (openexr issue #2306, fixed by pull request
+ * #2307) stores a zlib stream that came out exactly as long as the raw
+ * (packed) chunk; a reader then takes those bytes for raw data, since a
+ * stored size equal to the raw size means "not compressed", and the chunk
+ * reads back as noise. About one chunk in a few hundred of a rendered image
+ * hits it. The library's own compress step is wrapped: in that one case the
+ * raw bytes are stored instead, which every reader decodes correctly and
+ * which is what the fixed library does. */
+typedef exr_result_t (*compress_fn_t)(exr_encode_pipeline_t *);
+
+static exr_result_t compress_exact_size_safe(exr_encode_pipeline_t *enc)
+{
+    compress_fn_t inner = (compress_fn_t)(uintptr_t)enc->encoding_user_data;
+    exr_result_t rv = inner(enc);
+    if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes == enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    return rv;
+}
+
 /* Everything between creating the context and exr_finish: returns the
  * library's result and names the failing step in *doing. */
 static exr_result_t write_parts(exr_context_t ctx, const image_t *img,
@@ -187,6 +207,10 @@ static exr_result_t write_parts(exr_context_t ctx, const image_t *img,
             started = true;
             if (rv != EXR_ERR_SUCCESS)
                 break;
+            if (enc.compress_fn) {
+                enc.encoding_user_data = (void *)(uintptr_t)enc.compress_fn;
+                enc.compress_fn = compress_exact_size_safe;
+            }
         }
         rv = exr_encoding_run(ctx, part, &enc);
     }
