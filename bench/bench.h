@@ -39,6 +39,20 @@ static inline void bench_cpu_model(char *out, size_t n)
     fclose(f);
 }
 
+/* The 1-minute load average (/proc/loadavg), or -1: a figure measured while
+ * other jobs ran is noisy, and its table says so. */
+static inline double bench_loadavg(void)
+{
+    double l = -1;
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (f) {
+        if (fscanf(f, "%lf", &l) != 1)
+            l = -1;
+        fclose(f);
+    }
+    return l;
+}
+
 /* "Machine: <cpu>, <n> cores; compiler <version>" */
 static inline void bench_print_machine(FILE *f)
 {
