@@ -41,11 +41,13 @@ typedef struct {
  *  - else a uniform grid is built, and when more than ACCEL_AUTO_CROWDED
  *    of its primitive references sit in cells holding more than
  *    ACCEL_AUTO_CELL of them (the distribution is far from uniform: a
- *    dense mesh in a few cells of a large scene), the crowded cells are
- *    refined into the hierarchical grid. */
+ *    dense mesh in a few cells of a large scene), it is replaced by the
+ *    hierarchical grid; otherwise it is kept. On evenly spread meshes the
+ *    two run within 25% of each other; on the teapot in a stadium the
+ *    uniform grid is hundreds of times slower. */
 #define ACCEL_BRUTE_MAX 16
 #define ACCEL_AUTO_CELL 64
-#define ACCEL_AUTO_CROWDED 0.01
+#define ACCEL_AUTO_CROWDED 0.05
 
 /* Defaults: AUTO and every number 0 (= its default). */
 void accel_params_default(accel_params_t *p);

@@ -134,6 +134,17 @@ static int cell_of(const grid_node_t *nd, int a, double x)
 
 /* --- triangle / box overlap -------------------------------------------- */
 
+/* min and max of finite doubles, without libm's NaN-aware calls */
+static double dmin(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static double dmax(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 /* The separating-axis test of Akenine-Moller 2001 for one triangle
  * against many cells of one size: the triangle's normal and the nine
  * edge x axis directions, each with the interval the triangle projects to
@@ -159,7 +170,12 @@ static void tri_sat_init(tri_sat_t *s, const real *q, const double h[3])
         e[1][a] = v[2][a] - v[1][a];
         e[2][a] = v[0][a] - v[2][a];
     }
-    int k = 0;
+    /* the normal first: it separates most cells from a triangle that
+     * crosses their bounds' corner */
+    s->axis[0][0] = e[0][1] * e[1][2] - e[0][2] * e[1][1];
+    s->axis[0][1] = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+    s->axis[0][2] = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+    int k = 1;
     for (int i = 0; i < 3; i++) {
         const double *f = e[i];
         double ax[3][3] = { { 0, f[2], -f[1] },   /* f x (1,0,0) */
@@ -168,16 +184,13 @@ static void tri_sat_init(tri_sat_t *s, const real *q, const double h[3])
         for (int j = 0; j < 3; j++, k++)
             memcpy(s->axis[k], ax[j], sizeof ax[j]);
     }
-    s->axis[9][0] = e[0][1] * e[1][2] - e[0][2] * e[1][1];
-    s->axis[9][1] = e[0][2] * e[1][0] - e[0][0] * e[1][2];
-    s->axis[9][2] = e[0][0] * e[1][1] - e[0][1] * e[1][0];
     for (k = 0; k < 10; k++) {
         const double *n = s->axis[k];
         double p[3];
         for (int i = 0; i < 3; i++)
             p[i] = n[0] * v[i][0] + n[1] * v[i][1] + n[2] * v[i][2];
-        s->lo[k] = fmin(p[0], fmin(p[1], p[2]));
-        s->hi[k] = fmax(p[0], fmax(p[1], p[2]));
+        s->lo[k] = dmin(p[0], dmin(p[1], p[2]));
+        s->hi[k] = dmax(p[0], dmax(p[1], p[2]));
         s->r[k] = h[0] * fabs(n[0]) + h[1] * fabs(n[1]) + h[2] * fabs(n[2]);
     }
 }
@@ -211,11 +224,8 @@ typedef struct {
     bnode_t *nodes;
     uint32_t nnodes, cap;
     uint64_t total_cells, total_items;
+    uint64_t max_cells, max_items; /* the hierarchy's budget */
 } build_t;
-
-/* Past these the hierarchy stops refining (a budget, not an error). */
-#define BUILD_MAX_ITEMS (UINT64_C(1) << 28)
-#define BUILD_MAX_TOTAL_CELLS (UINT64_C(1) << 26)
 
 /* The cell range [lo, hi] of primitive ref's padded bounds in nd. */
 static void ref_range(const build_t *B, const grid_node_t *nd, uint32_t ref,
@@ -234,13 +244,34 @@ static const real *ref_triangle(const primset_t *ps, uint32_t ref)
     return ref < ps->ntri ? ps->tri[ref] : NULL;
 }
 
-/* Visit the cells of nd that primitive ref goes into: fn(ctx, cell). */
-typedef void (*cell_fn)(void *ctx, uint32_t cell, uint32_t ref);
+/* The (cell, primitive) pairs of a level being filled. */
+typedef struct {
+    uint32_t (*pair)[2];
+    size_t n, cap;
+} pairs_t;
 
-static void for_cells(const build_t *B, const grid_node_t *nd, uint32_t ref,
-                      const int lo[3], const int hi[3], cell_fn fn,
-                      void *ctx)
+static bool add_pair(pairs_t *p, uint32_t cell, uint32_t ref)
 {
+    if (p->n == p->cap) {
+        size_t cap = p->cap ? 2 * p->cap : 1024;
+        uint32_t(*q)[2] = realloc(p->pair, cap * sizeof *q);
+        if (!q)
+            return false;
+        p->pair = q;
+        p->cap = cap;
+    }
+    p->pair[p->n][0] = cell;
+    p->pair[p->n][1] = ref;
+    p->n++;
+    return true;
+}
+
+/* Append the cells of nd that primitive ref goes into. */
+static bool ref_cells(const build_t *B, const grid_node_t *nd, uint32_t ref,
+                      pairs_t *out)
+{
+    int lo[3], hi[3];
+    ref_range(B, nd, ref, lo, hi);
     const real *tri = ref_triangle(B->ps, ref);
     /* A triangle within one row of cells overlaps each of them: only
      * when its bounds span two axes can a cell miss it. */
@@ -263,27 +294,11 @@ static void for_cells(const build_t *B, const grid_node_t *nd, uint32_t ref,
                     if (!tri_sat_overlap(&ts, c))
                         continue;
                 }
-                uint32_t cell = (uint32_t)(x + nd->res[0] *
-                                           (y + (long)nd->res[1] * z));
-                fn(ctx, cell, ref);
+                long cell = x + nd->res[0] * (y + (long)nd->res[1] * z);
+                if (!add_pair(out, (uint32_t)cell, ref))
+                    return false;
             }
-}
-
-static void count_fn(void *ctx, uint32_t cell, uint32_t ref)
-{
-    (void)ref;
-    ((uint32_t *)ctx)[cell]++;
-}
-
-typedef struct {
-    uint32_t *fill; /* next free slot per cell */
-    uint32_t *items;
-} fill_ctx;
-
-static void fill_fn(void *ctx, uint32_t cell, uint32_t ref)
-{
-    fill_ctx *f = ctx;
-    f->items[f->fill[cell]++] = ref;
+    return true;
 }
 
 /* Sum over refs of the cells their bounds span: the work (and the most
@@ -301,45 +316,37 @@ static double span_sum(const build_t *B, const grid_node_t *nd,
     return s;
 }
 
-/* Fill bn (node set up) with the n primitives refs[] (NULL: 0 .. n-1).
- * Returns false when memory runs out. */
+/* Fill bn (node set up) with the n primitives refs[] (NULL: 0 .. n-1):
+ * one pass lists the (cell, primitive) pairs, a counting sort by cell
+ * lays them out (keeping each cell's primitives in list order). Returns
+ * false when memory runs out. */
 static bool fill_node(const build_t *B, bnode_t *bn, const uint32_t *refs,
                       uint32_t n)
 {
     long nc = node_cells(&bn->node);
     bn->start = calloc((size_t)nc + 1, sizeof *bn->start);
     bn->items = NULL;
-    uint32_t *count = calloc((size_t)nc + 1, sizeof *count);
-    if (!bn->start || !count) {
-        free(count);
+    pairs_t pr = { NULL, 0, 0 };
+    bool ok = bn->start != NULL;
+    for (uint32_t i = 0; i < n && ok; i++)
+        ok = ref_cells(B, &bn->node, refs ? refs[i] : i, &pr);
+    if (ok)
+        bn->items = malloc((pr.n ? pr.n : 1) * sizeof *bn->items);
+    if (!ok || !bn->items) {
+        free(pr.pair);
         return false;
     }
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t ref = refs ? refs[i] : i;
-        int lo[3], hi[3];
-        ref_range(B, &bn->node, ref, lo, hi);
-        for_cells(B, &bn->node, ref, lo, hi, count_fn, count);
-    }
-    uint64_t total = 0;
-    for (long c = 0; c < nc; c++) {
-        bn->start[c] = (uint32_t)total;
-        total += count[c];
-    }
-    bn->start[nc] = (uint32_t)total;
-    bn->items = malloc((size_t)(total ? total : 1) * sizeof *bn->items);
-    if (!bn->items) {
-        free(count);
-        return false;
-    }
-    fill_ctx f = { count, bn->items };
-    memcpy(count, bn->start, (size_t)nc * sizeof *count);
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t ref = refs ? refs[i] : i;
-        int lo[3], hi[3];
-        ref_range(B, &bn->node, ref, lo, hi);
-        for_cells(B, &bn->node, ref, lo, hi, fill_fn, &f);
-    }
-    free(count);
+    /* start[c + 1] counts cell c, then becomes its end by prefix sum */
+    for (size_t k = 0; k < pr.n; k++)
+        bn->start[pr.pair[k][0] + 1]++;
+    for (long c = 0; c < nc; c++)
+        bn->start[c + 1] += bn->start[c];
+    for (size_t k = 0; k < pr.n; k++)
+        bn->items[bn->start[pr.pair[k][0]]++] = pr.pair[k][1];
+    /* each start[c] now ends cell c: shift back by one cell */
+    memmove(bn->start + 1, bn->start, (size_t)nc * sizeof *bn->start);
+    bn->start[0] = 0;
+    free(pr.pair);
     return true;
 }
 
@@ -369,15 +376,15 @@ static void free_bnode(bnode_t *bn)
 
 /* --- the hierarchy (Jevans & Wyvill 1989) --------------------------------- */
 
-static bool refine(build_t *B, uint32_t ni, uint32_t parent_n);
-
 /* Try to give cell c of node ni a child grid; parent_n is the number of
  * primitives of the cell that node ni itself refines (none for the top).
  * On success *new_items is the cell's new item list (the primitives kept
- * in it, then the child) or NULL when no child was made: one would not
- * help, or the budget is spent. Returns false only when memory runs out. */
+ * in it, then the child, whose node is *child and which holds *child_n
+ * primitives) or NULL when no child was made: one would not help, or the
+ * budget is spent. Returns false only when memory runs out. */
 static bool refine_cell(build_t *B, uint32_t ni, long c, uint32_t parent_n,
-                        uint32_t **new_items, uint32_t *nnew)
+                        uint32_t **new_items, uint32_t *nnew,
+                        uint32_t *child_i, uint32_t *child_n)
 {
     grid_node_t nd = B->nodes[ni].node; /* copy: B->nodes may move */
     const uint32_t *its = B->nodes[ni].items + B->nodes[ni].start[c];
@@ -389,12 +396,8 @@ static bool refine_cell(build_t *B, uint32_t ni, long c, uint32_t parent_n,
     if (n <= (uint32_t)B->p->leaf_max || n >= parent_n ||
         nd.depth >= B->p->max_depth)
         return true;
-    /* The child spans the part of the (padded) cell that its primitives'
-     * padded bounds occupy: a teapot in one corner of a stadium's cell
-     * gets all the child's cells. */
-    int x = (int)(c % nd.res[0]), y = (int)((c / nd.res[0]) % nd.res[1]);
-    int z = (int)(c / ((long)nd.res[0] * nd.res[1]));
-    int ix[3] = { x, y, z };
+    int ix[3] = { (int)(c % nd.res[0]), (int)((c / nd.res[0]) % nd.res[1]),
+                  (int)(c / ((long)nd.res[0] * nd.res[1])) };
     double lo[3], hi[3], ulo[3], uhi[3];
     for (int a = 0; a < 3; a++) {
         lo[a] = nd.min[a] + ix[a] * nd.w[a] - B->pad;
@@ -402,55 +405,64 @@ static bool refine_cell(build_t *B, uint32_t ni, long c, uint32_t parent_n,
         ulo[a] = (double)INFINITY;
         uhi[a] = -(double)INFINITY;
     }
-    for (uint32_t i = 0; i < n; i++) {
-        const bbox_t *b = &B->ps->bounds[its[i]];
-        for (int a = 0; a < 3; a++) {
-            ulo[a] = fmin(ulo[a], (double)b->min[a] - B->pad);
-            uhi[a] = fmax(uhi[a], (double)b->max[a] + B->pad);
-        }
-    }
-    double ext[3];
-    for (int a = 0; a < 3; a++) {
-        lo[a] = fmax(lo[a], ulo[a]);
-        hi[a] = fmin(hi[a], uhi[a]);
-        ext[a] = hi[a] - lo[a];
-        if (!(ext[a] > 0))
-            return true;
-    }
-    int res[3];
-    choose_res(ext, B->p->child_k, n, res);
-    if ((long)res[0] * res[1] * res[2] <= 1)
-        return true;
-    bnode_t child;
-    node_init(&child.node, lo, hi, res, nd.depth + 1);
-    uint32_t *keep = malloc((size_t)n * sizeof *keep);
-    uint32_t *down = malloc((size_t)n * sizeof *down);
+    uint32_t *keep = malloc(((size_t)n + 1) * sizeof *keep);
+    uint32_t *down = malloc(((size_t)n + 1) * sizeof *down);
     if (!keep || !down) {
         free(keep);
         free(down);
         return false;
     }
-    /* A primitive spanning every cell of the child stays in the parent's
-     * cell: copying it into all of them would only cost memory. */
+    /* A primitive as large as the cell across two axes (the ground under
+     * the teapot, a wall) stays in this cell: it would go into most of
+     * the child's cells, and it must not stretch the child over the whole
+     * cell. The child spans the part of the cell that the others occupy:
+     * a teapot in one corner of a stadium's cell gets all its cells. */
     uint32_t nkeep = 0, ndown = 0;
-    double work = 0;
     for (uint32_t i = 0; i < n; i++) {
-        int l[3], h[3];
-        ref_range(B, &child.node, its[i], l, h);
-        double cells = (double)(h[0] - l[0] + 1) * (h[1] - l[1] + 1) *
-                       (h[2] - l[2] + 1);
-        if (cells >= (double)node_cells(&child.node) && n > 1) {
+        const bbox_t *b = &B->ps->bounds[its[i]];
+        int across = 0;
+        for (int a = 0; a < 3; a++)
+            across += (double)b->min[a] - B->pad <= lo[a] &&
+                      (double)b->max[a] + B->pad >= hi[a];
+        if (across >= 2) {
             keep[nkeep++] = its[i];
-        } else {
-            down[ndown++] = its[i];
-            work += cells;
+            continue;
+        }
+        down[ndown++] = its[i];
+        for (int a = 0; a < 3; a++) {
+            ulo[a] = dmin(ulo[a], (double)b->min[a] - B->pad);
+            uhi[a] = dmax(uhi[a], (double)b->max[a] + B->pad);
         }
     }
-    /* Budget: the child's cells and items must fit what is left. */
-    if (ndown <= 1 ||
-        B->total_cells + (uint64_t)node_cells(&child.node) >
-            BUILD_MAX_TOTAL_CELLS ||
-        (double)B->total_items + work > (double)BUILD_MAX_ITEMS) {
+    double ext[3];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = dmax(lo[a], ulo[a]);
+        hi[a] = dmin(hi[a], uhi[a]);
+        ext[a] = hi[a] - lo[a];
+    }
+    /* Budget: the child's cells and items must fit what is left; a
+     * coarser child fits where a fine one does not, and a coarse child
+     * is far better than none (a cell of hundreds of primitives). */
+    int res[3] = { 1, 1, 1 };
+    bnode_t child;
+    long nc = 1;
+    bool fits = false;
+    bool thick = ext[0] > 0 && ext[1] > 0 && ext[2] > 0;
+    for (double k = B->p->child_k; thick && ndown > (uint32_t)B->p->leaf_max;
+         k *= 0.7) {
+        choose_res(ext, k, ndown, res);
+        node_init(&child.node, lo, hi, res, nd.depth + 1);
+        nc = node_cells(&child.node);
+        if (nc <= 1)
+            break;
+        double work = span_sum(B, &child.node, down, ndown);
+        if (B->total_cells + (uint64_t)nc <= B->max_cells &&
+            (double)B->total_items + work <= (double)B->max_items) {
+            fits = true;
+            break;
+        }
+    }
+    if (!fits) {
         free(keep);
         free(down);
         return true;
@@ -464,16 +476,16 @@ static bool refine_cell(build_t *B, uint32_t ni, long c, uint32_t parent_n,
     free(down);
     /* Does it separate anything? If the average non-empty child cell
      * still holds most of the primitives, the child is wasted. */
-    long nc = node_cells(&child.node), nonempty = 0;
+    long nonempty = 0;
     for (long k = 0; k < nc; k++)
         nonempty += child.start[k + 1] > child.start[k];
     double avg = nonempty ? (double)child.start[nc] / nonempty : 0;
+    uint32_t ci;
     if (avg > 0.75 * ndown) {
         free(keep);
         free_bnode(&child);
         return true;
     }
-    uint32_t ci;
     if (!push_node(B, &child, &ci)) {
         free(keep);
         free_bnode(&child);
@@ -482,25 +494,54 @@ static bool refine_cell(build_t *B, uint32_t ni, long c, uint32_t parent_n,
     keep[nkeep++] = GRID_CHILD | ci;
     *new_items = keep;
     *nnew = nkeep;
-    return refine(B, ci, ndown);
+    *child_i = ci;
+    *child_n = ndown;
+    return true;
 }
 
-/* Refine every cell of node ni, depth first, then rewrite its items with
- * the refined cells' new lists. */
+/* Keys (~count << 32 | cell) sort the most crowded cells first. */
+static int by_key(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Refine the crowded cells of node ni, the most crowded first (so that a
+ * budget running short leaves the least crowded unrefined), rewrite its
+ * items with the refined cells' new lists, and only then refine the new
+ * children: every level is made before the next, so no cell's
+ * grandchildren take the budget its siblings need. */
 static bool refine(build_t *B, uint32_t ni, uint32_t parent_n)
 {
     long nc = node_cells(&B->nodes[ni].node);
     uint32_t **repl = calloc((size_t)nc, sizeof *repl);
     uint32_t *nrepl = calloc((size_t)nc, sizeof *nrepl);
-    if (!repl || !nrepl) {
+    uint64_t *order = malloc((size_t)nc * sizeof *order);
+    uint32_t *kids = malloc((size_t)nc * 2 * sizeof *kids);
+    if (!repl || !nrepl || !order || !kids) {
         free(repl);
         free(nrepl);
+        free(order);
+        free(kids);
         return false;
     }
+    long ncand = 0, nkids = 0;
+    const uint32_t *st = B->nodes[ni].start;
+    for (long c = 0; c < nc; c++) {
+        uint32_t n = st[c + 1] - st[c];
+        if (n > (uint32_t)B->p->leaf_max)
+            order[ncand++] = (uint64_t)(UINT32_MAX - n) << 32 | (uint64_t)c;
+    }
+    qsort(order, (size_t)ncand, sizeof *order, by_key);
     bool ok = true, any = false;
-    for (long c = 0; c < nc && ok; c++) {
-        ok = refine_cell(B, ni, c, parent_n, &repl[c], &nrepl[c]);
-        any |= repl[c] != NULL;
+    for (long i = 0; i < ncand && ok; i++) {
+        uint32_t c = (uint32_t)(order[i] & UINT32_MAX);
+        ok = refine_cell(B, ni, c, parent_n, &repl[c], &nrepl[c],
+                         &kids[2 * nkids], &kids[2 * nkids + 1]);
+        if (ok && repl[c]) {
+            any = true;
+            nkids++;
+        }
     }
     if (ok && any) {
         /* Rewrite the node's items with the refined cells replaced. */
@@ -541,6 +582,10 @@ static bool refine(build_t *B, uint32_t ni, uint32_t parent_n)
         free(repl[c]);
     free(repl);
     free(nrepl);
+    free(order);
+    for (long i = 0; i < nkids && ok; i++)
+        ok = refine(B, kids[2 * i], kids[2 * i + 1]);
+    free(kids);
     return ok;
 }
 
@@ -646,6 +691,12 @@ svet_status grid_build(grid_t **out, const primset_t *ps,
     uint32_t ti;
     if (!fill_node(&B, &top, NULL, ps->nbounded) || !push_node(&B, &top, &ti))
         st = svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    /* The child grids may add four times the cells and entries of the top
+     * level, plus 16 per primitive: whatever the scene, a hierarchy costs
+     * a bounded multiple of a uniform grid's memory. Past that children
+     * get coarser, then none are made (a budget, not an error). */
+    B.max_cells = 4 * B.total_cells + 16 * (uint64_t)ps->nbounded + 4096;
+    B.max_items = 4 * B.total_items + 16 * (uint64_t)ps->nbounded + 4096;
     if (st == SVET_OK && p->max_depth > 0 && !refine(&B, 0, UINT32_MAX))
         st = svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
     if (st == SVET_OK)
@@ -740,25 +791,24 @@ static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
 /* Walk node ni over [t0, t1] (inside its box). Returns true when a
  * shadow query found a hit.
  *
- * The 3D-DDA of Amanatides & Woo 1987: tn[a] is the t at which the ray
- * crosses the next cell boundary on axis a, dt[a] the t between two
- * boundaries; each step goes to the nearest crossing. tn grows by adding
- * dt, in double: after n steps its rounding error is below n 2^-53 of t,
- * far inside the cells' padding (2^-20 of the scene) for any grid of at
- * most 2^16 cells a side. The axis of the nearest crossing comes from the
- * three comparisons through a table (their paper's trick: no branches to
- * mispredict on random directions). */
+ * The 3D-DDA of Amanatides & Woo 1987: tx is the t at which the ray
+ * crosses the next cell boundary on x, dtx the t between two boundaries,
+ * lx the steps left before it leaves the grid on x (and so on for y, z);
+ * each step goes to the nearest crossing. t grows by adding dt, in
+ * double: after n steps its rounding error is below n 2^-53 of t, far
+ * inside the cells' padding (2^-20 of the scene) for any grid of at most
+ * 2^16 cells a side. The three axes live in scalars and each step picks
+ * its axis with selects instead of branches (Amanatides & Woo do it with
+ * a table): the state stays in registers and random directions cause no
+ * mispredicted jumps. */
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow)
 {
-    /* cmp bits (tn0 < tn1, tn0 < tn2, tn1 < tn2) -> the smallest tn;
-     * 2 and 5 cannot happen */
-    static const int8_t axis_of[8] = { 2, 1, 2, 1, 2, 2, 0, 0 };
     const grid_node_t *nd = &g->nodes[ni];
     const primset_t *ps = g->ps;
     const uint32_t *cells = g->cells, *items = g->items;
     const uint64_t *occ = g->occupied;
-    int ix[3], stop[3];
+    int ix[3], left[3];
     long delta[3];
     long stride[3] = { 1, nd->res[0], (long)nd->res[0] * nd->res[1] };
     double tn[3], dt[3];
@@ -767,23 +817,27 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         ix[a] = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
         cell += ix[a] * stride[a];
         if (w->d[a] > 0) {
-            stop[a] = nd->res[a];
+            left[a] = nd->res[a] - 1 - ix[a];
             delta[a] = stride[a];
             tn[a] = (nd->min[a] + (ix[a] + 1) * nd->w[a] - w->o[a]) *
                     w->inv_d[a];
             dt[a] = nd->w[a] * w->inv_d[a];
         } else if (w->d[a] < 0) {
-            stop[a] = -1;
+            left[a] = ix[a];
             delta[a] = -stride[a];
             tn[a] = (nd->min[a] + ix[a] * nd->w[a] - w->o[a]) * w->inv_d[a];
             dt[a] = -nd->w[a] * w->inv_d[a];
         } else {
-            stop[a] = -2; /* never reached: this axis never steps */
+            left[a] = 0; /* never chosen: tn is infinite */
             delta[a] = 0;
             tn[a] = (double)INFINITY;
             dt[a] = 0;
         }
     }
+    double tx = tn[0], ty = tn[1], tz = tn[2];
+    const double dtx = dt[0], dty = dt[1], dtz = dt[2];
+    const long cx = delta[0], cy = delta[1], cz = delta[2];
+    int lx = left[0], ly = left[1], lz = left[2];
     for (;;) {
         q->cells++;
         if (occ[cell >> 6] >> (cell & 63) & 1) {
@@ -800,19 +854,22 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                 }
             }
         }
-        int a = axis_of[((tn[0] < tn[1]) << 2) | ((tn[0] < tn[2]) << 1) |
-                        (tn[1] < tn[2])];
-        double texit = tn[a];
+        /* the axis of the nearest crossing */
+        bool bx = tx < ty && tx < tz, by = !bx && ty < tz, bz = !bx && !by;
+        double texit = bx ? tx : (by ? ty : tz);
         /* the nearest hit lies before this cell's exit, with margin */
         if (q->found && (double)q->tmax < texit * w->stop_scale - w->stop_bias)
             return false;
-        if (!(texit <= t1) || isinf(texit))
+        if (!(texit <= t1) || isinf(texit) ||
+            ((bx & (lx == 0)) | (by & (ly == 0)) | (bz & (lz == 0))))
             return false;
-        ix[a] += delta[a] > 0 ? 1 : -1;
-        if (ix[a] == stop[a])
-            return false;
-        cell += delta[a];
-        tn[a] += dt[a];
+        lx -= bx;
+        ly -= by;
+        lz -= bz;
+        cell += bx ? cx : (by ? cy : cz);
+        tx = bx ? tx + dtx : tx;
+        ty = by ? ty + dty : ty;
+        tz = bz ? tz + dtz : tz;
     }
 }
 

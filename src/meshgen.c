@@ -46,6 +46,23 @@ static void add_tri(mesh_t *m, int a, int b, int c)
     m->ntris++;
 }
 
+/* Two triangles per lattice quad (a b / d e, a = (i, j), b = (i+1, j),
+ * d = (i, j+1)): (a b d) (b e d), counter-clockwise when (du x dv) points
+ * out; `flip` reverses both for lattices where (dv x du) does. `poles`
+ * leaves out the triangle that a pole row would make of zero area. */
+static void lattice_quads(mesh_t *m, int nu, int nv, bool flip, bool poles)
+{
+    for (int j = 0; j < nv; j++)
+        for (int i = 0; i < nu; i++) {
+            int a = i + (nu + 1) * j, b = a + 1;
+            int d = a + (nu + 1), e = d + 1;
+            if (!(poles && j == 0))
+                flip ? add_tri(m, a, d, b) : add_tri(m, a, b, d);
+            if (!(poles && j == nv - 1))
+                flip ? add_tri(m, b, d, e) : add_tri(m, b, e, d);
+        }
+}
+
 static bool positive(real x)
 {
     return x > 0 && isfinite(x);
@@ -83,16 +100,8 @@ svet_status meshgen_uv_sphere(COBJECT **out, const VECTOR3 c, real r, int nu,
             m.st[k][1] = (real)j / (real)nv;
         }
     }
-    /* Counter-clockwise seen from outside: (dtheta, dphi) is outward. */
-    for (int j = 0; j < nv; j++)
-        for (int i = 0; i < nu; i++) {
-            int a = i + (nu + 1) * j, b = a + 1;
-            int d = a + (nu + 1), e = d + 1;
-            if (j > 0)      /* not at the north pole */
-                add_tri(&m, a, d, b);
-            if (j < nv - 1) /* not at the south pole */
-                add_tri(&m, b, d, e);
-        }
+    /* Counter-clockwise seen from outside: dtheta x dphi is outward. */
+    lattice_quads(&m, nu, nv, true, true);
     return mesh_new(out, &m, err);
 }
 
@@ -141,14 +150,8 @@ svet_status meshgen_torus(COBJECT **out, const VECTOR3 c, real R, real r,
             m.st[k][1] = (real)j / (real)nv;
         }
     }
-    /* (du, dv) is outward */
-    for (int j = 0; j < nv; j++)
-        for (int i = 0; i < nu; i++) {
-            int a = i + (nu + 1) * j, b = a + 1;
-            int d = a + (nu + 1), e = d + 1;
-            add_tri(&m, a, b, d);
-            add_tri(&m, b, e, d);
-        }
+    /* du x dv is outward */
+    lattice_quads(&m, nu, nv, false, false);
     return mesh_new(out, &m, err);
 }
 
@@ -222,13 +225,7 @@ svet_status meshgen_terrain(COBJECT **out, const VECTOR3 c, real size,
             m.st[k][0] = (real)i / (real)n;
             m.st[k][1] = (real)j / (real)n;
         }
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            int a = i + (n + 1) * j, b = a + 1;
-            int d = a + (n + 1), e = d + 1;
-            add_tri(&m, a, b, d);
-            add_tri(&m, b, e, d);
-        }
+    lattice_quads(&m, n, n, false, false); /* dx x dy = +z */
     return mesh_new(out, &m, err);
 }
 
