@@ -1,0 +1,446 @@
+/*
+ * bench_grid.c - ch. 7's benchmark: build time, memory and rays per second
+ * of brute force (small scenes only), the uniform grid and the
+ * hierarchical grid, for coherent camera rays and incoherent random rays
+ * (origins uniform in the scene's box, directions uniform on the sphere),
+ * at 1 and 2 threads, on 5 x 5 x 5 UV spheres of 1e3 ... 1e6 triangles, the
+ * teapot in a stadium, and any OBJ file given; then how each cost grows
+ * with N. Markdown on stdout (bench/results/grid.md).
+ *   make bench-grid                       the tables
+ *   make bench-grid BENCH_ARGS=file.obj   the same for an OBJ file
+ *   make bench-grid BENCH_ARGS=--tune     the sweep that chose k
+ *   make bench-grid BENCH_ARGS=--quick    a smoke run
+ */
+#include "accel.h"
+#include "bench.h"
+#include "camera.h"
+#include "grid.h"
+#include "mesh.h"
+#include "meshgen.h"
+#include "obj.h"
+#include "rng.h"
+
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static int g_cam = 512;    /* camera image side */
+static long g_rays = 1L << 18; /* incoherent rays */
+
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* --- rays ------------------------------------------------------------------ */
+
+/* The rays of camera.h's pinhole camera at eye looking at target (up +z,
+ * horizontal field of view fov degrees) through the n x n pixel centres. */
+static ray_t *camera_rays(const VECTOR3 eye, const VECTOR3 target, double fov,
+                          int n)
+{
+    ray_t *r = malloc((size_t)n * n * sizeof *r);
+    camera_t cam;
+    VECTOR3 up = { 0, 0, 1 };
+    svet_error e;
+    if (!r || camera_init(&cam, eye, target, up, (real)fov, CAMERA_FOV_X, n,
+                          n, &e) != SVET_OK) {
+        fprintf(stderr, "camera: %s\n", r ? e.msg : "out of memory");
+        exit(1);
+    }
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++)
+            camera_ray(&cam, (real)i + REAL_C(0.5), (real)j + REAL_C(0.5),
+                       &r[(size_t)j * n + i]);
+    return r;
+}
+
+static ray_t *random_rays(const bbox_t *b, long n, uint64_t seed)
+{
+    ray_t *r = malloc((size_t)n * sizeof *r);
+    pcg32_t g;
+    pcg32_seed(&g, seed, 99);
+    for (long i = 0; i < n; i++) {
+        for (int k = 0; k < 3; k++)
+            r[i].o[k] = b->min[k] + (b->max[k] - b->min[k]) * pcg32_real(&g);
+        real z = 1 - 2 * pcg32_real(&g), phi = 2 * REAL_PI * pcg32_real(&g);
+        real s = sqrt(fmax(REAL_C(0.0), 1 - z * z));
+        vec_set(r[i].d, s * cos(phi), s * sin(phi), z);
+    }
+    return r;
+}
+
+/* --- measuring ----------------------------------------------------------- */
+
+typedef struct {
+    double wall, cpu; /* seconds */
+    long hits;
+} run_t;
+
+static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
+{
+    run_t out;
+    long hits = 0;
+    double t0 = bench_now(), c0 = cpu_now();
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) \
+    reduction(+ : hits)
+    for (long i = 0; i < n; i++) {
+        accel_hit_t h;
+        hits += accel_intersect(a, &r[i], 0, (real)INFINITY, &h);
+    }
+    out.wall = bench_now() - t0;
+    out.cpu = cpu_now() - c0;
+    out.hits = hits;
+    return out;
+}
+
+static void per_ray(const accel_t *a, const ray_t *r, long n, double *cells,
+                    double *tests)
+{
+    accel_counters_t c = { 0, 0 };
+    long m = n < 20000 ? n : 20000;
+    for (long i = 0; i < m; i++) {
+        accel_hit_t h;
+        accel_intersect_counted(a, &r[i * (n / m)], 0, (real)INFINITY, &h, &c);
+    }
+    *cells = (double)c.cells / (double)m;
+    *tests = (double)c.tests / (double)m;
+}
+
+typedef struct {
+    const char *scene;
+    long tris;
+    accel_kind kind;
+    double build, mb;
+    double cells_cam, cells_inc, tests_inc;
+    double cam[2], inc[2];  /* Mrays/s by wall clock, 1 and 2 threads */
+    double cam_cpu, inc_cpu; /* Mrays per CPU second at 1 thread */
+} row_t;
+
+static row_t rows[64];
+static int nrows;
+
+static void print_header(void)
+{
+    printf("| scene | triangles | structure | build CPU s | MB | cells/ray "
+           "(cam, inc) | tests/ray inc | camera Mrays/s 1T | 2T | "
+           "incoherent Mrays/s 1T | 2T | 1T per CPU-s (cam, inc) |\n");
+    printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+}
+
+static void print_row(const row_t *r)
+{
+    printf("| %s | %ld | %s | %.3f | %.1f | %.1f, %.1f | %.1f | %.3f | %.3f "
+           "| %.3f | %.3f | %.3f, %.3f |\n",
+           r->scene, r->tris, accel_kind_name(r->kind), r->build, r->mb,
+           r->cells_cam, r->cells_inc, r->tests_inc, r->cam[0], r->cam[1],
+           r->inc[0], r->inc[1], r->cam_cpu, r->inc_cpu);
+    fflush(stdout);
+}
+
+/* Benchmark one structure on one scene; brute force traces a sample. */
+static void bench_one(const char *name, COBJECT **objs, int n, long tris,
+                      accel_kind kind, const accel_params_t *over,
+                      const ray_t *cam, long ncam, const ray_t *inc,
+                      long ninc)
+{
+    accel_params_t p;
+    if (over)
+        p = *over;
+    else
+        accel_params_default(&p);
+    p.kind = kind;
+    accel_t *a;
+    svet_error e;
+    double c0 = cpu_now();
+    if (accel_build(&a, objs, n, &p, &e) != SVET_OK) {
+        fprintf(stderr, "%s: %s\n", name, e.msg);
+        exit(1);
+    }
+    double build_cpu = cpu_now() - c0;
+    accel_stats_t st;
+    accel_get_stats(a, &st);
+    row_t *r = &rows[nrows < 63 ? nrows++ : 63];
+    memset(r, 0, sizeof *r);
+    r->scene = name;
+    r->tris = tris;
+    r->kind = kind;
+    r->build = build_cpu; /* one thread: CPU time is the work */
+    r->mb = (double)st.bytes / 1048576.0;
+    if (kind == ACCEL_BRUTE) { /* a sample: every ray costs N tests */
+        long cap = 20000000 / (tris > 0 ? tris : 1) + 64;
+        ncam = ncam < cap ? ncam : cap;
+        ninc = ninc < cap ? ninc : cap;
+    }
+    per_ray(a, cam, ncam, &r->cells_cam, &r->tests_inc);
+    per_ray(a, inc, ninc, &r->cells_inc, &r->tests_inc);
+    for (int t = 0; t < 2; t++) {
+        run_t c = trace(a, cam, ncam, t + 1), i = trace(a, inc, ninc, t + 1);
+        r->cam[t] = (double)ncam / c.wall * 1e-6;
+        r->inc[t] = (double)ninc / i.wall * 1e-6;
+        if (t == 0) {
+            r->cam_cpu = (double)ncam / c.cpu * 1e-6;
+            r->inc_cpu = (double)ninc / i.cpu * 1e-6;
+        }
+    }
+    print_row(r);
+    accel_free(a);
+}
+
+static void scene_box(COBJECT **objs, int n, bbox_t *b)
+{
+    bbox_empty(b);
+    for (int i = 0; i < n; i++) {
+        bbox_t o;
+        objs[i]->ops->bounds(objs[i], -1, &o);
+        bbox_union(b, &o);
+    }
+}
+
+/* Camera from the (1, -1.6, 1.2) side at 1.3 diagonals, 40 degrees. */
+static void default_view(const bbox_t *b, VECTOR3 eye, VECTOR3 target)
+{
+    bbox_centroid(target, b);
+    VECTOR3 d, dir = { 1, REAL_C(-1.6), REAL_C(1.2) };
+    vec_sub(d, b->max, b->min);
+    vec_normalize(dir, dir);
+    vec_add_scaled(eye, target, REAL_C(1.3) * vec_length(d), dir);
+}
+
+static void bench_scene(const char *name, COBJECT **objs, int n, long tris,
+                        bool brute, const VECTOR3 eye, const VECTOR3 target,
+                        double fov)
+{
+    bbox_t b;
+    scene_box(objs, n, &b);
+    ray_t *cam = camera_rays(eye, target, fov, g_cam);
+    ray_t *inc = random_rays(&b, g_rays, 7);
+    long ncam = (long)g_cam * g_cam;
+    if (brute)
+        bench_one(name, objs, n, tris, ACCEL_BRUTE, NULL, cam, ncam, inc,
+                  g_rays);
+    bench_one(name, objs, n, tris, ACCEL_GRID, NULL, cam, ncam, inc, g_rays);
+    bench_one(name, objs, n, tris, ACCEL_HGRID, NULL, cam, ncam, inc, g_rays);
+    free(cam);
+    free(inc);
+}
+
+static void machine(int argc, char **argv)
+{
+    double load = -1;
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (f) {
+        if (fscanf(f, "%lf", &load) != 1)
+            load = -1;
+        fclose(f);
+    }
+    printf("# Grid benchmark (ch. 7)\n\n- ");
+    bench_print_machine(stdout);
+    printf(", real = %s\n- load average %.2f at the start: the machine is "
+           "shared with other work, so every timing is noisy\n",
+           REAL_NAME, load);
+    printf("- command:");
+    for (int i = 0; i < argc; i++)
+        printf(" %s", argv[i]);
+    printf("\n- rays: camera %d x %d (pinhole, 40 degrees, pixel centres), "
+           "incoherent %ld (origins uniform in the scene's box, "
+           "directions uniform on the sphere); brute force traces a "
+           "sample\n",
+           g_cam, g_cam, g_rays);
+    printf("- Mrays/s by wall clock at 1 and 2 threads (OpenMP); \"per "
+           "CPU-s\" divides by the process's CPU time instead, which a "
+           "busy machine disturbs less\n\n");
+}
+
+/* How a cost grows with N: the exponent of a power law through the
+ * 1e3 and 1e6 rows (cost ~ N^e). */
+static void growth(void)
+{
+    printf("\n## How the costs grow with N (sphere grids, 1e3 to 1e6 "
+           "triangles): cost ~ N^e\n\n");
+    printf("| structure | build time e | memory e | incoherent time/ray e "
+           "| camera time/ray e |\n|---|---:|---:|---:|---:|\n");
+    for (int k = ACCEL_BRUTE; k <= ACCEL_HGRID; k++) {
+        const row_t *lo = NULL, *hi = NULL;
+        for (int i = 0; i < nrows; i++) {
+            if (rows[i].kind != (accel_kind)k ||
+                strncmp(rows[i].scene, "spheres", 7) != 0)
+                continue;
+            if (!lo || rows[i].tris < lo->tris)
+                lo = &rows[i];
+            if (!hi || rows[i].tris > hi->tris)
+                hi = &rows[i];
+        }
+        if (!lo || !hi || lo == hi)
+            continue;
+        double l = log((double)hi->tris / (double)lo->tris);
+        printf("| %s | %.2f | %.2f | %.2f | %.2f |\n",
+               accel_kind_name((accel_kind)k),
+               log(fmax(hi->build, 1e-6) / fmax(lo->build, 1e-6)) / l,
+               log(hi->mb / lo->mb) / l,
+               log(lo->inc[0] / hi->inc[0]) / l,
+               log(lo->cam[0] / hi->cam[0]) / l);
+    }
+}
+
+static COBJECT **sphere_scene(long n, meshgen_scene_t *s)
+{
+    svet_error e;
+    if (meshgen_sphere_grid(s, 5, n, &e) != SVET_OK) {
+        fprintf(stderr, "%s\n", e.msg);
+        exit(1);
+    }
+    return s->objs;
+}
+
+/* One row of the sweep: build with p, trace at one thread. */
+static void tune_row(const meshgen_scene_t *s, const accel_params_t *p,
+                     const ray_t *cam, long ncam, const ray_t *inc, long ninc)
+{
+    accel_t *a;
+    svet_error e;
+    if (accel_build(&a, s->objs, s->nobjs, p, &e) != SVET_OK) {
+        fprintf(stderr, "%s\n", e.msg);
+        exit(1);
+    }
+    accel_stats_t st;
+    accel_get_stats(a, &st);
+    run_t c = trace(a, cam, ncam, 1), n = trace(a, inc, ninc, 1);
+    if (p->kind == ACCEL_GRID)
+        printf("| %ld | grid | %g | | ", s->ntris, p->grid_k);
+    else
+        printf("| %ld | hgrid | %g | %g | %d ", s->ntris, p->hgrid_k,
+               p->hgrid_child_k, p->hgrid_leaf);
+    printf("| %.3f | %.1f | %.3f | %.3f |\n", st.build_seconds,
+           (double)st.bytes / 1048576, (double)ncam / c.cpu * 1e-6,
+           (double)ninc / n.cpu * 1e-6);
+    fflush(stdout);
+    accel_free(a);
+}
+
+/* The sweep behind GRID_K_DEFAULT and the hgrid defaults: camera and
+ * incoherent rays at one thread, by CPU time, for several k. */
+static void tune(void)
+{
+    printf("## Tuning k (1 thread, Mrays per CPU-second)\n\n");
+    printf("| triangles | structure | k | child k | leaf | build s | MB | "
+           "camera | incoherent |\n|---:|---|---:|---:|---:|---:|---:|---:|"
+           "---:|\n");
+    long sizes[] = { 10000, 100000, 1000000 };
+    for (int si = 0; si < 3; si++) {
+        meshgen_scene_t s;
+        sphere_scene(sizes[si], &s);
+        bbox_t b;
+        scene_box(s.objs, s.nobjs, &b);
+        VECTOR3 eye, target;
+        default_view(&b, eye, target);
+        ray_t *cam = camera_rays(eye, target, 40, 256);
+        ray_t *inc = random_rays(&b, 1L << 16, 7);
+        double ks[] = { 0.5, 1, 1.5, 2, 3, 4 };
+        for (int i = 0; i < 6; i++) {
+            accel_params_t p;
+            accel_params_default(&p);
+            p.kind = ACCEL_GRID;
+            p.grid_k = ks[i];
+            tune_row(&s, &p, cam, 256 * 256, inc, 1L << 16);
+        }
+        double hk[] = { 0.25, 0.5, 1 }, ck[] = { 1, 1.5, 2 };
+        int leaf[] = { 4, 12 };
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                for (int l = 0; l < 2; l++) {
+                    accel_params_t p;
+                    accel_params_default(&p);
+                    p.kind = ACCEL_HGRID;
+                    p.hgrid_k = hk[i];
+                    p.hgrid_child_k = ck[j];
+                    p.hgrid_leaf = leaf[l];
+                    tune_row(&s, &p, cam, 256 * 256, inc, 1L << 16);
+                }
+        free(cam);
+        free(inc);
+        meshgen_free_objects(&s);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    const char *objfile = NULL;
+    bool quick = false;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--tune") == 0) {
+            machine(argc, argv);
+            tune();
+            return 0;
+        } else if (strcmp(argv[i], "--quick") == 0) {
+            quick = true;
+            g_cam = 128;
+            g_rays = 1L << 14;
+        } else {
+            objfile = argv[i];
+        }
+    }
+    machine(argc, argv);
+    print_header();
+    if (objfile) {
+        obj_t o;
+        svet_error e;
+        if (obj_read(objfile, NULL, &o, &e) != SVET_OK) {
+            fprintf(stderr, "%s\n", e.msg);
+            return 1;
+        }
+        for (long i = 0; i < o.nwarnings && i < OBJ_MAX_WARNINGS; i++)
+            fprintf(stderr, "%s\n", o.warnings[i]);
+        bbox_t b;
+        scene_box(&o.mesh, 1, &b);
+        VECTOR3 eye, target;
+        default_view(&b, eye, target);
+        bench_scene(objfile, &o.mesh, 1, o.mesh->nprims, o.mesh->nprims <= 20000,
+                    eye, target, 40);
+        printf("\n(mesh: %.1f MB, %zu bytes per triangle)\n",
+               (double)mesh_bytes(o.mesh) / 1048576,
+               mesh_bytes(o.mesh) / (size_t)o.mesh->nprims);
+        obj_free(&o);
+        return 0;
+    }
+    long sizes[] = { 1000, 10000, 100000, 1000000 };
+    int nsizes = quick ? 2 : 4;
+    size_t mesh_mem = 0;
+    long mesh_tris = 0;
+    for (int i = 0; i < nsizes; i++) {
+        meshgen_scene_t s;
+        sphere_scene(sizes[i], &s);
+        char *name = malloc(64);
+        snprintf(name, 64, "spheres 5x5x5");
+        bbox_t b;
+        scene_box(s.objs, s.nobjs, &b);
+        VECTOR3 eye, target;
+        default_view(&b, eye, target);
+        bench_scene(name, s.objs, s.nobjs, s.ntris, sizes[i] <= 10000, eye,
+                    target, 40);
+        if (i == nsizes - 1) {
+            for (int k = 0; k < s.nobjs; k++)
+                mesh_mem += mesh_bytes(s.objs[k]);
+            mesh_tris = s.ntris;
+        }
+        meshgen_free_objects(&s);
+    }
+    /* the teapot in a stadium, seen from the stands' side */
+    meshgen_scene_t s;
+    svet_error e;
+    if (meshgen_teapot_stadium(&s, quick ? 10000 : 100000, &e) != SVET_OK)
+        return 1;
+    VECTOR3 eye = { 3, -5, 3 }, target = { 0, 0, 1 };
+    bench_scene("teapot in a stadium", s.objs, s.nobjs, s.ntris, false, eye,
+                target, 40);
+    meshgen_free_objects(&s);
+    growth();
+    printf("\nMeshes: %zu bytes per triangle at %ld triangles (vertices, "
+           "normals, st, indices, alias table; mesh.h).\n",
+           mesh_mem / (size_t)mesh_tris, mesh_tris);
+    return 0;
+}
