@@ -3,8 +3,11 @@
  * 256 x 256 in camera samples per second and rays per second at 1 and 2
  * threads, and its RMSE at 16, 64 and 256 spp against a converged render
  * (ch. 5). The converged render is tests/reference/cbox.exr when it exists
- * (make reference), else one rendered here at REF_SPP samples per pixel and
- * kept in out/bench/cbox-ref.exr for the next run.
+ * (make reference; the RMSE series is then rendered at its resolution),
+ * else one rendered here at REF_SPP samples per pixel and kept in
+ * out/bench/cbox-ref.exr for the next run. Beside wall-clock rates it
+ * prints samples per CPU-second (process CPU time, all threads), which a
+ * machine shared with other work disturbs much less.
  * usage: bench_render [scene] [ref_spp]
  */
 #include "bench.h"
@@ -26,21 +29,38 @@ static void die(const char *what, const svet_error *e)
     exit(1);
 }
 
-/* Render s at spp with threads; the image in *img (if not NULL). */
-static void run(const scene_t *s, long spp, int threads, image_t *img,
-                double *secs, double *rays)
+/* CPU seconds of the whole process, every thread included. */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Render s at spp with threads; the image in *img (if not NULL); wall
+ * and CPU seconds. */
+static void run_cpu(const scene_t *s, long spp, int threads, image_t *img,
+                    double *secs, double *cpu, double *rays)
 {
     svet_error e;
     render_t r;
     if (render_init(&r, s, &e) != SVET_OK)
         die("render_init", &e);
-    double t0 = bench_now();
+    double t0 = bench_now(), c0 = cpu_now();
     render_pass(&r, spp, threads, NULL, NULL);
     *secs = bench_now() - t0;
+    *cpu = cpu_now() - c0;
     *rays = (double)r.stats.rays;
     if (img && render_image(&r, img, &e) != SVET_OK)
         die("render_image", &e);
     render_free(&r);
+}
+
+static void run(const scene_t *s, long spp, int threads, image_t *img,
+                double *secs, double *rays)
+{
+    double cpu;
+    run_cpu(s, spp, threads, img, secs, &cpu, rays);
 }
 
 int main(int argc, char **argv)
@@ -60,14 +80,16 @@ int main(int argc, char **argv)
            s.camera.width, s.camera.height, s.render.max_depth, REAL_NAME);
     printf("Machine: %s, %d cores; compiler %s; command `make bench-render`.\n\n",
            cpu, (int)sysconf(_SC_NPROCESSORS_ONLN), __VERSION__);
-    printf("| threads | spp | seconds | camera samples/s | rays/s |\n");
-    printf("|---:|---:|---:|---:|---:|\n");
+    printf("| threads | spp | seconds | camera samples/s | rays/s | "
+           "CPU seconds | samples per CPU-second |\n");
+    printf("|---:|---:|---:|---:|---:|---:|---:|\n");
     const long spp_speed = 16;
     for (int t = 1; t <= 2; t++) {
-        double secs, rays;
-        run(&s, spp_speed, t, NULL, &secs, &rays);
-        printf("| %d | %ld | %.2f | %.3g | %.3g |\n", t, spp_speed, secs,
-               (double)(px * spp_speed) / secs, rays / secs);
+        double secs, cpu_secs, rays;
+        run_cpu(&s, spp_speed, t, NULL, &secs, &cpu_secs, &rays);
+        printf("| %d | %ld | %.2f | %.3g | %.3g | %.2f | %.3g |\n", t,
+               spp_speed, secs, (double)(px * spp_speed) / secs, rays / secs,
+               cpu_secs, (double)(px * spp_speed) / cpu_secs);
         fflush(stdout);
     }
 
@@ -77,7 +99,15 @@ int main(int argc, char **argv)
     char cached[] = "out/bench/cbox-ref.exr";
     double ref_secs = 0;
     if (strcmp(path, "scenes/cbox.scn") == 0 && exrio_read(refpath, &ref, &e) == SVET_OK) {
-        printf("\nReference: %s.\n", refpath);
+        printf("\nReference: %s (%dx%d).\n", refpath, ref.width,
+               ref.height);
+        if (ref.width != s.camera.width || ref.height != s.camera.height) {
+            /* the same view at the reference's resolution */
+            s.camera.width = ref.width;
+            s.camera.height = ref.height;
+            printf("The RMSE series below is rendered at %dx%d to match "
+                   "it.\n", ref.width, ref.height);
+        }
     } else if (exrio_read(cached, &ref, &e) == SVET_OK) {
         printf("\nReference: %s (from an earlier run).\n", cached);
     } else {
