@@ -213,6 +213,26 @@ static bool two_triangle_reference(const VECTOR3 c[4], const ray_t *r,
     return any;
 }
 
+/* One ray against o over (tmin, tmax): the same answer, bit for bit, as
+ * the two triangles. Returns whether it hit. */
+static bool agrees_with_two_triangles(const COBJECT *o, const VECTOR3 c[4],
+                                      const ray_t *r, real tmin, real tmax)
+{
+    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+    bool a = two_triangle_reference(c, r, tmin, tmax, &h1);
+    bool b = o->ops->intersect(o, 0, r, tmin, tmax, &h2);
+    ck_assert_msg(a == b, "hit %d vs %d: o (%a %a %a) d (%a %a %a) "
+                  "(%a, %a)", (int)a, (int)b, (double)r->o[X],
+                  (double)r->o[Y], (double)r->o[Z], (double)r->d[X],
+                  (double)r->d[Y], (double)r->d[Z], (double)tmin,
+                  (double)tmax);
+    if (a) {
+        ck_assert(memcmp(&h1.t, &h2.t, sizeof h1.t) == 0);
+        ck_assert(memcmp(h1.b, h2.b, 2 * sizeof h1.b[0]) == 0);
+    }
+    return a;
+}
+
 START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
 {
     /* Random parallelograms, and small-integer ones whose edge functions
@@ -272,17 +292,9 @@ START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
                 real tmax = tmaxs[q];
                 if (q == 2 && j % 5 == 0)
                     tmax = (real)INFINITY; /* t is scaled there */
-                hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
-                bool a = two_triangle_reference((const VECTOR3 *)c, &r,
-                                                tmins[q], tmax, &h1);
-                bool b = o->ops->intersect(o, 0, &r, tmins[q], tmax, &h2);
-                ck_assert_msg(a == b, "parallelogram %d ray %d: hit %d vs %d",
-                              i, j, (int)a, (int)b);
-                if (a) {
+                if (agrees_with_two_triangles(o, (const VECTOR3 *)c, &r,
+                                              tmins[q], tmax))
                     hits++;
-                    ck_assert(memcmp(&h1.t, &h2.t, sizeof h1.t) == 0);
-                    ck_assert(memcmp(h1.b, h2.b, 2 * sizeof h1.b[0]) == 0);
-                }
             }
         }
         cobject_free(o);
@@ -292,26 +304,6 @@ START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
                       3 * n);
 }
 END_TEST
-
-/* One ray against o over (tmin, tmax): the same answer, bit for bit, as
- * the two triangles. Returns whether it hit. */
-static bool agrees_with_two_triangles(const COBJECT *o, const VECTOR3 c[4],
-                                      const ray_t *r, real tmin, real tmax)
-{
-    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
-    bool a = two_triangle_reference(c, r, tmin, tmax, &h1);
-    bool b = o->ops->intersect(o, 0, r, tmin, tmax, &h2);
-    ck_assert_msg(a == b, "hit %d vs %d: o (%a %a %a) d (%a %a %a) "
-                  "(%a, %a)", (int)a, (int)b, (double)r->o[X],
-                  (double)r->o[Y], (double)r->o[Z], (double)r->d[X],
-                  (double)r->d[Y], (double)r->d[Z], (double)tmin,
-                  (double)tmax);
-    if (a) {
-        ck_assert(memcmp(&h1.t, &h2.t, sizeof h1.t) == 0);
-        ck_assert(memcmp(h1.b, h2.b, 2 * sizeof h1.b[0]) == 0);
-    }
-    return a;
-}
 
 START_TEST(parallelogram_early_rejections_lose_no_hit)
 {
