@@ -18,6 +18,8 @@
 #            series takes as long as its last point
 #   THREADS  render threads (0: every core)
 #   REFDIR   the references (tests/reference)
+#   REPORT_ONLY=1  write the document again from the last run's series
+#            (out/tradeoffs/), rendering nothing
 #   OUT      the CSV directory (out/tradeoffs); DOC the document
 #            (docs/tradeoffs.md)
 # The knobs: the integrator (path = NEE + BSDF sampling with MIS; nee =
@@ -88,11 +90,19 @@ for scene in "$@"; do
     nruns=$(( nruns + $(methods "$scene" | wc -l) ))
 done
 budget=${times##*,}
+[ "${REPORT_ONLY:-0}" = 1 ] ||
 echo "tradeoffs.sh: $nruns series of $budget s of rendering each:" \
      "about $(awk -v n="$nruns" -v b="$budget" 'BEGIN { printf "%.0f", n * (b + 0.5) / 60 }') min" >&2
 
+if [ "${REPORT_ONLY:-0}" = 1 ]; then
+    # the document again from the series of the last run
+    [ -f "$out/run.env" ] || { echo "tradeoffs.sh: no $out/run.env" >&2; exit 1; }
+    . "$out/run.env"
+    set --
+else
 load0=$(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo "?")
 t0=$(date +%s)
+fi
 for scene in "$@"; do
     name=$(basename "$scene" .scn)
     mkdir -p "$out/$name"
@@ -107,8 +117,16 @@ for scene in "$@"; do
             --label "$label" --no-plot -q $sets >/dev/null
     done
 done
+if [ "${REPORT_ONLY:-0}" = 1 ]; then
+    set -- $scenes
+else
 t1=$(date +%s)
 load1=$(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo "?")
+cat > "$out/run.env" <<EOF
+t0=$t0; t1=$t1; load0='$load0'; load1='$load1'; times='$times'
+threads='$threads'; scenes='$*'
+EOF
+fi
 
 # --- the document ------------------------------------------------------------
 # each scene's table first: the summary at the top is read off them
@@ -201,7 +219,8 @@ cat <<EOF
   \`direct\` and \`maxdepth=N\` are biased by construction wherever paths
   of more bounces carry visible light (the Cornell box's ceiling is lit
   only indirectly), and \`bsdf\` is where a light is a point, which no
-  BSDF sample can hit (point_plane renders black). The baseline, \`nee\`
+  BSDF sample can hit (point_plane renders black; mixed loses the point
+  light behind its paper screen). The baseline, \`nee\`
   (light sampling without MIS; emitters reached after a mirror or glass
   bounce still count), \`bsdf\` with area lights, roulette on or off,
   float and double, and every acceleration structure must not be: where
@@ -216,7 +235,10 @@ roulette on); \`double\` the same in the double build; \`nee\`, \`bsdf\`,
 \`direct\` the other integrators (scenes/README.md); \`maxdepth=N\` fewer
 scattering events; \`roulette=off\` paths run to the maximum depth;
 \`accel=...\` brute force, the uniform or the hierarchical grid (ch. 7) for
-finding hits, which must change only the speed.
+finding hits, which must change only the speed. On the Cornell box
+\`baseline\` and \`accel=brute\` are the same computation (for 8 objects
+the renderer's automatic choice is brute force, include/accel.h): the
+difference between their rows is the noise of the measurement.
 
 EOF
 for scene in "$@"; do
