@@ -50,7 +50,9 @@ static void usage(FILE *f)
                "  4  svet render: interrupted (SIGINT/SIGTERM); what was "
                "rendered was written\n"
                "  5  svet diff --fail-above: the images differ by more than "
-               "the threshold\n"
+               "the threshold;\n"
+               "     svet converge --ztest: the image fails the Z-test "
+               "against the reference\n"
                "\n"
                "svet help COMMAND, or svet COMMAND --help, describes one "
                "command.\n");
