@@ -348,10 +348,10 @@ static void tune(void)
             p.grid_k = ks[i];
             tune_row(&s, &p, cam, 256 * 256, inc, 1L << 16);
         }
-        double hk[] = { 0.25, 0.5, 1 }, ck[] = { 1, 1.5, 2 };
-        int leaf[] = { 4, 12 };
+        double hk[] = { 0.5, 1, 2 }, ck[] = { 1.5, 2 };
+        int leaf[] = { 12, 32 };
         for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++)
+            for (int j = 0; j < 2; j++)
                 for (int l = 0; l < 2; l++) {
                     accel_params_t p;
                     accel_params_default(&p);

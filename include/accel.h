@@ -26,7 +26,8 @@ typedef struct {
     accel_kind kind;
     double grid_k;      /* uniform grid: k of k N^(1/3) cells per axis;
                            0 = GRID_K_DEFAULT */
-    double hgrid_k;     /* hierarchical grid: top level's k; 0 = default */
+    double hgrid_k;     /* hierarchical grid: top level's k; 0 =
+                           HGRID_K_DEFAULT */
     int hgrid_leaf;     /* a cell with more primitives gets a child grid;
                            0 = HGRID_LEAF_DEFAULT */
     int hgrid_depth;    /* levels below the top; 0 = HGRID_DEPTH_DEFAULT */
