@@ -74,6 +74,26 @@ static void bounds_of(const COBJECT *obj, bbox_t *b)
                   "%s = %.9g not in [%.9g, %.9g]", #v, (double)(v),     \
                   (double)(lo), (double)(hi))
 
+/* "<prefix> <words[i]>" sets the enum that get() reads to i, for each i:
+ * the words of scene.h's enums are in the order of their values. */
+static void each_word_gives_its_enum_value(const char *prefix,
+                                           const char *const *words, int n,
+                                           int (*get)(const scene_t *))
+{
+    for (int i = 0; i < n; i++) {
+        scene_t s;
+        char line[96];
+        snprintf(line, sizeof line, "%s %s\n", prefix, words[i]);
+        parse_ok(&s, line);
+        ck_assert_int_eq(get(&s), i);
+        scene_free(&s);
+    }
+}
+
+static int integrator_of(const scene_t *s) { return s->render.integrator; }
+static int accel_of(const scene_t *s) { return s->render.accel; }
+static int tonemap_of(const scene_t *s) { return s->render.tonemap.op; }
+
 /* --- settings ------------------------------------------------------------ */
 
 START_TEST(camera_keys_parse_to_their_values)
@@ -129,22 +149,12 @@ START_TEST(render_keys_parse_to_their_values)
     ck_assert(r->checkpoint);
     ck_assert_int_eq(r->accel, SCENE_ACCEL_HGRID);
     scene_free(&s);
-    static const char *const names[] = { "path", "direct", "bsdf", "ao" };
-    for (int i = 0; i < 4; i++) {
-        char line[64];
-        snprintf(line, sizeof line, "render integrator %s\n", names[i]);
-        parse_ok(&s, line);
-        ck_assert_int_eq(s.render.integrator, i);
-        scene_free(&s);
-    }
+    static const char *const names[] = { "path", "direct", "bsdf", "ao",
+                                         "nee" };
+    each_word_gives_its_enum_value("render integrator", names, 5,
+                                   integrator_of);
     static const char *const accels[] = { "auto", "brute", "grid", "hgrid" };
-    for (int i = 0; i < 4; i++) {
-        char line[64];
-        snprintf(line, sizeof line, "render accel %s\n", accels[i]);
-        parse_ok(&s, line);
-        ck_assert_int_eq(s.render.accel, i);
-        scene_free(&s);
-    }
+    each_word_gives_its_enum_value("render accel", accels, 4, accel_of);
 }
 END_TEST
 
@@ -168,13 +178,7 @@ START_TEST(output_and_tonemap_parse_to_their_values)
     scene_free(&s);
     static const char *const ops[] = { "linear", "exponential", "reinhard",
                                        "drago", "histogram" };
-    for (int i = 0; i < 5; i++) {
-        char line[64];
-        snprintf(line, sizeof line, "tonemap operator %s\n", ops[i]);
-        parse_ok(&s, line);
-        ck_assert_int_eq(s.render.tonemap.op, i);
-        scene_free(&s);
-    }
+    each_word_gives_its_enum_value("tonemap operator", ops, 5, tonemap_of);
 }
 END_TEST
 
