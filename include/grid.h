@@ -33,7 +33,7 @@
  * hundreds of times faster. */
 #define HGRID_K_DEFAULT 2.0
 #define HGRID_CHILD_K_DEFAULT 1.5
-#define HGRID_LEAF_DEFAULT 12
+#define HGRID_LEAF_DEFAULT 32
 #define HGRID_DEPTH_DEFAULT 2
 /* No grid has more cells than this, at any level (4 B each). */
 #define GRID_MAX_CELLS (1L << 25)
