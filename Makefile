@@ -64,8 +64,8 @@ $(LIB): $(OBJS)
 	$(AR) rcs $@ $^
 
 # --- the svet command (issue: renderer) -----------------------------------
-# cmd/svet.c holds main() and the table of subcommands; each other
-# cmd/*.c is one subcommand.
+# cmd/svet.c holds main() and the table of subcommands; cmd/cmdutil.c
+# what they share; each other cmd/*.c is one subcommand.
 SVET_MAIN := $(wildcard cmd/svet.c)
 CMD_SRCS  := $(sort $(wildcard cmd/*.c))
 ifneq ($(SVET_MAIN),)

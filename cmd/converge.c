@@ -15,10 +15,10 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "cmd.h"
+#include "cmdutil.h"
 #include "converge.h"
 #include "exrio.h"
 #include "render.h"
@@ -28,7 +28,6 @@
 extern char **environ;
 
 #define MAX_POINTS 64
-#define MAX_SETS 64
 #define DEFAULT_SCRIPT "tools/plot-converge.gp"
 
 void cmd_converge_help(FILE *f)
@@ -110,13 +109,6 @@ void cmd_converge_help(FILE *f)
 "not be written; 5 --ztest: the image fails the test.\n");
 }
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Parse "a,b,c" into increasing positive numbers; false on anything else. */
 static bool parse_list(const char *s, double *v, int *n, bool integers)
 {
@@ -137,17 +129,6 @@ static bool parse_list(const char *s, double *v, int *n, bool integers)
         p = end;
     }
     return *n > 0;
-}
-
-static bool parse_long(const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno || end == s || *end || v < lo || v > hi)
-        return false;
-    *out = v;
-    return true;
 }
 
 /* "scenes/cbox.scn" -> "cbox" (malloc'ed) */
@@ -361,16 +342,9 @@ done:
  * "spp = N" line of tools/reference.sh), or 0. */
 static double spp_from_description(const char *ref)
 {
-    size_t n = strlen(ref);
-    const char *dot = strrchr(ref, '.'), *slash = strrchr(ref, '/');
-    if (dot && (!slash || dot > slash))
-        n = (size_t)(dot - ref);
-    char path[4096];
-    if (n + 5 > sizeof path)
-        return 0;
-    memcpy(path, ref, n);
-    strcpy(path + n, ".txt");
-    FILE *f = fopen(path, "r");
+    char *path = cmd_replace_ext(ref, ".txt");
+    FILE *f = path ? fopen(path, "r") : NULL;
+    free(path);
     if (!f)
         return 0;
     char line[1024];
@@ -381,8 +355,6 @@ static double spp_from_description(const char *ref)
     fclose(f);
     return spp > 0 ? spp : 0;
 }
-
-static char *variance_name(const char *ref);
 
 /* Radiance images and their variances are finite and never negative; a
  * file holding other values is corrupt (OpenEXR 3.1's ZIP writer stores a
@@ -418,8 +390,8 @@ static int ztest_files(const char *img_path, const char *var_path,
     memset(&ref, 0, sizeof ref);
     memset(&rvar, 0, sizeof rvar);
     memset(&pv, 0, sizeof pv);
-    char *vdef = var_path ? NULL : variance_name(img_path);
-    char *rdef = ref_var_path ? NULL : variance_name(ref_path);
+    char *vdef = var_path ? NULL : cmd_replace_ext(img_path, "-var.exr");
+    char *rdef = ref_var_path ? NULL : cmd_replace_ext(ref_path, "-var.exr");
     var_path = var_path ? var_path : vdef;
     ref_var_path = ref_var_path ? ref_var_path : rdef;
     if (!(ref_spp > 0))
@@ -501,9 +473,9 @@ typedef struct {
 /* Render up to spp_end samples and add them to the render clock. */
 static void render_to(run_t *u, long spp_end)
 {
-    double t = now();
+    double t = cmd_now();
     render_pass(u->r, spp_end, u->threads, NULL, NULL);
-    u->render_secs += now() - t;
+    u->render_secs += cmd_now() - t;
 }
 
 /* Measure the image as it is, append a point and rewrite the CSV (so an
@@ -592,36 +564,20 @@ static const char *integrator_name(scene_integrator i)
     return "?";
 }
 
-/* "a/b/REF.exr" -> "a/b/REF-var.exr" (malloc'ed) */
-static char *variance_name(const char *ref)
-{
-    size_t n = strlen(ref);
-    const char *dot = strrchr(ref, '.'), *slash = strrchr(ref, '/');
-    if (dot && (!slash || dot > slash))
-        n = (size_t)(dot - ref);
-    char *out = malloc(n + 9);
-    if (out) {
-        memcpy(out, ref, n);
-        strcpy(out + n, "-var.exr");
-    }
-    return out;
-}
-
 int cmd_converge(int argc, char **argv)
 {
     const char *scene_path = NULL, *ref_path = NULL, *ref_var_path = NULL,
                *out_dir = "out/converge", *label = NULL,
                *script = DEFAULT_SCRIPT;
-    const char *sets[MAX_SETS];
     char *files[256];
-    int nsets = 0, nfiles = 0, nlist = 0;
+    int nfiles = 0, nlist = 0;
     double list[MAX_POINTS], T = 0, E = 0, zspp = 0, ref_spp = 0;
     const char *ztest_img = NULL, *ztest_var = NULL, *pvalue_path = NULL;
     converge_metric metric = CONVERGE_REL;
     bool time_mode = false, have_list = false, no_plot = false,
-         quiet = false, report_mode = false, seed_set = false;
-    long threads = -1;
-    unsigned long long seed = 0;
+         quiet = false, report_mode = false;
+    cmd_scene_opts_t so;
+    cmd_scene_opts_init(&so);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -637,9 +593,7 @@ int cmd_converge(int argc, char **argv)
         } else if (!strcmp(a, "--report")) {
             report_mode = true, takes = false;
         } else if (a[0] == '-' && !v) {
-            fprintf(stderr, "svet converge: %s needs a value (svet converge "
-                            "--help)\n", a);
-            return SVET_EXIT_USAGE;
+            return cmd_missing_value("converge", a);
         } else if (!strcmp(a, "--ref")) {
             ref_path = v;
         } else if (!strcmp(a, "--ref-var")) {
@@ -672,10 +626,9 @@ int cmd_converge(int argc, char **argv)
             }
             have_list = true;
         } else if (!strcmp(a, "--time") || !strcmp(a, "--error")) {
-            char *end;
-            double x = strtod(v, &end);
-            if (end == v || *end || !(x > 0) || !isfinite(x))
-                goto bad_value;
+            double x;
+            if (!cmd_parse_double(v, &x) || !(x > 0))
+                return cmd_bad_value("converge", a, v);
             *(!strcmp(a, "--time") ? &T : &E) = x;
         } else if (!strcmp(a, "--ztest")) {
             ztest_img = v;
@@ -684,10 +637,9 @@ int cmd_converge(int argc, char **argv)
         } else if (!strcmp(a, "--pvalue")) {
             pvalue_path = v;
         } else if (!strcmp(a, "--spp") || !strcmp(a, "--ref-spp")) {
-            char *end;
-            double x = strtod(v, &end);
-            if (end == v || *end || !(x > 0) || x > 1e12)
-                goto bad_value;
+            double x;
+            if (!cmd_parse_double(v, &x) || !(x > 0) || x > 1e12)
+                return cmd_bad_value("converge", a, v);
             *(!strcmp(a, "--spp") ? &zspp : &ref_spp) = x;
         } else if (!strcmp(a, "--metric")) {
             if (!strcmp(v, "rel"))
@@ -695,28 +647,13 @@ int cmd_converge(int argc, char **argv)
             else if (!strcmp(v, "abs"))
                 metric = CONVERGE_ABS;
             else
-                goto bad_value;
-        } else if (!strcmp(a, "--set")) {
-            if (nsets == MAX_SETS) {
-                fprintf(stderr, "svet converge: at most %d --set options\n",
-                        MAX_SETS);
-                return SVET_EXIT_USAGE;
-            }
-            sets[nsets++] = v;
-        } else if (!strcmp(a, "--threads")) {
-            if (!parse_long(v, 0, SCENE_MAX_THREADS, &threads))
-                goto bad_value;
-        } else if (!strcmp(a, "--seed")) {
-            char *end;
-            errno = 0;
-            seed = strtoull(v, &end, 10);
-            if (errno || end == v || *end || v[0] == '-')
-                goto bad_value;
-            seed_set = true;
+                return cmd_bad_value("converge", a, v);
         } else if (a[0] == '-') {
-            fprintf(stderr, "svet converge: unknown option '%s' (svet "
-                            "converge --help)\n", a);
-            return SVET_EXIT_USAGE;
+            int k = cmd_scene_option("converge", a, v, &so);
+            if (k == CMD_OPT_BAD)
+                return SVET_EXIT_USAGE;
+            if (k == CMD_OPT_NONE)
+                return cmd_unknown_option("converge", a);
         } else {
             takes = false;
             if (nfiles == 256) {
@@ -727,10 +664,6 @@ int cmd_converge(int argc, char **argv)
         }
         if (takes)
             i++;
-        continue;
-    bad_value:
-        fprintf(stderr, "svet converge: bad value '%s' for %s\n", v, a);
-        return SVET_EXIT_USAGE;
     }
     if (ztest_img) {
         if (!ref_path || !(zspp > 0) || nfiles) {
@@ -762,9 +695,7 @@ int cmd_converge(int argc, char **argv)
 
     svet_error err;
     svet_error_clear(&err);
-    int rc = SVET_EXIT_OK;
     scene_t scene;
-    scene_init(&scene);
     image_t ref, ref_var;
     memset(&ref, 0, sizeof ref);
     memset(&ref_var, 0, sizeof ref_var);
@@ -775,28 +706,16 @@ int cmd_converge(int argc, char **argv)
     converge_point_t pts[MAX_POINTS];
     char method[256];
 
-    if (scenefile_read(&scene, scene_path, &err) != SVET_OK) {
-        fprintf(stderr, "svet converge: %s\n", err.msg);
-        rc = SVET_EXIT_INPUT;
+    int rc = cmd_scene_load("converge", &scene, scene_path, &so);
+    if (rc != SVET_EXIT_OK)
         goto done;
-    }
-    for (int i = 0; i < nsets; i++)
-        if (scenefile_override(&scene, sets[i], &err) != SVET_OK) {
-            fprintf(stderr, "svet converge: %s\n", err.msg);
-            rc = SVET_EXIT_USAGE;
-            goto done;
-        }
-    if (threads >= 0)
-        scene.render.threads = (int)threads;
-    if (seed_set)
-        scene.render.seed = seed;
     if (exrio_read(ref_path, &ref, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s\n", err.msg);
         rc = SVET_EXIT_INPUT;
         goto done;
     }
     if (!ref_var_path) {
-        var_default = variance_name(ref_path);
+        var_default = cmd_replace_ext(ref_path, "-var.exr");
         if (var_default && file_exists(var_default))
             ref_var_path = var_default;
     }
@@ -837,7 +756,7 @@ int cmd_converge(int argc, char **argv)
     if (label)
         snprintf(method, sizeof method, "%s", label);
     else
-        make_label(method, sizeof method, stem, sets, nsets);
+        make_label(method, sizeof method, stem, so.sets, so.nsets);
     size_t dn = strlen(out_dir) + strlen(method) + 8;
     csv = malloc(dn);
     png = malloc(dn);
@@ -851,7 +770,7 @@ int cmd_converge(int argc, char **argv)
     snprintf(png, dn, "%s/%s.png", out_dir, method);
     make_dirs(out_dir);
 
-    double t0 = now();
+    double t0 = cmd_now();
     if (scene_validate(&scene, &err) != SVET_OK ||
         render_init(&r, &scene, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s: %s\n", scene_path, err.msg);
@@ -859,7 +778,7 @@ int cmd_converge(int argc, char **argv)
         goto done;
     }
     r_live = true;
-    run_t u = { &r, &ref, have_var ? &ref_var : NULL, pts, 0, now() - t0,
+    run_t u = { &r, &ref, have_var ? &ref_var : NULL, pts, 0, cmd_now() - t0,
                 scene.render.threads, quiet };
 
     int len = snprintf(comment, 8192,
@@ -880,9 +799,9 @@ int cmd_converge(int argc, char **argv)
         scene.render.max_depth, scene.render.roulette ? "on" : "off",
         REAL_NAME, __VERSION__, r.accel_choice, scene.render.threads,
         CONVERGE_PSNR_PEAK);
-    for (int i = 0; i < nsets && len > 0 && len < 8000; i++)
+    for (int i = 0; i < so.nsets && len > 0 && len < 8000; i++)
         len += snprintf(comment + len, 8192 - (size_t)len, "%s--set %s",
-                        i ? " " : "\nsettings: ", sets[i]);
+                        i ? " " : "\nsettings: ", so.sets[i]);
 
     if (!quiet)
         fprintf(stderr, "svet converge: %s (%s) against %s\n", scene_path,

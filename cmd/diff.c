@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cmd.h"
+#include "cmdutil.h"
 #include "imageio.h"
 #include "imgcompare.h"
 
@@ -78,13 +79,6 @@ static bool parse_metrics(const char *list, int *out, int *n)
     return *n > 0;
 }
 
-static bool parse_double(const char *s, double *v)
-{
-    char *end;
-    *v = strtod(s, &end);
-    return end != s && *end == '\0' && isfinite(*v);
-}
-
 static double metric_value(const imgcompare_t *m, int k)
 {
     switch (k) {
@@ -145,11 +139,8 @@ int cmd_diff(int argc, char **argv)
             paths[npaths++] = a;
             continue;
         }
-        if (!v) {
-            fprintf(stderr, "svet diff: %s needs a value (svet diff "
-                            "--help)\n", a);
-            return SVET_EXIT_USAGE;
-        }
+        if (!v)
+            return cmd_missing_value("diff", a);
         i++;
         if (!strcmp(a, "--metric")) {
             if (!parse_metrics(v, metrics, &nmetrics))
@@ -175,28 +166,26 @@ int cmd_diff(int argc, char **argv)
                 return SVET_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--peak")) {
-            if (!parse_double(v, &peak) || peak <= 0) {
+            if (!cmd_parse_double(v, &peak) || peak <= 0) {
                 fprintf(stderr, "svet diff: --peak %s: a positive number\n",
                         v);
                 return SVET_EXIT_USAGE;
             }
             have_peak = true;
         } else if (!strcmp(a, "--eps")) {
-            if (!parse_double(v, &eps) || eps <= 0) {
+            if (!cmd_parse_double(v, &eps) || eps <= 0) {
                 fprintf(stderr, "svet diff: --eps %s: a positive number\n",
                         v);
                 return SVET_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--fail-above")) {
-            if (!parse_double(v, &fail_above)) {
+            if (!cmd_parse_double(v, &fail_above)) {
                 fprintf(stderr, "svet diff: --fail-above %s: a number\n", v);
                 return SVET_EXIT_USAGE;
             }
             have_fail = true;
         } else {
-            fprintf(stderr, "svet diff: unknown option %s (svet diff "
-                            "--help)\n", a);
-            return SVET_EXIT_USAGE;
+            return cmd_unknown_option("diff", a);
         }
     }
     if (npaths != 2) {

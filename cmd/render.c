@@ -11,10 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "cmd.h"
+#include "cmdutil.h"
 #include "exrio.h"
 #include "pngio.h"
 #include "render.h"
@@ -65,13 +65,6 @@ void cmd_render_help(FILE *f)
 "(SIGINT/SIGTERM), the samples rendered so far were written.\n");
 }
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 typedef struct {
     double t0;          /* start of the render */
     double last;        /* last progress line */
@@ -83,7 +76,7 @@ typedef struct {
 static void on_tile(void *ctx, long done, long total)
 {
     progress_t *p = ctx;
-    double t = now();
+    double t = cmd_now();
     if (!p->tty || (t - p->last < 0.2 && done < total))
         return;
     p->last = t;
@@ -96,27 +89,13 @@ static void on_tile(void *ctx, long done, long total)
     fflush(stderr);
 }
 
-static char *derive(const char *path, const char *ext)
-{
-    size_t n = strlen(path);
-    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (dot && (!slash || dot > slash))
-        n = (size_t)(dot - path);
-    char *out = malloc(n + strlen(ext) + 1);
-    if (out) {
-        memcpy(out, path, n);
-        strcpy(out + n, ext);
-    }
-    return out;
-}
-
 static char *default_exr(const scene_t *s, const char *scene_path)
 {
     if (s->render.output_exr)
         return strdup(s->render.output_exr);
     const char *base = strrchr(scene_path, '/');
     base = base ? base + 1 : scene_path;
-    char *stem = derive(base, "");
+    char *stem = cmd_replace_ext(base, "");
     if (!stem)
         return NULL;
     char *out = malloc(strlen(stem) + 9);
@@ -191,27 +170,15 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
     return st;
 }
 
-static bool parse_long(const char *s, long lo, long hi, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (errno || end == s || *end || v < lo || v > hi)
-        return false;
-    *out = v;
-    return true;
-}
-
 int cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *opt_exr = NULL, *opt_png = NULL,
                *opt_var = NULL;
-    long spp = -1, threads = -1, passes = -1;
+    long spp = -1, passes = -1;
     double time_limit = -1;
-    bool checkpoint = false, quiet = false, half = false, seed_set = false;
-    unsigned long long seed = 0;
-    const char *sets[64];
-    int nsets = 0;
+    bool checkpoint = false, quiet = false, half = false;
+    cmd_scene_opts_t so;
+    cmd_scene_opts_init(&so);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -227,9 +194,7 @@ int cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--half")) {
             half = true, takes = false;
         } else if (a[0] == '-' && !v) {
-            fprintf(stderr, "svet render: %s needs a value (svet render "
-                            "--help)\n", a);
-            return SVET_EXIT_USAGE;
+            return cmd_missing_value("render", a);
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             opt_exr = v;
         } else if (!strcmp(a, "--png")) {
@@ -237,77 +202,45 @@ int cmd_render(int argc, char **argv)
         } else if (!strcmp(a, "--variance")) {
             opt_var = v;
         } else if (!strcmp(a, "--spp")) {
-            if (!parse_long(v, 1, SCENE_MAX_SPP, &spp))
-                goto bad_value;
-        } else if (!strcmp(a, "--threads")) {
-            if (!parse_long(v, 0, SCENE_MAX_THREADS, &threads))
-                goto bad_value;
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &spp))
+                return cmd_bad_value("render", a, v);
         } else if (!strcmp(a, "--passes")) {
-            if (!parse_long(v, 1, SCENE_MAX_SPP, &passes))
-                goto bad_value;
-        } else if (!strcmp(a, "--seed")) {
-            char *end;
-            errno = 0;
-            seed = strtoull(v, &end, 10);
-            if (errno || end == v || *end || v[0] == '-')
-                goto bad_value;
-            seed_set = true;
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &passes))
+                return cmd_bad_value("render", a, v);
         } else if (!strcmp(a, "--time-limit")) {
-            char *end;
-            time_limit = strtod(v, &end);
-            if (end == v || *end || !(time_limit >= 0) || time_limit > 1e9)
-                goto bad_value;
-        } else if (!strcmp(a, "--set")) {
-            if (nsets == 64) {
-                fprintf(stderr, "svet render: at most 64 --set options\n");
-                return SVET_EXIT_USAGE;
-            }
-            sets[nsets++] = v;
+            if (!cmd_parse_double(v, &time_limit) || time_limit < 0 ||
+                time_limit > 1e9)
+                return cmd_bad_value("render", a, v);
         } else if (a[0] == '-') {
-            fprintf(stderr, "svet render: unknown option '%s' (svet render "
-                            "--help)\n", a);
-            return SVET_EXIT_USAGE;
-        } else {
-            if (scene_path) {
-                fprintf(stderr, "svet render: one scene at a time ('%s' and "
-                                "'%s')\n", scene_path, a);
+            int k = cmd_scene_option("render", a, v, &so);
+            if (k == CMD_OPT_BAD)
                 return SVET_EXIT_USAGE;
-            }
+            if (k == CMD_OPT_NONE)
+                return cmd_unknown_option("render", a);
+        } else {
+            if (scene_path)
+                return cmd_error("render", SVET_EXIT_USAGE, "one scene at a "
+                                 "time ('%s' and '%s')", scene_path, a);
             scene_path = a;
             takes = false;
         }
         if (takes)
             i++;
-        continue;
-    bad_value:
-        fprintf(stderr, "svet render: bad value '%s' for %s\n", v, a);
-        return SVET_EXIT_USAGE;
     }
-    if (!scene_path) {
-        fprintf(stderr, "svet render: no scene file (svet render --help)\n");
-        return SVET_EXIT_USAGE;
-    }
+    if (!scene_path)
+        return cmd_error("render", SVET_EXIT_USAGE,
+                         "no scene file (svet render --help)");
 
     svet_error err;
     svet_error_clear(&err);
     scene_t scene;
-    scene_init(&scene);
-    if (scenefile_read(&scene, scene_path, &err) != SVET_OK) {
-        fprintf(stderr, "svet render: %s\n", err.msg);
-        return SVET_EXIT_INPUT;
+    int rc = cmd_scene_load("render", &scene, scene_path, &so);
+    if (rc != SVET_EXIT_OK) {
+        scene_free(&scene);
+        return rc;
     }
-    for (int i = 0; i < nsets; i++)
-        if (scenefile_override(&scene, sets[i], &err) != SVET_OK) {
-            fprintf(stderr, "svet render: %s\n", err.msg);
-            scene_free(&scene);
-            return SVET_EXIT_USAGE;
-        }
     if (spp > 0)
         scene.render.spp = spp;
-    if (threads >= 0)
-        scene.render.threads = (int)threads;
-    if (seed_set)
-        scene.render.seed = seed;
     if (time_limit >= 0)
         scene.render.time_limit = time_limit;
     if (checkpoint)
@@ -315,12 +248,11 @@ int cmd_render(int argc, char **argv)
     if (passes > 0)
         scene.render.passes = (int)passes;
 
-    int rc = SVET_EXIT_OK;
     char *exr = opt_exr ? strdup(opt_exr) : default_exr(&scene, scene_path);
     char *png = opt_png ? strdup(opt_png)
               : (!opt_exr && scene.render.output_png)
                   ? strdup(scene.render.output_png)
-                  : exr ? derive(exr, ".png") : NULL;
+                  : exr ? cmd_replace_ext(exr, ".png") : NULL;
     render_t r;
     bool r_live = false;
     if (!exr || !png) {
@@ -350,7 +282,7 @@ int cmd_render(int argc, char **argv)
     if (npass > total)
         npass = total;
     outputs_t out = { exr, png, opt_var, half };
-    progress_t pr = { now(), 0, 0, npass, 0, 0, total,
+    progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
                       !quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
     for (long k = 1; k <= npass; k++) {
@@ -364,7 +296,7 @@ int cmd_render(int argc, char **argv)
             break;
         }
         if (scene.render.time_limit > 0 &&
-            now() - pr.t0 >= scene.render.time_limit)
+            cmd_now() - pr.t0 >= scene.render.time_limit)
             break;
         if (scene.render.checkpoint && k < npass &&
             write_outputs(&r, &scene, &out, &err) != SVET_OK) {
@@ -373,7 +305,7 @@ int cmd_render(int argc, char **argv)
             goto done;
         }
     }
-    double secs = now() - pr.t0;
+    double secs = cmd_now() - pr.t0;
     if (pr.tty)
         fputc('\n', stderr);
     if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {

@@ -1,0 +1,146 @@
+/*
+ * cmdutil.c - what the subcommands share: the clock, command-line numbers,
+ * usage messages, file names and the scene options --threads, --seed and
+ * --set (cmdutil.h). Not a subcommand itself.
+ * Tests: tests/test_cmd_render.c, tests/test_converge.c, tests/test_svet.c
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "cmdutil.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cmd.h"
+#include "scenefile.h"
+
+double cmd_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+bool cmd_parse_long(const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < lo || v > hi)
+        return false;
+    *out = v;
+    return true;
+}
+
+bool cmd_parse_seed(const char *s, unsigned long long *out)
+{
+    char *end;
+    errno = 0;
+    *out = strtoull(s, &end, 10);
+    /* strtoull takes "-3" as 2^64 - 3: refuse the sign instead */
+    return !errno && end != s && !*end && s[0] != '-';
+}
+
+bool cmd_parse_double(const char *s, double *out)
+{
+    char *end;
+    *out = strtod(s, &end);
+    return end != s && !*end && isfinite(*out);
+}
+
+int cmd_error(const char *cmd, int rc, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "svet %s: ", cmd);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return rc;
+}
+
+int cmd_missing_value(const char *cmd, const char *opt)
+{
+    return cmd_error(cmd, SVET_EXIT_USAGE, "%s needs a value (svet %s --help)",
+                     opt, cmd);
+}
+
+int cmd_unknown_option(const char *cmd, const char *opt)
+{
+    return cmd_error(cmd, SVET_EXIT_USAGE,
+                     "unknown option '%s' (svet %s --help)", opt, cmd);
+}
+
+int cmd_bad_value(const char *cmd, const char *opt, const char *value)
+{
+    return cmd_error(cmd, SVET_EXIT_USAGE, "bad value '%s' for %s", value,
+                     opt);
+}
+
+char *cmd_replace_ext(const char *path, const char *ext)
+{
+    size_t n = strlen(path);
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    if (dot && (!slash || dot > slash))
+        n = (size_t)(dot - path);
+    char *out = malloc(n + strlen(ext) + 1);
+    if (out) {
+        memcpy(out, path, n);
+        strcpy(out + n, ext);
+    }
+    return out;
+}
+
+void cmd_scene_opts_init(cmd_scene_opts_t *o)
+{
+    memset(o, 0, sizeof *o);
+    o->threads = -1;
+}
+
+int cmd_scene_option(const char *cmd, const char *opt, const char *value,
+                     cmd_scene_opts_t *o)
+{
+    if (!strcmp(opt, "--threads")) {
+        if (!cmd_parse_long(value, 0, SCENE_MAX_THREADS, &o->threads)) {
+            cmd_bad_value(cmd, opt, value);
+            return CMD_OPT_BAD;
+        }
+    } else if (!strcmp(opt, "--seed")) {
+        if (!cmd_parse_seed(value, &o->seed)) {
+            cmd_bad_value(cmd, opt, value);
+            return CMD_OPT_BAD;
+        }
+        o->seed_set = true;
+    } else if (!strcmp(opt, "--set")) {
+        if (o->nsets == CMD_MAX_SETS) {
+            cmd_error(cmd, SVET_EXIT_USAGE, "at most %d --set options",
+                      CMD_MAX_SETS);
+            return CMD_OPT_BAD;
+        }
+        o->sets[o->nsets++] = value;
+    } else {
+        return CMD_OPT_NONE;
+    }
+    return CMD_OPT_TAKEN;
+}
+
+int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
+                   const cmd_scene_opts_t *o)
+{
+    svet_error err;
+    svet_error_clear(&err);
+    scene_init(s);
+    if (scenefile_read(s, path, &err) != SVET_OK)
+        return cmd_error(cmd, SVET_EXIT_INPUT, "%s", err.msg);
+    for (int i = 0; i < o->nsets; i++)
+        if (scenefile_override(s, o->sets[i], &err) != SVET_OK)
+            return cmd_error(cmd, SVET_EXIT_USAGE, "%s", err.msg);
+    if (o->threads >= 0)
+        s->render.threads = (int)o->threads;
+    if (o->seed_set)
+        s->render.seed = o->seed;
+    return SVET_EXIT_OK;
+}

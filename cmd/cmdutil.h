@@ -1,0 +1,85 @@
+/*
+ * cmdutil.h - what the subcommands of cmd/ share: the clock, numbers read
+ * from the command line with their range checks, the usage messages, file
+ * names, and the scene options of svet render and svet converge
+ * (--threads, --seed, --set). Tests: tests/test_cmd_render.c,
+ * tests/test_converge.c, tests/test_svet.c (end to end).
+ */
+#ifndef SVET_CMDUTIL_H
+#define SVET_CMDUTIL_H
+
+#include <stdbool.h>
+
+#include "scene.h"
+
+#if defined(__GNUC__)
+#define CMD_PRINTF(f, a) __attribute__((format(printf, f, a)))
+#else
+#define CMD_PRINTF(f, a)
+#endif
+
+/* Seconds on the monotonic clock, from an arbitrary origin. This function
+ * can't fail. */
+double cmd_now(void);
+
+/* The whole of s as a decimal integer in [lo, hi], into *out. Returns
+ * false (and leaves *out alone) on anything else: empty, trailing bytes,
+ * overflow, out of range. */
+bool cmd_parse_long(const char *s, long lo, long hi, long *out);
+
+/* The whole of s as a non-negative decimal seed, into *out. Returns false
+ * (*out undefined) on a sign, trailing bytes or overflow. */
+bool cmd_parse_seed(const char *s, unsigned long long *out);
+
+/* The whole of s as a finite number, into *out. Returns false (*out
+ * undefined) on empty text, trailing bytes, NaN or infinity; the caller
+ * checks the range. */
+bool cmd_parse_double(const char *s, double *out);
+
+/* Print "svet CMD: <message>" and a newline to stderr; returns rc, so that
+ * a caller can `return cmd_error("render", SVET_EXIT_USAGE, ...)`. */
+int cmd_error(const char *cmd, int rc, const char *fmt, ...) CMD_PRINTF(3, 4);
+
+/* The usage errors every subcommand reports alike: an option at the end
+ * of the line without its value, an option it does not know, a value out
+ * of range. Each prints one line and returns SVET_EXIT_USAGE. */
+int cmd_missing_value(const char *cmd, const char *opt);
+int cmd_unknown_option(const char *cmd, const char *opt);
+int cmd_bad_value(const char *cmd, const char *opt, const char *value);
+
+/* path with its extension (the last '.' after the last '/', if any)
+ * replaced by ext: ("a/b.exr", ".png") -> "a/b.png", ("a/b", "-var.exr")
+ * -> "a/b-var.exr". Malloc'ed; NULL when out of memory. */
+char *cmd_replace_ext(const char *path, const char *ext);
+
+/* --set options kept for scenefile_override, at the most. */
+#define CMD_MAX_SETS 64
+
+/* The scene options of svet render and svet converge. */
+typedef struct {
+    long threads;                   /* --threads N; -1: the scene's */
+    bool seed_set;                  /* --seed given */
+    unsigned long long seed;        /* --seed N */
+    const char *sets[CMD_MAX_SETS]; /* --set KEY=VALUE, in order */
+    int nsets;
+} cmd_scene_opts_t;
+
+/* No options given. This function can't fail. */
+void cmd_scene_opts_init(cmd_scene_opts_t *o);
+
+/* If opt is --threads, --seed or --set, take its value (not NULL) into o.
+ * Returns CMD_OPT_NONE when opt is another option, CMD_OPT_TAKEN when
+ * taken, or CMD_OPT_BAD after printing why the value was refused. */
+enum { CMD_OPT_NONE, CMD_OPT_TAKEN, CMD_OPT_BAD };
+int cmd_scene_option(const char *cmd, const char *opt, const char *value,
+                     cmd_scene_opts_t *o);
+
+/* Read the scene file at path into s (scene_init'ed here), apply the
+ * --set overrides in order, then --threads and --seed. Returns
+ * SVET_EXIT_OK, or after printing the error SVET_EXIT_INPUT (the file is
+ * missing or malformed) or SVET_EXIT_USAGE (an override was refused); s
+ * may then still hold a scene: scene_free it either way. */
+int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
+                   const cmd_scene_opts_t *o);
+
+#endif
