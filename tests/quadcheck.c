@@ -7,6 +7,7 @@
 #include "chi2.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 static double identity(void *ctx, double x)
@@ -203,6 +204,82 @@ long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed)
             cobject_free(obj);
         }
     return cases;
+}
+
+/* The shape of quadcheck_add_harness; set before the tests run (and
+ * inherited by check's forked test processes). */
+static quadcheck_shape_t shape;
+
+static void run_harness(primcheck_test test, const char *name)
+{
+    test_report_cases(name, quadcheck_harness(shape.make, shape.n,
+                                              shape.kinds, test,
+                                              shape.seed[test]));
+}
+
+START_TEST(spawned_rays_never_rehit_the_shape)
+{
+    char name[96];
+    snprintf(name, sizeof name, "spawned_rays_never_rehit_the_%s",
+             shape.name);
+    run_harness(PRIMCHECK_SPAWN, name);
+}
+END_TEST
+
+START_TEST(sampled_points_are_hit)
+{
+    run_harness(PRIMCHECK_SAMPLED, "sampled_points_are_hit");
+}
+END_TEST
+
+START_TEST(shadow_rays_between_points_of_convex_placements_miss)
+{
+    run_harness(PRIMCHECK_SHADOW,
+                "shadow_rays_between_points_of_convex_placements_miss");
+}
+END_TEST
+
+START_TEST(hits_are_finite)
+{
+    run_harness(PRIMCHECK_FINITE, "hits_are_finite");
+}
+END_TEST
+
+START_TEST(sampling_matches_area)
+{
+    run_harness(PRIMCHECK_AREA, "sampling_matches_area");
+}
+END_TEST
+
+START_TEST(no_routine_returns_nan_or_inf)
+{
+    long cases = 0;
+    for (int v = 0; v < shape.n; v++)
+        cases += quadcheck_sweep(shape.make, &v, shape.sweep_rays,
+                                 shape.sweep_seed + (uint64_t)v);
+    test_report_cases("no_routine_returns_nan_or_inf", cases);
+}
+END_TEST
+
+void quadcheck_add_harness(TCase *tc, const quadcheck_shape_t *s)
+{
+    /* no ck_assert here: check allows them only inside a test */
+    if (shape.make && shape.make != s->make) {
+        fprintf(stderr, "quadcheck_add_harness: one shape per suite\n");
+        abort();
+    }
+    shape = *s;
+    bool convex = false;
+    for (int v = 0; v < s->n; v++)
+        convex = convex || s->kinds[v] == GEOMCHECK_CONVEX;
+    tcase_add_test(tc, spawned_rays_never_rehit_the_shape);
+    tcase_add_test(tc, sampled_points_are_hit);
+    if (convex)
+        tcase_add_test(tc,
+                       shadow_rays_between_points_of_convex_placements_miss);
+    tcase_add_test(tc, hits_are_finite);
+    tcase_add_test(tc, sampling_matches_area);
+    tcase_add_test(tc, no_routine_returns_nan_or_inf);
 }
 
 void quadcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v)

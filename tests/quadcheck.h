@@ -58,6 +58,25 @@ long quadcheck_harness(primcheck_make_fn make, int n,
                        const geomcheck_kind kinds[], primcheck_test test,
                        uint64_t seed);
 
+/* A quadric's placements for the harness tests that every quadric suite
+ * runs alike (quadcheck_add_harness). */
+typedef struct {
+    const char *name;            /* "sphere": names the cases reported */
+    primcheck_make_fn make;      /* placement v built with ctx = &v */
+    int n;                       /* placements v = 0 .. n-1 */
+    const geomcheck_kind *kinds; /* kinds[v]: the kind of placement v */
+    uint64_t seed[PRIMCHECK_AREA + 1]; /* the seed of each primcheck_test */
+    int sweep_rays;              /* rays per scale and centre of the sweep */
+    uint64_t sweep_seed;         /* placement v sweeps from sweep_seed + v */
+} quadcheck_shape_t;
+
+/* Add to tc the tests of the harness on shape (copied): spawned rays never
+ * rehit, sampled points are hit, shadow rays between points miss (when a
+ * placement is CONVEX), hits are finite, sampling matches the area (each
+ * quadcheck_harness), and no routine returns NaN or Inf (quadcheck_sweep
+ * on each placement). One shape per suite. */
+void quadcheck_add_harness(TCase *tc, const quadcheck_shape_t *shape);
+
 /* primcheck_sweep_finite (n rays) on make(scale, centre, ctx) at every
  * scale of primcheck_scales, centred at the origin and 10 scale away.
  * Returns the rays traced. */

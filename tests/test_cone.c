@@ -358,51 +358,13 @@ END_TEST
 static const geomcheck_kind kinds[4] = { GEOMCHECK_OPEN, GEOMCHECK_OPEN,
                                          GEOMCHECK_CONVEX, GEOMCHECK_CONVEX };
 
-static long harness(primcheck_test test, uint64_t seed)
-{
-    return quadcheck_harness(make_cone, 4, kinds, test, seed);
-}
-
-START_TEST(spawned_rays_never_rehit_the_cone)
-{
-    test_report_cases("spawned_rays_never_rehit_the_cone",
-                      harness(PRIMCHECK_SPAWN, 1));
-}
-END_TEST
-
-START_TEST(sampled_points_are_hit)
-{
-    test_report_cases("sampled_points_are_hit", harness(PRIMCHECK_SAMPLED, 5));
-}
-END_TEST
-
-START_TEST(shadow_rays_between_points_of_the_capped_cone_miss)
-{
-    test_report_cases("shadow_rays_between_points_of_the_capped_cone_miss",
-                      harness(PRIMCHECK_SHADOW, 9));
-}
-END_TEST
-
-START_TEST(hits_are_finite)
-{
-    test_report_cases("hits_are_finite", harness(PRIMCHECK_FINITE, 13));
-}
-END_TEST
-
-START_TEST(sampling_matches_area)
-{
-    test_report_cases("sampling_matches_area", harness(PRIMCHECK_AREA, 17));
-}
-END_TEST
-
-START_TEST(no_routine_returns_nan_or_inf)
-{
-    long cases = 0;
-    for (int v = 0; v < 4; v++)
-        cases += quadcheck_sweep(make_cone, &v, 5000, (uint64_t)(19 + v));
-    test_report_cases("no_routine_returns_nan_or_inf", cases);
-}
-END_TEST
+static const quadcheck_shape_t harness = {
+    .name = "cone", .make = make_cone, .n = 4, .kinds = kinds,
+    .seed = { [PRIMCHECK_SPAWN] = 1, [PRIMCHECK_SAMPLED] = 5,
+              [PRIMCHECK_SHADOW] = 9, [PRIMCHECK_FINITE] = 13,
+              [PRIMCHECK_AREA] = 17 },
+    .sweep_rays = 5000, .sweep_seed = 19
+};
 
 static COBJECT *cone_row(testcsv_t *c)
 {
@@ -436,12 +398,7 @@ Suite *test_suite(void)
     tcase_add_test(tr, hit_and_sampled_points_are_within_their_error_bound);
     tcase_add_test(tr, surface_parameters_and_frame_follow_the_documented_map);
     tcase_add_test(tr, sampled_faces_depths_and_radii_are_uniform_by_area);
-    tcase_add_test(tr, spawned_rays_never_rehit_the_cone);
-    tcase_add_test(tr, sampled_points_are_hit);
-    tcase_add_test(tr, shadow_rays_between_points_of_the_capped_cone_miss);
-    tcase_add_test(tr, hits_are_finite);
-    tcase_add_test(tr, sampling_matches_area);
-    tcase_add_test(tr, no_routine_returns_nan_or_inf);
+    quadcheck_add_harness(tr, &harness);
     suite_add_tcase(s, tr);
     return s;
 }

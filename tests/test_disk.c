@@ -312,44 +312,12 @@ END_TEST
 /* The harness on both placements: kind FLAT (rays leave on either side). */
 static const geomcheck_kind kinds[2] = { GEOMCHECK_FLAT, GEOMCHECK_FLAT };
 
-static long harness(primcheck_test test, uint64_t seed)
-{
-    return quadcheck_harness(make_disk, 2, kinds, test, seed);
-}
-
-START_TEST(spawned_rays_never_rehit_the_disk)
-{
-    test_report_cases("spawned_rays_never_rehit_the_disk",
-                      harness(PRIMCHECK_SPAWN, 1));
-}
-END_TEST
-
-START_TEST(sampled_points_are_hit)
-{
-    test_report_cases("sampled_points_are_hit", harness(PRIMCHECK_SAMPLED, 3));
-}
-END_TEST
-
-START_TEST(hits_are_finite)
-{
-    test_report_cases("hits_are_finite", harness(PRIMCHECK_FINITE, 5));
-}
-END_TEST
-
-START_TEST(sampling_matches_area)
-{
-    test_report_cases("sampling_matches_area", harness(PRIMCHECK_AREA, 7));
-}
-END_TEST
-
-START_TEST(no_routine_returns_nan_or_inf)
-{
-    long cases = 0;
-    for (int v = 0; v < 2; v++)
-        cases += quadcheck_sweep(make_disk, &v, 10000, (uint64_t)(9 + v));
-    test_report_cases("no_routine_returns_nan_or_inf", cases);
-}
-END_TEST
+static const quadcheck_shape_t harness = {
+    .name = "disk", .make = make_disk, .n = 2, .kinds = kinds,
+    .seed = { [PRIMCHECK_SPAWN] = 1, [PRIMCHECK_SAMPLED] = 3,
+              [PRIMCHECK_FINITE] = 5, [PRIMCHECK_AREA] = 7 },
+    .sweep_rays = 10000, .sweep_seed = 9
+};
 
 static COBJECT *disk_row(testcsv_t *c)
 {
@@ -383,11 +351,7 @@ Suite *test_suite(void)
     tcase_add_test(tr, hit_and_sampled_points_are_within_their_error_bound);
     tcase_add_test(tr, surface_parameters_and_frame_follow_the_documented_map);
     tcase_add_test(tr, sampled_radius_squared_and_azimuth_are_uniform);
-    tcase_add_test(tr, spawned_rays_never_rehit_the_disk);
-    tcase_add_test(tr, sampled_points_are_hit);
-    tcase_add_test(tr, hits_are_finite);
-    tcase_add_test(tr, sampling_matches_area);
-    tcase_add_test(tr, no_routine_returns_nan_or_inf);
+    quadcheck_add_harness(tr, &harness);
     suite_add_tcase(s, tr);
     return s;
 }

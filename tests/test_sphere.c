@@ -303,49 +303,13 @@ END_TEST
 /* The harness: a sphere is CONVEX. */
 static const geomcheck_kind kinds[1] = { GEOMCHECK_CONVEX };
 
-static long harness(primcheck_test test, uint64_t seed)
-{
-    return quadcheck_harness(make_sphere, 1, kinds, test, seed);
-}
-
-START_TEST(spawned_rays_never_rehit_the_sphere)
-{
-    test_report_cases("spawned_rays_never_rehit_the_sphere",
-                      harness(PRIMCHECK_SPAWN, 1));
-}
-END_TEST
-
-START_TEST(sampled_points_are_hit)
-{
-    test_report_cases("sampled_points_are_hit", harness(PRIMCHECK_SAMPLED, 2));
-}
-END_TEST
-
-START_TEST(shadow_rays_between_points_miss)
-{
-    test_report_cases("shadow_rays_between_points_miss",
-                      harness(PRIMCHECK_SHADOW, 3));
-}
-END_TEST
-
-START_TEST(hits_are_finite)
-{
-    test_report_cases("hits_are_finite", harness(PRIMCHECK_FINITE, 4));
-}
-END_TEST
-
-START_TEST(sampling_matches_area)
-{
-    test_report_cases("sampling_matches_area", harness(PRIMCHECK_AREA, 5));
-}
-END_TEST
-
-START_TEST(no_routine_returns_nan_or_inf)
-{
-    test_report_cases("no_routine_returns_nan_or_inf",
-                      quadcheck_sweep(make_sphere, NULL, 20000, 6));
-}
-END_TEST
+static const quadcheck_shape_t harness = {
+    .name = "sphere", .make = make_sphere, .n = 1, .kinds = kinds,
+    .seed = { [PRIMCHECK_SPAWN] = 1, [PRIMCHECK_SAMPLED] = 2,
+              [PRIMCHECK_SHADOW] = 3, [PRIMCHECK_FINITE] = 4,
+              [PRIMCHECK_AREA] = 5 },
+    .sweep_rays = 20000, .sweep_seed = 6
+};
 
 static COBJECT *sphere_row(testcsv_t *c)
 {
@@ -378,12 +342,7 @@ Suite *test_suite(void)
     tcase_add_test(tr, hit_and_sampled_points_are_within_their_error_bound);
     tcase_add_test(tr, surface_parameters_and_frame_follow_the_documented_map);
     tcase_add_test(tr, sampled_coordinates_are_uniform_as_archimedes_says);
-    tcase_add_test(tr, spawned_rays_never_rehit_the_sphere);
-    tcase_add_test(tr, sampled_points_are_hit);
-    tcase_add_test(tr, shadow_rays_between_points_miss);
-    tcase_add_test(tr, hits_are_finite);
-    tcase_add_test(tr, sampling_matches_area);
-    tcase_add_test(tr, no_routine_returns_nan_or_inf);
+    quadcheck_add_harness(tr, &harness);
     suite_add_tcase(s, tr);
     return s;
 }
