@@ -182,6 +182,16 @@ struct material *scene_find_material(const scene_t *s, const char *name)
     return k >= 0 ? s->materials[k].material : NULL;
 }
 
+/* strlen(s), stopping at max: strnlen is POSIX, not C11, and the chapter
+ * programs build with a bare cc -std=c11 line. */
+static size_t length_upto(const char *s, size_t max)
+{
+    size_t n = 0;
+    while (n < max && s[n])
+        n++;
+    return n;
+}
+
 /* Edit distance of a and b, each cut to 63 bytes (a suggestion for a
  * longer name is no help): the fewest insertions, deletions, substitutions
  * and swaps of two neighbouring bytes that turn one into the other (the
@@ -190,7 +200,7 @@ struct material *scene_find_material(const scene_t *s, const char *name)
 static int edit_distance(const char *a, const char *b)
 {
     enum { N = 64 };
-    size_t la = strnlen(a, N - 1), lb = strnlen(b, N - 1);
+    size_t la = length_upto(a, N - 1), lb = length_upto(b, N - 1);
     int d[N][N];
     for (size_t i = 0; i <= la; i++)
         d[i][0] = (int)i;
@@ -218,7 +228,7 @@ static void consider(const char *name, const char *cand, const char **best,
                      int *dbest)
 {
     int d = edit_distance(name, cand);
-    size_t len = strnlen(name, 64);
+    size_t len = length_upto(name, 64);
     if (d > 2 || (size_t)d * 3 > len + 1)
         return;
     if (!*best || d < *dbest) {
