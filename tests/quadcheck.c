@@ -282,16 +282,6 @@ void quadcheck_add_harness(TCase *tc, const quadcheck_shape_t *s)
     tcase_add_test(tc, no_routine_returns_nan_or_inf);
 }
 
-void quadcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v)
-{
-    const char *axis[] = { "x", "y", "z" };
-    for (int i = 0; i < 3; i++) {
-        char col[32];
-        snprintf(col, sizeof col, "%s%s", prefix, axis[i]);
-        v[i] = (real)testcsv_num(c, col);
-    }
-}
-
 void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
                        const char *test)
 {
@@ -310,8 +300,8 @@ void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
         ck_assert_msg(obj != NULL, "%s:%d (%s): cannot build the shape", file,
                       c.line, name);
         ray_t r;
-        quadcheck_csv_vec(&c, "o", r.o);
-        quadcheck_csv_vec(&c, "d", r.d);
+        primcheck_csv_vec(&c, "o", r.o);
+        primcheck_csv_vec(&c, "d", r.d);
         bool expect = testcsv_num(&c, "hit") != 0;
         PATHPOINT pp;
         bool got = quadcheck_trace(obj, &r, 0, (real)INFINITY, &pp);
@@ -322,8 +312,8 @@ void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
             double ntol = testcsv_num(&c, ntol_col);
             double len = (double)vec_length(r.d);
             VECTOR3 p, n;
-            quadcheck_csv_vec(&c, "p", p);
-            quadcheck_csv_vec(&c, "n", n);
+            primcheck_csv_vec(&c, "p", p);
+            primcheck_csv_vec(&c, "n", n);
             ck_assert_msg(fabs((double)pp.r_dist - testcsv_num(&c, "t") * len)
                               <= tol,
                           "%s:%d (%s): t = %.9g, expected %.9g (tol %g)", file,

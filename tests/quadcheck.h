@@ -90,9 +90,6 @@ long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed);
 void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
                        const char *test);
 
-/* A point column triple of the current row: <prefix>x, <prefix>y, ... */
-void quadcheck_csv_vec(testcsv_t *c, const char *prefix, VECTOR3 v);
-
 /* Fill pp for the first hit of r over (tmin, tmax); false on a miss. */
 bool quadcheck_trace(const COBJECT *obj, const ray_t *r, real tmin, real tmax,
                      PATHPOINT *pp);

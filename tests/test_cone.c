@@ -369,8 +369,8 @@ static const quadcheck_shape_t harness = {
 static COBJECT *cone_row(testcsv_t *c)
 {
     VECTOR3 b, a;
-    quadcheck_csv_vec(c, "b", b);
-    quadcheck_csv_vec(c, "a", a);
+    primcheck_csv_vec(c, "b", b);
+    primcheck_csv_vec(c, "a", a);
     return cone_new(b, a, (real)testcsv_num(c, "radius"),
                     testcsv_num(c, "capped") != 0, NULL);
 }

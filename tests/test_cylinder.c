@@ -404,8 +404,8 @@ static const quadcheck_shape_t harness = {
 static COBJECT *cylinder_row(testcsv_t *c)
 {
     VECTOR3 b, e;
-    quadcheck_csv_vec(c, "b", b);
-    quadcheck_csv_vec(c, "e", e);
+    primcheck_csv_vec(c, "b", b);
+    primcheck_csv_vec(c, "e", e);
     return cylinder_new(b, e, (real)testcsv_num(c, "radius"),
                         testcsv_num(c, "capped") != 0, NULL);
 }

@@ -322,8 +322,8 @@ static const quadcheck_shape_t harness = {
 static COBJECT *disk_row(testcsv_t *c)
 {
     VECTOR3 centre, n;
-    quadcheck_csv_vec(c, "c", centre);
-    quadcheck_csv_vec(c, "a", n);
+    primcheck_csv_vec(c, "c", centre);
+    primcheck_csv_vec(c, "a", n);
     return disk_new(centre, n, (real)testcsv_num(c, "radius"), NULL);
 }
 

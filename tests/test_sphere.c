@@ -314,7 +314,7 @@ static const quadcheck_shape_t harness = {
 static COBJECT *sphere_row(testcsv_t *c)
 {
     VECTOR3 centre;
-    quadcheck_csv_vec(c, "c", centre);
+    primcheck_csv_vec(c, "c", centre);
     return sphere_new(centre, (real)testcsv_num(c, "radius"), NULL);
 }
 
