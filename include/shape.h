@@ -25,6 +25,13 @@ COBJECT *shape_alloc(const cobject_ops *ops, size_t size, svet_error *err);
 svet_status shape_check_finite(const char *shape, const char *what,
                                const VECTOR3 p, svet_error *err);
 
+/* s = a 2^-e, exactly (a power of two changes only the exponent), with e
+ * chosen so that the largest component of s lies in [1, 2); returns e.
+ * The zero vector and a non-finite one are copied (e = 0). The exponent
+ * is read from the bits and the scaling is one product per component: no
+ * libm call. This function can't fail. */
+int shape_scale_exponent(VECTOR3 s, const VECTOR3 a);
+
 /* n = (a x b) / |a x b|, computed after scaling a and b by powers of two
  * (exact) so that no product overflows or underflows. Returns false and
  * n = (0, 0, 0) when a x b computes to zero (parallel or zero edges) or an

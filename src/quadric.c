@@ -48,17 +48,14 @@ int quadric_scale_dir(VECTOR3 ds, const VECTOR3 d)
     real ax = fabs(d[X]), ay = fabs(d[Y]), az = fabs(d[Z]);
     real m = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
     /* Moderate lengths are left alone: their squares and products cannot
-     * overflow or underflow, and ilogb and scalbn, library calls, would
-     * cost as much as the rest of a sphere test. */
+     * overflow or underflow, and even the bit-level scaling would cost a
+     * good part of a sphere test. */
     if ((m >= REAL_C(0x1p-32) && m <= REAL_C(0x1p32)) || !(m > 0) ||
         !isfinite(m)) {
         vec_copy(ds, d);
         return 0;
     }
-    int k = ilogb(m);
-    for (int i = 0; i < 3; i++)
-        ds[i] = scalbn(d[i], -k);
-    return k;
+    return shape_scale_exponent(ds, d);
 }
 
 bool quadric_project(VECTOR3 q, real len)

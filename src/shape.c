@@ -42,9 +42,7 @@ svet_status shape_check_finite(const char *shape, const char *what,
                           (double)p[X], (double)p[Y], (double)p[Z]);
 }
 
-/* a scaled by a power of two so that its largest component lies in
- * [1, 2); returns the exponent removed (0 for the zero vector). */
-static int normalise_exponent(VECTOR3 s, const VECTOR3 a)
+int shape_scale_exponent(VECTOR3 s, const VECTOR3 a)
 {
     real m = shape_max_abs(a);
     if (m == 0 || !isfinite(m)) {
@@ -61,8 +59,8 @@ static int normalise_exponent(VECTOR3 s, const VECTOR3 a)
 bool shape_unit_cross(VECTOR3 n, const VECTOR3 a, const VECTOR3 b)
 {
     VECTOR3 sa, sb, c;
-    normalise_exponent(sa, a);
-    normalise_exponent(sb, b);
+    shape_scale_exponent(sa, a);
+    shape_scale_exponent(sb, b);
     VVECTOR3(c, sa, sb);
     return vec_normalize(n, c) > 0;
 }
@@ -70,8 +68,8 @@ bool shape_unit_cross(VECTOR3 n, const VECTOR3 a, const VECTOR3 b)
 real shape_cross_length(const VECTOR3 a, const VECTOR3 b)
 {
     VECTOR3 sa, sb, c;
-    int ea = normalise_exponent(sa, a);
-    int eb = normalise_exponent(sb, b);
+    int ea = shape_scale_exponent(sa, a);
+    int eb = shape_scale_exponent(sb, b);
     VVECTOR3(c, sa, sb);
     return real_ldexp(vec_length(c), ea + eb);
 }
@@ -82,7 +80,7 @@ void shape_frame(VECTOR3 u, VECTOR3 v, const VECTOR3 n, const VECTOR3 dpds)
      * u = v x n, which is unit and perpendicular to n and v to rounding
      * even when t was short (dpds nearly along n). */
     VECTOR3 s, t, w;
-    normalise_exponent(s, dpds);
+    shape_scale_exponent(s, dpds);
     vec_add_scaled(t, s, -SVECTOR3(s, n), n);
     VVECTOR3(w, n, t);
     if (vec_normalize(v, w) == 0) {
