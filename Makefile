@@ -144,7 +144,7 @@ cc-lines:
 	@sh tools/check-cc-lines.sh $(foreach p,$(CHAPTER_PROGS),$($(p)_SRC))
 
 # --- test vectors for ports (tests/vectors/) -------------------------------
-$(BUILD)/tools/%: tools/%.c $(LIB)
+$(BUILD)/tools/%: tools/%.c $(wildcard tools/*.h) $(LIB)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
 

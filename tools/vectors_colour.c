@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "spectrum.h"
+#include "vectors.h"
 
 typedef long double ld;
 typedef struct {
@@ -23,13 +24,7 @@ typedef struct {
 static FILE *open_csv(const char *dir, const char *name, const char *what,
                       const char *header)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        perror(path);
-        exit(1);
-    }
+    FILE *f = vectors_open(dir, name);
     fprintf(f, "# %s\n# Written by tools/vectors_colour.c (make vectors); "
                "expected values in long double unless the source column "
                "says otherwise.\n%s\n", what, header);
@@ -200,7 +195,7 @@ static void matrices(const char *dir)
                 fprintf(f, ",%s,%s,%s %s->%s long double\n", ftol, dtol,
                         METHOD_NAME[method], WHITE_NAME[from], WHITE_NAME[to]);
             }
-    fclose(f);
+    vectors_close(f, dir, "colour_matrices.csv");
 }
 
 /* --- the sRGB curve ------------------------------------------------------- */
@@ -229,7 +224,7 @@ static void srgb(const char *dir)
         fprintf(f, "%.17g,%.17Lg,%d,5e-07,1e-15,IEC 61966-2-1 long double\n",
                 (double)v, e, byte);
     }
-    fclose(f);
+    vectors_close(f, dir, "colour_srgb.csv");
 }
 
 /* --- adapted colours ------------------------------------------------------- */
@@ -261,7 +256,7 @@ static void adapted(const char *dir)
                             (double)in[k][2], o[0], o[1], o[2], METHOD_NAME[method]);
                 }
             }
-    fclose(f);
+    vectors_close(f, dir, "colour_adapt.csv");
 }
 
 /* --- colour-matching functions ---------------------------------------------- */
@@ -328,7 +323,7 @@ static void cmf(const char *dir)
                 CIE_ROWS[k].lambda, CIE_ROWS[k].x, CIE_ROWS[k].y, CIE_ROWS[k].z,
                 wx, wy, wz);
     }
-    fclose(f);
+    vectors_close(f, dir, "colour_cmf.csv");
 }
 
 /* --- blackbody -------------------------------------------------------------- */
@@ -388,7 +383,7 @@ static void blackbody(const char *dir)
                 T, s[0] / sum, s[1] / sum, lum, eff, 683 * s[1] / s[3], lmax,
                 planck(lmax, T));
     }
-    fclose(f);
+    vectors_close(f, dir, "colour_blackbody.csv");
 }
 
 int main(int argc, char **argv)

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "rng.h"
+#include "vectors.h"
 
 typedef long double ld;
 
@@ -26,29 +27,11 @@ typedef long double ld;
 static FILE *open_csv(const char *dir, const char *name, const char *what,
                       const char *header)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s.tmp", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        perror(path);
-        exit(1);
-    }
+    FILE *f = vectors_open(dir, name);
     fprintf(f, "# %s\n# Written by tools/vectors_flat.c (make vectors). "
                "Inputs are floats (exact decimal); expected values long "
                "double.\n%s\n", what, header);
     return f;
-}
-
-/* Close and move NAME.tmp over NAME, so a failed run leaves the old file. */
-static void close_csv(FILE *f, const char *dir, const char *name)
-{
-    char tmp[1024], path[1024];
-    snprintf(tmp, sizeof tmp, "%s/%s.tmp", dir, name);
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    if (fclose(f) != 0 || rename(tmp, path) != 0) {
-        perror(path);
-        exit(1);
-    }
 }
 
 /* A float uniform in [lo, hi): 24 random bits, the same in every build. */
@@ -272,7 +255,7 @@ static void triangles(const char *dir, pcg32_t *g)
         put_ray_hit(f, o, d, hit, t);
         put_tail(f, pt, n, scale, kappa, "Moller-Trumbore 1997 in long double");
     }
-    close_csv(f, dir, "triangle.csv");
+    vectors_close(f, dir, "triangle.csv");
 }
 
 /* --- plane ------------------------------------------------------------------ */
@@ -350,7 +333,7 @@ static void planes(const char *dir, pcg32_t *g)
         put_tail(f, q, e, scale, scale / (s * cosv),
                  "plane equation in long double");
     }
-    close_csv(f, dir, "plane.csv");
+    vectors_close(f, dir, "plane.csv");
 }
 
 /* --- parallelogram --------------------------------------------------------- */
@@ -429,7 +412,7 @@ static void parallelograms(const char *dir, pcg32_t *g)
                        lenl(e1) * lenl(e2) / lenl(N)),
                  "plane and Cramer's rule in long double");
     }
-    close_csv(f, dir, "parallelogram.csv");
+    vectors_close(f, dir, "parallelogram.csv");
 }
 
 /* --- box ------------------------------------------------------------------------ */
@@ -545,7 +528,7 @@ static void boxes(const char *dir, pcg32_t *g)
         put_tail(f, p, n, scale, scale / (s * 0.2L * cosv),
                  "Kay-Kajiya slab test in long double");
     }
-    close_csv(f, dir, "box.csv");
+    vectors_close(f, dir, "box.csv");
 }
 
 /* --- xform ---------------------------------------------------------------------- */
@@ -752,7 +735,7 @@ static void xforms(const char *dir, pcg32_t *g)
                  box ? "Kay-Kajiya slabs under M = R S in long double"
                      : "plane and Cramer's rule under M = R S in long double");
     }
-    close_csv(f, dir, "xform.csv");
+    vectors_close(f, dir, "xform.csv");
 }
 
 int main(int argc, char **argv)

@@ -7,7 +7,6 @@
  * and the double build read the same rays. Checked by tests/test_<m>.c.
  * Usage: vectors_quadrics OUTDIR (run by `make vectors`)
  */
-#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdbool.h>
@@ -16,6 +15,7 @@
 #include <string.h>
 
 #include "rng.h"
+#include "vectors.h"
 
 typedef long double ld;
 
@@ -245,7 +245,8 @@ static void random_dir(double w[3], pcg32_t *g)
 
 typedef struct {
     FILE *f;
-    char tmp[1100], path[1024];
+    const char *dir;
+    char name[32];
     int kind, rows;
 } out_t;
 
@@ -253,13 +254,9 @@ static void open_out(out_t *o, const char *dir, int kind)
 {
     o->kind = kind;
     o->rows = 0;
-    snprintf(o->path, sizeof o->path, "%s/%s.csv", dir, kind_name[kind]);
-    snprintf(o->tmp, sizeof o->tmp, "%s.tmp", o->path);
-    o->f = fopen(o->tmp, "w");
-    if (!o->f) {
-        fprintf(stderr, "%s: %s\n", o->tmp, strerror(errno));
-        exit(1);
-    }
+    o->dir = dir;
+    snprintf(o->name, sizeof o->name, "%s.csv", kind_name[kind]);
+    o->f = vectors_open(dir, o->name);
     static const char *const params[] = {
         "cx,cy,cz,radius", "cx,cy,cz,ax,ay,az,radius",
         "bx,by,bz,ex,ey,ez,radius,capped", "bx,by,bz,ax,ay,az,radius,capped"
@@ -306,11 +303,8 @@ static void open_out(out_t *o, const char *dir, int kind)
 
 static void close_out(out_t *o)
 {
-    if (fclose(o->f) != 0 || rename(o->tmp, o->path) != 0) {
-        fprintf(stderr, "%s: %s\n", o->path, strerror(errno));
-        exit(1);
-    }
-    printf("%s: %d rows\n", o->path, o->rows);
+    vectors_close(o->f, o->dir, o->name);
+    printf("%s/%s: %d rows\n", o->dir, o->name, o->rows);
 }
 
 static double maxabs3(const float a[3])

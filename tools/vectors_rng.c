@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "rng.h"
+#include "vectors.h"
 
 /* --- the independent implementation --------------------------------------- */
 
@@ -71,30 +72,6 @@ static void ref_for_sample(ref_pcg *g, uint64_t seed, uint64_t pixel,
 
 /* --- files ------------------------------------------------------------------ */
 
-static FILE *open_csv(const char *dir, const char *name)
-{
-    char path[1024], tmp[1100];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        perror(tmp);
-        exit(1);
-    }
-    return f;
-}
-
-static void close_csv(FILE *f, const char *dir, const char *name)
-{
-    char path[1024], tmp[1100];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    if (fclose(f) != 0 || rename(tmp, path) != 0) {
-        perror(path);
-        exit(1);
-    }
-}
-
 static void fail(const char *what)
 {
     fprintf(stderr, "vectors_rng: %s\n", what);
@@ -110,7 +87,7 @@ static void pcg32_file(const char *dir)
         { UINT64_C(0xdeadbeefcafef00d), UINT64_C(0x0123456789abcdef) },
         { UINT64_MAX, UINT64_MAX }, { UINT64_C(1) << 63, 7 },
     };
-    FILE *f = open_csv(dir, "rng_pcg32.csv");
+    FILE *f = vectors_open(dir, "rng_pcg32.csv");
     fprintf(f, "# PCG32 (XSH-RR 64/32, pcg32_srandom_r seeding) raw outputs: "
                "output number `index` (0-based) after pcg32_seed(initstate, "
                "initseq).\n"
@@ -138,7 +115,7 @@ static void pcg32_file(const char *dir)
                     pub ? "published pcg32-demo" : "reference implementation");
         }
     }
-    close_csv(f, dir, "rng_pcg32.csv");
+    vectors_close(f, dir, "rng_pcg32.csv");
 }
 
 static void sample_file(const char *dir)
@@ -147,7 +124,7 @@ static void sample_file(const char *dir)
     static const uint64_t pixels[] = { 0, 1, 640 * 480 - 1, UINT64_C(1) << 40 };
     static const uint64_t samples[] = { 0, 1, 1023 };
     static const uint64_t dims[] = { 0, 1, 2, 3, 100 };
-    FILE *f = open_csv(dir, "rng_sample.csv");
+    FILE *f = vectors_open(dir, "rng_sample.csv");
     fprintf(f, "# rng_for_sample(seed, pixel, sample): draw number k "
                "(0-based; rng_dimension(seed, pixel, sample, k)) as the raw "
                "32 bits u32 and as pcg32_real: real_float = (u32 >> 8) * "
@@ -179,7 +156,7 @@ static void sample_file(const char *dir)
                                "implementation\n",
                             seeds[a], pixels[b], samples[c], dims[d], x, rf, rd);
                 }
-    close_csv(f, dir, "rng_sample.csv");
+    vectors_close(f, dir, "rng_sample.csv");
 }
 
 int main(int argc, char **argv)

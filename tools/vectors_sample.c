@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "vectors.h"
 
 typedef long double ld;
 
@@ -26,28 +27,6 @@ static const float us[][2] = {
     { 1.0f - 0x1p-24f, 1.0f - 0x1p-24f }, { 0.9f, 0.55f },
 };
 #define NU ((int)(sizeof us / sizeof us[0]))
-
-static FILE *open_csv(const char *dir, const char *name, char *tmp, size_t n)
-{
-    snprintf(tmp, n, "%s/%s.tmp", dir, name);
-    FILE *f = fopen(tmp, "w");
-    if (!f) {
-        perror(tmp);
-        exit(1);
-    }
-    return f;
-}
-
-static void close_csv(FILE *f, const char *dir, const char *name,
-                      const char *tmp)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    if (fclose(f) != 0 || rename(tmp, path) != 0) {
-        perror(path);
-        exit(1);
-    }
-}
 
 /* A tolerance, rounded up to 3 significant digits. */
 static double tol(ld t)
@@ -187,8 +166,7 @@ static void directions_file(const char *dir)
         { "ward_half", 0.1f, 0.1f },  { "ward_half", 1e-4f, 1e-4f },
         { "ward_half", 1, 0.01f },    { "ward_half", 0.01f, 1 },
     };
-    char tmp[1100];
-    FILE *f = open_csv(dir, "sample_directions.csv", tmp, sizeof tmp);
+    FILE *f = vectors_open(dir, "sample_directions.csv");
     fprintf(f,
             "# Direction samplers of ch. 4 (include/sample.h) at a table of "
             "u: w = (wx, wy, wz) and the pdf per solid angle (sampler's pdf "
@@ -218,15 +196,14 @@ static void directions_file(const char *dir)
                     tol(32 * U_DOUBLE * r.k), tol(32 * U_FLOAT * r.kpdf),
                     tol(32 * U_DOUBLE * r.kpdf), r.source);
         }
-    close_csv(f, dir, "sample_directions.csv", tmp);
+    vectors_close(f, dir, "sample_directions.csv");
 }
 
 /* --- points -------------------------------------------------------------- */
 
 static void points_file(const char *dir)
 {
-    char tmp[1100];
-    FILE *f = open_csv(dir, "sample_points.csv", tmp, sizeof tmp);
+    FILE *f = vectors_open(dir, "sample_points.csv");
     fprintf(f,
             "# Point samplers of ch. 4 at a table of u: concentric_disk "
             "(p0, p1) = the disk point (Shirley & Chiu 1997); triangle "
@@ -251,7 +228,7 @@ static void points_file(const char *dir)
                 n++, (double)us[i][0], (double)us[i][1], 1 - su,
                 (ld)us[i][1] * su, tol(16 * U_FLOAT), tol(16 * U_DOUBLE));
     }
-    close_csv(f, dir, "sample_points.csv", tmp);
+    vectors_close(f, dir, "sample_points.csv");
 }
 
 /* --- the sphere by solid angle ------------------------------------------- */
@@ -282,8 +259,7 @@ static void sphere_file(const char *dir)
         { 0, 0, 0, 0, 0, 0, 1 },            /* at the centre */
         { 0.9f, 0, 0, 0, 0, 0, 1 },         /* inside, 0.9 r */
     };
-    char tmp[1100];
-    FILE *f = open_csv(dir, "sample_sphere.csv", tmp, sizeof tmp);
+    FILE *f = vectors_open(dir, "sample_sphere.csv");
     fprintf(f,
             "# sample_sphere_solid_angle(w, x, c, r, u): the direction w "
             "from x toward the sphere (c, r) and its pdf per solid angle.\n"
@@ -352,7 +328,7 @@ static void sphere_file(const char *dir)
                     tol(64 * U_FLOAT), tol(64 * U_DOUBLE), tol(64 * U_FLOAT),
                     tol(64 * U_DOUBLE), src);
         }
-    close_csv(f, dir, "sample_sphere.csv", tmp);
+    vectors_close(f, dir, "sample_sphere.csv");
 }
 
 int main(int argc, char **argv)

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include "vectors.h"
 
 typedef long double ld;
 
@@ -31,13 +32,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: vectors_tonemap DIR\n");
         return 1;
     }
-    char path[1024];
-    snprintf(path, sizeof path, "%s/tonemap.csv", argv[1]);
-    FILE *out = fopen(path, "w");
-    if (!out) {
-        perror(path);
-        return 1;
-    }
+    FILE *out = vectors_open(argv[1], "tonemap.csv");
     fprintf(out,
             "# tone-mapping curves of ch. 6 (include/tonemap.h), one "
             "luminance at a time\n"
@@ -106,10 +101,7 @@ int main(int argc, char **argv)
                         "Drago 2003 in long double");
                 rows++;
             }
-    if (fclose(out) != 0) {
-        perror(path);
-        return 1;
-    }
-    printf("%s: %ld rows\n", path, rows);
+    vectors_close(out, argv[1], "tonemap.csv");
+    printf("%s/tonemap.csv: %ld rows\n", argv[1], rows);
     return 0;
 }

@@ -12,19 +12,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "rng.h"
+#include "vectors.h"
 
 typedef long double ld;
 
 static FILE *open_csv(const char *dir, const char *name, const char *what,
                       const char *header)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        perror(path);
-        exit(1);
-    }
+    FILE *f = vectors_open(dir, name);
     fprintf(f, "# %s\n# Written by tools/vectors_vec.c (make vectors). Inputs "
                "are floats (exact decimal); expected values long double.\n%s\n", what, header);
     return f;
@@ -93,7 +88,7 @@ static void ops(const char *dir, pcg32_t *g)
     /* the zero vector normalises to zero by contract */
     fprintf(f, "%d,normalize,0,0,0,0,0,0,0,0,0,0,0,contract of vec_normalize\n",
             c++);
-    fclose(f);
+    vectors_close(f, dir, "vec_ops.csv");
 }
 
 static void reflect_refract(const char *dir, pcg32_t *g)
@@ -154,8 +149,8 @@ static void reflect_refract(const char *dir, pcg32_t *g)
                     (double)etas[e][1], tir, t[0], t[1], t[2], tf, td);
         }
     }
-    fclose(fr);
-    fclose(ft);
+    vectors_close(fr, dir, "vec_reflect.csv");
+    vectors_close(ft, dir, "vec_refract.csv");
 }
 
 static void rotate(const char *dir, pcg32_t *g)
@@ -187,7 +182,7 @@ static void rotate(const char *dir, pcg32_t *g)
                 (double)k[2], (double)ang, r[0], r[1], r[2], 64 * 0x1p-23,
                 64 * 0x1p-52);
     }
-    fclose(f);
+    vectors_close(f, dir, "vec_rotate.csv");
 }
 
 static void frames(const char *dir, pcg32_t *g)
@@ -219,7 +214,7 @@ static void frames(const char *dir, pcg32_t *g)
                 (double)n[1], (double)n[2], u[0], u[1], u[2], v[0], v[1],
                 v[2], 8 * 0x1p-23, 8 * 0x1p-52);
     }
-    fclose(f);
+    vectors_close(f, dir, "frame.csv");
 }
 
 int main(int argc, char **argv)
