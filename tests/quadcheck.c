@@ -206,6 +206,20 @@ long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed)
     return cases;
 }
 
+void quadcheck_expect_hit(const COBJECT *c, const ray_t *r, real t, int face,
+                          real nx, real ny, real nz)
+{
+    PATHPOINT pp;
+    ck_assert_msg(quadcheck_trace(c, r, 0, (real)INFINITY, &pp),
+                  "no hit, expected t = %g", (double)t);
+    ck_assert_near(pp.r_dist / vec_length(r->d), t, 8 * REAL_EPSILON * t);
+    ck_assert_int_eq(pp.prim, face);
+    ck_assert_near(pp.ng[X], nx, 8 * REAL_EPSILON);
+    ck_assert_near(pp.ng[Y], ny, 8 * REAL_EPSILON);
+    ck_assert_near(pp.ng[Z], nz, 8 * REAL_EPSILON);
+    quadcheck_assert_finite(&pp, c->ops->name);
+}
+
 /* The shape of quadcheck_add_harness; set before the tests run (and
  * inherited by check's forked test processes). */
 static quadcheck_shape_t shape;

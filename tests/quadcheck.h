@@ -90,6 +90,20 @@ long quadcheck_sweep(primcheck_make_fn make, void *ctx, int n, uint64_t seed);
 void quadcheck_vectors(const char *file, COBJECT *(*make_row)(testcsv_t *c),
                        const char *test);
 
+/* The ray o + t d. This function can't fail. */
+static inline ray_t quadcheck_ray(real ox, real oy, real oz, real dx, real dy,
+                                  real dz)
+{
+    ray_t r = { { ox, oy, oz }, { dx, dy, dz } };
+    return r;
+}
+
+/* Trace r over (0, inf) and expect a hit at parametric t (to 8 eps t) on
+ * face `face` (PATHPOINT.prim) with the normal ng = n (to 8 eps), and a
+ * finite PATHPOINT (quadcheck_assert_finite). */
+void quadcheck_expect_hit(const COBJECT *c, const ray_t *r, real t, int face,
+                          real nx, real ny, real nz);
+
 /* Fill pp for the first hit of r over (tmin, tmax); false on a miss. */
 bool quadcheck_trace(const COBJECT *obj, const ray_t *r, real tmin, real tmax,
                      PATHPOINT *pp);

@@ -47,26 +47,6 @@ static COBJECT *unit_cone(bool capped)
     return obj;
 }
 
-static ray_t make_ray(real ox, real oy, real oz, real dx, real dy, real dz)
-{
-    ray_t r = { { ox, oy, oz }, { dx, dy, dz } };
-    return r;
-}
-
-static void expect_hit(const COBJECT *c, const ray_t *r, real t, int face,
-                       real nx, real ny, real nz)
-{
-    PATHPOINT pp;
-    ck_assert_msg(quadcheck_trace(c, r, 0, (real)INFINITY, &pp),
-                  "no hit, expected t = %g", (double)t);
-    ck_assert_near(pp.r_dist / vec_length(r->d), t, 8 * REAL_EPSILON * t);
-    ck_assert_int_eq(pp.prim, face);
-    ck_assert_near(pp.ng[X], nx, 8 * REAL_EPSILON);
-    ck_assert_near(pp.ng[Y], ny, 8 * REAL_EPSILON);
-    ck_assert_near(pp.ng[Z], nz, 8 * REAL_EPSILON);
-    quadcheck_assert_finite(&pp, "cone");
-}
-
 START_TEST(cone_new_rejects_bad_input)
 {
     VECTOR3 b = { 1, 2, 3 }, a = { 1, 2, 5 }, bad = { 0, 0, (real)NAN };
@@ -99,24 +79,24 @@ START_TEST(exact_hits_report_their_face)
     COBJECT *c = unit_cone(true), *o = unit_cone(false);
     /* radius 1 - z/2: at z = 1 the wall is at x = -0.5; the outward
      * normal is (-1, 0, 1/2) / sqrt(5/4) */
-    ray_t r = make_ray(-5, 0, 1, 1, 0, 0);
+    ray_t r = quadcheck_ray(-5, 0, 1, 1, 0, 0);
     const real n1 = 1 / sqrt(REAL_C(1.25)), n2 = REAL_C(0.5) * n1;
-    expect_hit(c, &r, REAL_C(4.5), CONE_LATERAL, -n1, 0, n2);
-    r = make_ray(REAL_C(0.25), 0, -3, 0, 0, 1); /* up, under the base */
-    expect_hit(c, &r, 3, CONE_BASE, 0, 0, -1);
+    quadcheck_expect_hit(c, &r, REAL_C(4.5), CONE_LATERAL, -n1, 0, n2);
+    r = quadcheck_ray(REAL_C(0.25), 0, -3, 0, 0, 1); /* up, under the base */
+    quadcheck_expect_hit(c, &r, 3, CONE_BASE, 0, 0, -1);
     /* open: through the base onto the inner wall at z = 1.5 */
-    expect_hit(o, &r, REAL_C(4.5), CONE_LATERAL, n1, 0, n2);
+    quadcheck_expect_hit(o, &r, REAL_C(4.5), CONE_LATERAL, n1, 0, n2);
     /* over the apex: the double cone's upper nappe must not count */
-    r = make_ray(-5, 0, REAL_C(2.5), 1, 0, 0);
+    r = quadcheck_ray(-5, 0, REAL_C(2.5), 1, 0, 0);
     hit_t h;
     ck_assert(!cobject_intersect(c, &r, 0, (real)INFINITY, &h));
-    r = make_ray(0, 0, 5, 1, 0, 0);
+    r = quadcheck_ray(0, 0, 5, 1, 0, 0);
     ck_assert(!cobject_intersect(c, &r, 0, (real)INFINITY, &h));
     /* parallel to the generator from (1,0,0) to the apex: the quadratic's
      * leading coefficient is exactly 0; it meets the other generator at
      * (-0.5, 0, 1), t = 1 */
-    r = make_ray(REAL_C(0.5), 0, -1, -1, 0, 2);
-    expect_hit(o, &r, 1, CONE_LATERAL, -n1, 0, n2);
+    r = quadcheck_ray(REAL_C(0.5), 0, -1, -1, 0, 2);
+    quadcheck_expect_hit(o, &r, 1, CONE_LATERAL, -n1, 0, n2);
     cobject_free(c);
     cobject_free(o);
 }
@@ -126,8 +106,8 @@ START_TEST(rays_through_the_apex_give_no_nan)
 {
     COBJECT *c = unit_cone(true);
     /* down the axis: the apex at t = 3, where the normal is the axis */
-    ray_t r = make_ray(0, 0, 5, 0, 0, -1);
-    expect_hit(c, &r, 3, CONE_LATERAL, 0, 0, 1);
+    ray_t r = quadcheck_ray(0, 0, 5, 0, 0, -1);
+    quadcheck_expect_hit(c, &r, 3, CONE_LATERAL, 0, 0, 1);
     /* through the apex from every direction: a hit there, or (outside
      * the solid's cone of directions) possibly a miss; never NaN */
     pcg32_t g;
@@ -157,7 +137,7 @@ END_TEST
 START_TEST(tmin_and_tmax_bound_the_hit)
 {
     COBJECT *c = unit_cone(true);
-    ray_t r = make_ray(-5, 0, 1, 1, 0, 0); /* t = 4.5 and 5.5 */
+    ray_t r = quadcheck_ray(-5, 0, 1, 1, 0, 0); /* t = 4.5 and 5.5 */
     hit_t h;
     ck_assert(!cobject_intersect(c, &r, 0, REAL_C(4.5), &h));
     ck_assert(cobject_intersect(c, &r, 0,
@@ -166,7 +146,7 @@ START_TEST(tmin_and_tmax_bound_the_hit)
     ck_assert_near(h.t, 5.5, 0);
     ck_assert(!cobject_intersect(c, &r, REAL_C(5.5), 100, &h));
     /* from inside: the far side only */
-    r = make_ray(0, 0, REAL_C(0.5), 1, 0, 0);
+    r = quadcheck_ray(0, 0, REAL_C(0.5), 1, 0, 0);
     PATHPOINT pp;
     ck_assert(quadcheck_trace(c, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist, 0.75, 2 * REAL_EPSILON);

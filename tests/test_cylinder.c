@@ -47,27 +47,6 @@ static COBJECT *new_cylinder(real bx, real by, real bz, real tx, real ty,
     return obj;
 }
 
-static ray_t make_ray(real ox, real oy, real oz, real dx, real dy, real dz)
-{
-    ray_t r = { { ox, oy, oz }, { dx, dy, dz } };
-    return r;
-}
-
-/* Trace r, expect a hit at parametric t on face `face` with normal n. */
-static void expect_hit(const COBJECT *c, const ray_t *r, real t, int face,
-                       real nx, real ny, real nz)
-{
-    PATHPOINT pp;
-    ck_assert_msg(quadcheck_trace(c, r, 0, (real)INFINITY, &pp),
-                  "no hit, expected t = %g", (double)t);
-    ck_assert_near(pp.r_dist / vec_length(r->d), t, 8 * REAL_EPSILON * t);
-    ck_assert_int_eq(pp.prim, face);
-    ck_assert_near(pp.ng[X], nx, 8 * REAL_EPSILON);
-    ck_assert_near(pp.ng[Y], ny, 8 * REAL_EPSILON);
-    ck_assert_near(pp.ng[Z], nz, 8 * REAL_EPSILON);
-    quadcheck_assert_finite(&pp, "cylinder");
-}
-
 START_TEST(cylinder_new_rejects_bad_input)
 {
     VECTOR3 b = { 1, 2, 3 }, t = { 1, 2, 5 }, bad = { 0, (real)NAN, 0 };
@@ -100,34 +79,34 @@ START_TEST(exact_hits_report_their_face)
 {
     COBJECT *c = new_cylinder(0, 0, 0, 0, 0, 4, 1, true);
     COBJECT *o = new_cylinder(0, 0, 0, 0, 0, 4, 1, false);
-    ray_t r = make_ray(-5, 0, 2, 1, 0, 0);
-    expect_hit(c, &r, 4, CYLINDER_LATERAL, -1, 0, 0);
-    expect_hit(o, &r, 4, CYLINDER_LATERAL, -1, 0, 0);
-    r = make_ray(REAL_C(0.5), 0, -2, 0, 0, 1); /* up the axis, inside */
-    expect_hit(c, &r, 2, CYLINDER_BASE, 0, 0, -1);
+    ray_t r = quadcheck_ray(-5, 0, 2, 1, 0, 0);
+    quadcheck_expect_hit(c, &r, 4, CYLINDER_LATERAL, -1, 0, 0);
+    quadcheck_expect_hit(o, &r, 4, CYLINDER_LATERAL, -1, 0, 0);
+    r = quadcheck_ray(REAL_C(0.5), 0, -2, 0, 0, 1); /* up the axis, inside */
+    quadcheck_expect_hit(c, &r, 2, CYLINDER_BASE, 0, 0, -1);
     hit_t h;
     ck_assert(!cobject_intersect(o, &r, 0, (real)INFINITY, &h));
-    r = make_ray(0, REAL_C(0.5), 10, 0, 0, -2); /* down, |d| = 2 */
-    expect_hit(c, &r, 3, CYLINDER_TOP, 0, 0, 1);
-    r = make_ray(0, 0, 2, 0, 1, 0); /* from inside: the far wall */
-    expect_hit(c, &r, 1, CYLINDER_LATERAL, 0, 1, 0);
-    expect_hit(o, &r, 1, CYLINDER_LATERAL, 0, 1, 0);
-    r = make_ray(0, 0, 2, 0, 0, 1); /* from inside along the axis */
-    expect_hit(c, &r, 2, CYLINDER_TOP, 0, 0, 1);
+    r = quadcheck_ray(0, REAL_C(0.5), 10, 0, 0, -2); /* down, |d| = 2 */
+    quadcheck_expect_hit(c, &r, 3, CYLINDER_TOP, 0, 0, 1);
+    r = quadcheck_ray(0, 0, 2, 0, 1, 0); /* from inside: the far wall */
+    quadcheck_expect_hit(c, &r, 1, CYLINDER_LATERAL, 0, 1, 0);
+    quadcheck_expect_hit(o, &r, 1, CYLINDER_LATERAL, 0, 1, 0);
+    r = quadcheck_ray(0, 0, 2, 0, 0, 1); /* from inside along the axis */
+    quadcheck_expect_hit(c, &r, 2, CYLINDER_TOP, 0, 0, 1);
     ck_assert(!cobject_intersect(o, &r, 0, (real)INFINITY, &h));
     /* into the open end, onto the inner wall: ng still points out */
-    r = make_ray(0, 0, REAL_C(4.5), 1, 0, -1);
-    expect_hit(o, &r, 1, CYLINDER_LATERAL, 1, 0, 0);
-    r = make_ray(-5, 0, REAL_C(4.5), 1, 0, 0); /* over the top */
+    r = quadcheck_ray(0, 0, REAL_C(4.5), 1, 0, -1);
+    quadcheck_expect_hit(o, &r, 1, CYLINDER_LATERAL, 1, 0, 0);
+    r = quadcheck_ray(-5, 0, REAL_C(4.5), 1, 0, 0); /* over the top */
     ck_assert(!cobject_intersect(c, &r, 0, (real)INFINITY, &h));
-    r = make_ray(-5, REAL_C(1.01), 2, 1, 0, 0); /* beside */
+    r = quadcheck_ray(-5, REAL_C(1.01), 2, 1, 0, 0); /* beside */
     ck_assert(!cobject_intersect(c, &r, 0, (real)INFINITY, &h));
     cobject_free(c);
     cobject_free(o);
     /* a horizontal cylinder along (1, 1, 0): hit from below at t = 4 */
     c = new_cylinder(1, 1, 1, 3, 3, 1, 1, true);
-    r = make_ray(2, 2, -4, 0, 0, 1);
-    expect_hit(c, &r, 4, CYLINDER_LATERAL, 0, 0, -1);
+    r = quadcheck_ray(2, 2, -4, 0, 0, 1);
+    quadcheck_expect_hit(c, &r, 4, CYLINDER_LATERAL, 0, 0, -1);
     cobject_free(c);
 }
 END_TEST
@@ -135,7 +114,7 @@ END_TEST
 START_TEST(tmin_and_tmax_bound_the_hit)
 {
     COBJECT *c = new_cylinder(0, 0, 0, 0, 0, 4, 1, true);
-    ray_t r = make_ray(-5, 0, 2, 1, 0, 0); /* t = 4 and 6 */
+    ray_t r = quadcheck_ray(-5, 0, 2, 1, 0, 0); /* t = 4 and 6 */
     hit_t h;
     ck_assert(!cobject_intersect(c, &r, 0, 4, &h));
     ck_assert(cobject_intersect(c, &r, 0, nextafter(REAL_C(4.0), REAL_C(5.0)),
@@ -143,7 +122,7 @@ START_TEST(tmin_and_tmax_bound_the_hit)
     ck_assert(cobject_intersect(c, &r, 4, 100, &h));
     ck_assert_near(h.t, 6, 0);
     ck_assert(!cobject_intersect(c, &r, 6, 100, &h));
-    r = make_ray(0, 0, -1, 0, 0, 1); /* caps at t = 1 and 5 */
+    r = quadcheck_ray(0, 0, -1, 0, 0, 1); /* caps at t = 1 and 5 */
     ck_assert(cobject_intersect(c, &r, 1, 100, &h));
     ck_assert_near(h.t, 5, 0);
     ck_assert(!cobject_intersect(c, &r, 0, 1, &h));
@@ -160,7 +139,7 @@ START_TEST(rays_along_the_axis_and_grazing_the_wall_give_no_nan)
     long cases = 0;
     for (int i = 0; i < 6; i++)
         for (int s = -1; s <= 1; s += 2, cases += 2) {
-            ray_t r = make_ray(xs[i], 0, s > 0 ? -3 : 7, 0, 0, (real)s);
+            ray_t r = quadcheck_ray(xs[i], 0, s > 0 ? -3 : 7, 0, 0, (real)s);
             PATHPOINT pp;
             bool hc = quadcheck_trace(c, &r, 0, (real)INFINITY, &pp);
             if (hc)
@@ -179,13 +158,14 @@ START_TEST(rays_along_the_axis_and_grazing_the_wall_give_no_nan)
         }
     /* rays tangent to the wall, and one ulp either side */
     for (int i = 2; i < 5; i++, cases += 2) {
-        ray_t r = make_ray(-5, xs[i], 2, 1, 0, 0);
+        ray_t r = quadcheck_ray(-5, xs[i], 2, 1, 0, 0);
         PATHPOINT pp;
         if (quadcheck_trace(c, &r, 0, (real)INFINITY, &pp)) {
             quadcheck_assert_finite(&pp, "tangent");
             ck_assert_near(pp.r_dist, 5, 4 * sqrt(REAL_EPSILON));
         }
-        r = make_ray(-5, 0, 2, 1, xs[i] / 5, 0); /* tangent from a point */
+        /* tangent from a point */
+        r = quadcheck_ray(-5, 0, 2, 1, xs[i] / 5, 0);
         if (quadcheck_trace(c, &r, 0, (real)INFINITY, &pp))
             quadcheck_assert_finite(&pp, "tangent from a point");
     }
@@ -193,7 +173,8 @@ START_TEST(rays_along_the_axis_and_grazing_the_wall_give_no_nan)
      * reaches the wall at t = 0.1 2^e, z = t - 1, which is on the open
      * cylinder for e = 4 and 5 only */
     for (int e = 2; e < 60; e++, cases++) {
-        ray_t r = make_ray(REAL_C(0.9), 0, -1, ldexp(REAL_C(1.0), -e), 0, 1);
+        ray_t r = quadcheck_ray(REAL_C(0.9), 0, -1, ldexp(REAL_C(1.0), -e), 0,
+                                1);
         PATHPOINT pp;
         bool hit = quadcheck_trace(o, &r, 0, (real)INFINITY, &pp);
         ck_assert_msg(hit == (e == 4 || e == 5), "e = %d: hit = %d", e, hit);

@@ -37,12 +37,6 @@ static COBJECT *new_disk(real cx, real cy, real cz, real nx, real ny,
     return obj;
 }
 
-static ray_t make_ray(real ox, real oy, real oz, real dx, real dy, real dz)
-{
-    ray_t r = { { ox, oy, oz }, { dx, dy, dz } };
-    return r;
-}
-
 START_TEST(disk_new_rejects_bad_input)
 {
     VECTOR3 c = { 1, 2, 3 }, n = { 0, 0, 2 }, zero = { 0, 0, 0 };
@@ -74,7 +68,7 @@ START_TEST(rays_along_the_normal_hit_at_the_known_t_from_either_side)
 {
     COBJECT *d = new_disk(0, 0, 1, 0, 0, 3, 2);
     PATHPOINT pp;
-    ray_t r = make_ray(REAL_C(0.5), REAL_C(0.5), 5, 0, 0, -1);
+    ray_t r = quadcheck_ray(REAL_C(0.5), REAL_C(0.5), 5, 0, 0, -1);
     ck_assert(quadcheck_trace(d, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist, 4, 0);
     ck_assert_near(pp.cross_point[X], 0.5, 0);
@@ -83,25 +77,25 @@ START_TEST(rays_along_the_normal_hit_at_the_known_t_from_either_side)
     ck_assert(pp.ng[X] == 0 && pp.ng[Y] == 0 && pp.ng[Z] == 1);
     ck_assert(pp.bout);
     /* from below, direction of length 2: t = 2, the normal unchanged */
-    r = make_ray(REAL_C(0.5), REAL_C(0.5), -3, 0, 0, 2);
+    r = quadcheck_ray(REAL_C(0.5), REAL_C(0.5), -3, 0, 0, 2);
     hit_t h;
     ck_assert(cobject_intersect(d, &r, 0, (real)INFINITY, &h));
     ck_assert_near(h.t, 2, 0);
     ck_assert(quadcheck_trace(d, &r, 0, (real)INFINITY, &pp));
     ck_assert(pp.ng[Z] == 1 && !pp.bout);
     /* the rim is part of the disk; just outside it is not */
-    r = make_ray(2, 0, 5, 0, 0, -1);
+    r = quadcheck_ray(2, 0, 5, 0, 0, -1);
     ck_assert(cobject_intersect(d, &r, 0, (real)INFINITY, &h));
-    r = make_ray(nextafter(REAL_C(2.0), REAL_C(3.0)), 0, 5, 0, 0, -1);
+    r = quadcheck_ray(nextafter(REAL_C(2.0), REAL_C(3.0)), 0, 5, 0, 0, -1);
     ck_assert(!cobject_intersect(d, &r, 0, (real)INFINITY, &h));
     /* pointing away */
-    r = make_ray(0, 0, 5, 0, 0, 1);
+    r = quadcheck_ray(0, 0, 5, 0, 0, 1);
     ck_assert(!cobject_intersect(d, &r, 0, (real)INFINITY, &h));
     cobject_free(d);
     /* tilted: normal (1, 1, 0), centre (1, -1, 2): from (4, 2, 2) along
      * (-1, -1, 0) the plane is reached at t = 3, at the centre */
     d = new_disk(1, -1, 2, 1, 1, 0, REAL_C(1.5));
-    r = make_ray(4, 2, 2, -1, -1, 0);
+    r = quadcheck_ray(4, 2, 2, -1, -1, 0);
     ck_assert(quadcheck_trace(d, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist / vec_length(r.d), 3, 4 * REAL_EPSILON);
     ck_assert_near(pp.cross_point[X], 1, 8 * REAL_EPSILON);
@@ -113,7 +107,7 @@ END_TEST
 START_TEST(tmin_and_tmax_bound_the_hit)
 {
     COBJECT *d = new_disk(0, 0, 0, 0, 1, 0, 1);
-    ray_t r = make_ray(0, -4, 0, 0, 1, 0); /* hit at t = 4 */
+    ray_t r = quadcheck_ray(0, -4, 0, 0, 1, 0); /* hit at t = 4 */
     hit_t h;
     ck_assert(!cobject_intersect(d, &r, 0, 4, &h));
     ck_assert(cobject_intersect(d, &r, 0, nextafter(REAL_C(4.0), REAL_C(5.0)),
@@ -123,7 +117,7 @@ START_TEST(tmin_and_tmax_bound_the_hit)
                                 10, &h));
     ck_assert_near(h.t, 4, 0);
     /* from the disk itself: t = 0 is not in (0, inf) */
-    r = make_ray(0, 0, 0, 0, 1, 0);
+    r = quadcheck_ray(0, 0, 0, 0, 1, 0);
     ck_assert(!cobject_intersect(d, &r, 0, (real)INFINITY, &h));
     cobject_free(d);
 }
@@ -136,7 +130,7 @@ START_TEST(rays_parallel_to_the_disk_miss_without_nan)
                              nextafter(REAL_C(1.0), REAL_C(0.0)), 3 };
     hit_t h;
     for (int i = 0; i < 4; i++) {
-        ray_t r = make_ray(-5, 0, heights[i], 1, 0, 0);
+        ray_t r = quadcheck_ray(-5, 0, heights[i], 1, 0, 0);
         ck_assert(!cobject_intersect(d, &r, 0, (real)INFINITY, &h));
         ck_assert(!cobject_intersect(d, &r, -(real)INFINITY, (real)INFINITY,
                                      &h));
@@ -145,7 +139,7 @@ START_TEST(rays_parallel_to_the_disk_miss_without_nan)
     long cases = 0;
     for (int e = 4; e < 60; e++, cases++) {
         real dz = -ldexp(REAL_C(1.0), -e);
-        ray_t r = make_ray(-1, 0, 1 - dz, 1, 0, dz);
+        ray_t r = quadcheck_ray(-1, 0, 1 - dz, 1, 0, dz);
         PATHPOINT pp;
         if (quadcheck_trace(d, &r, 0, (real)INFINITY, &pp)) {
             quadcheck_assert_finite(&pp, "grazing");

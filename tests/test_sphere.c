@@ -25,12 +25,6 @@ static COBJECT *new_sphere(real cx, real cy, real cz, real r)
     return make_sphere(r, c, NULL);
 }
 
-static ray_t make_ray(real ox, real oy, real oz, real dx, real dy, real dz)
-{
-    ray_t r = { { ox, oy, oz }, { dx, dy, dz } };
-    return r;
-}
-
 START_TEST(sphere_new_rejects_bad_input)
 {
     VECTOR3 c = { 1, 2, 3 }, bad = { 1, (real)NAN, 3 };
@@ -62,7 +56,7 @@ START_TEST(ray_along_an_axis_hits_at_the_known_t)
     COBJECT *s = new_sphere(1, 2, 3, 2);
     PATHPOINT pp;
     /* from x = -9 toward +x: the surface is at x = -1, t = 8 */
-    ray_t r = make_ray(-9, 2, 3, 1, 0, 0);
+    ray_t r = quadcheck_ray(-9, 2, 3, 1, 0, 0);
     ck_assert(quadcheck_trace(s, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist, 8, 8 * REAL_EPSILON * 8);
     ck_assert_near(pp.cross_point[X], -1, 0);
@@ -71,20 +65,20 @@ START_TEST(ray_along_an_axis_hits_at_the_known_t)
     ck_assert_near(pp.ng[X], -1, 0);
     ck_assert(pp.bout);
     /* a direction of length 4: t is parametric, 2; r_dist stays 8 */
-    r = make_ray(-9, 2, 3, 4, 0, 0);
+    r = quadcheck_ray(-9, 2, 3, 4, 0, 0);
     hit_t h;
     ck_assert(cobject_intersect(s, &r, 0, (real)INFINITY, &h));
     ck_assert_near(h.t, 2, 4 * REAL_EPSILON);
     /* down the z axis onto the north pole: t = 10 - 5 = 5 */
-    r = make_ray(1, 2, 10, 0, 0, -1);
+    r = quadcheck_ray(1, 2, 10, 0, 0, -1);
     ck_assert(quadcheck_trace(s, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist, 5, 8 * REAL_EPSILON * 5);
     ck_assert_near(pp.ng[Z], 1, 0);
     ck_assert_near(pp.st[1], 0, 0); /* t = theta / pi = 0 at the pole */
     /* misses: beside the sphere, and pointing away from it */
-    r = make_ray(-9, 2 + REAL_C(2.01), 3, 1, 0, 0);
+    r = quadcheck_ray(-9, 2 + REAL_C(2.01), 3, 1, 0, 0);
     ck_assert(!cobject_intersect(s, &r, 0, (real)INFINITY, &h));
-    r = make_ray(-9, 2, 3, -1, 0, 0);
+    r = quadcheck_ray(-9, 2, 3, -1, 0, 0);
     ck_assert(!cobject_intersect(s, &r, 0, (real)INFINITY, &h));
     cobject_free(s);
 }
@@ -93,7 +87,7 @@ END_TEST
 START_TEST(tmin_and_tmax_bound_the_hit_and_inside_gives_the_far_hit)
 {
     COBJECT *s = new_sphere(0, 0, 0, 2);
-    ray_t r = make_ray(-10, 0, 0, 1, 0, 0); /* hits at t = 8 and 12 */
+    ray_t r = quadcheck_ray(-10, 0, 0, 1, 0, 0); /* hits at t = 8 and 12 */
     hit_t h;
     ck_assert(!cobject_intersect(s, &r, 0, 8, &h)); /* t == tmax: open */
     ck_assert(cobject_intersect(s, &r, 0, nextafter(REAL_C(8.0), REAL_C(9.0)),
@@ -105,14 +99,14 @@ START_TEST(tmin_and_tmax_bound_the_hit_and_inside_gives_the_far_hit)
     ck_assert(!cobject_intersect(s, &r, 13, 100, &h));
     ck_assert(!cobject_intersect(s, &r, 0, 5, &h));
     /* from the centre: only the far side, whose normal faces the ray */
-    r = make_ray(0, 0, 0, 0, 1, 0);
+    r = quadcheck_ray(0, 0, 0, 0, 1, 0);
     PATHPOINT pp;
     ck_assert(quadcheck_trace(s, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist, 2, 0);
     ck_assert_near(pp.ng[Y], 1, 0);
     ck_assert(!pp.bout);
     /* from inside but off centre, backwards */
-    r = make_ray(1, 0, 0, -1, 0, 0);
+    r = quadcheck_ray(1, 0, 0, -1, 0, 0);
     ck_assert(quadcheck_trace(s, &r, 0, (real)INFINITY, &pp));
     ck_assert_near(pp.r_dist, 3, 0);
     cobject_free(s);
@@ -124,7 +118,7 @@ END_TEST
 static void check_tangent(COBJECT *s, real r, real y, bool must_hit,
                           bool must_miss)
 {
-    ray_t ray = make_ray(-10 * r, y, 0, 1, 0, 0);
+    ray_t ray = quadcheck_ray(-10 * r, y, 0, 1, 0, 0);
     PATHPOINT pp;
     bool hit = quadcheck_trace(s, &ray, 0, (real)INFINITY, &pp);
     ck_assert_msg(!(must_hit && !hit), "tangent y = %.9g: no hit", (double)y);
@@ -162,7 +156,7 @@ START_TEST(rays_tangent_to_the_sphere_give_no_nan)
     /* tangent from the tangent point itself, and from the surface with
      * the direction in the tangent plane */
     COBJECT *s = new_sphere(0, 0, 0, 1);
-    ray_t r = make_ray(0, 1, 0, 1, 0, 0);
+    ray_t r = quadcheck_ray(0, 1, 0, 1, 0, 0);
     hit_t h;
     ck_assert(!cobject_intersect(s, &r, 0, (real)INFINITY, &h));
     ck_assert(!cobject_intersect(s, &r, -1, (real)INFINITY, &h) ||
@@ -210,7 +204,7 @@ START_TEST(surface_parameters_and_frame_follow_the_documented_map)
         vec_add_scaled(ray.d, ray.d, r * pcg32_real(&g), dir);
         PATHPOINT pp;
         if (k == 0) /* straight onto the north pole */
-            ray = make_ray(c[X], c[Y], c[Z] + 5, 0, 0, -1);
+            ray = quadcheck_ray(c[X], c[Y], c[Z] + 5, 0, 0, -1);
         ck_assert(quadcheck_trace(s, &ray, 0, (real)INFINITY, &pp));
         /* P(s, t) = c + r (sin theta cos phi, sin theta sin phi, cos theta)
          * with phi = 2 pi s, theta = pi t (sphere.h), in double */
