@@ -198,6 +198,23 @@ int quadric_pick_face(real *u0, const real area[], int n);
 svet_status quadric_check_radius(const char *shape, real radius,
                                  svet_error *err);
 
+/* The axis of a cylinder or cone from `from` to `to`: SVET_OK with w the
+ * unit axis and *H = |to - from| > 0; otherwise SVET_ERR_RANGE with the
+ * message of shape_check_finite (an end is not finite),
+ * quadric_check_radius, or "<shape>: the axis from <from_name> to
+ * <to_name> has zero (or infinite) length". */
+svet_status quadric_check_axis(const char *shape, const char *from_name,
+                               const VECTOR3 from, const char *to_name,
+                               const VECTOR3 to, real radius, VECTOR3 w,
+                               real *H, svet_error *err);
+
+/* How far inside the ends a lateral sample of a cylinder or cone of
+ * radius `radius` and height H between `from` and `to` is kept: the
+ * larger quadric_sample_margin of the two ends, at most H / 2. This
+ * function can't fail. */
+real quadric_lateral_margin(const VECTOR3 from, const VECTOR3 to, real radius,
+                            real H);
+
 /* The last step of every quadric constructor: check that the object's
  * area is representable with its reciprocal (the pdf of uniform sampling:
  * finite, > 0, 1/area finite) and that its bounds are finite. Returns obj,

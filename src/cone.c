@@ -219,18 +219,11 @@ static const cobject_ops cone_ops = {
 COBJECT *cone_new(const VECTOR3 base, const VECTOR3 apex, real radius,
                   bool capped, svet_error *err)
 {
-    if (shape_check_finite("cone", "base", base, err) ||
-        shape_check_finite("cone", "apex", apex, err) ||
-        quadric_check_radius("cone", radius, err))
+    VECTOR3 w;
+    real H;
+    if (quadric_check_axis("cone", "base", base, "apex", apex, radius, w, &H,
+                           err) != SVET_OK)
         return NULL;
-    VECTOR3 axis, w;
-    vec_sub(axis, apex, base);
-    real H = vec_normalize(w, axis);
-    if (H == 0) {
-        svet_error_set(err, SVET_ERR_RANGE, "cone: the axis from base to "
-                       "apex has zero (or infinite) length");
-        return NULL;
-    }
     COBJECT *obj = shape_alloc(&cone_ops, sizeof(cone_t), err);
     if (!obj)
         return NULL;
@@ -242,10 +235,7 @@ COBJECT *cone_new(const VECTOR3 base, const VECTOR3 apex, real radius,
     cn->k = radius / H;
     cn->k2 = cn->k * cn->k;
     cn->capped = capped;
-    real size = fmax(radius, H);
-    cn->margin = fmin(fmax(quadric_sample_margin(base, size),
-                           quadric_sample_margin(apex, size)),
-                      REAL_C(0.5) * H);
+    cn->margin = quadric_lateral_margin(base, apex, radius, H);
     cn->area[CONE_LATERAL] = REAL_PI * radius * hypot(radius, H);
     cn->area[CONE_BASE] = REAL_PI * radius * radius;
     cn->total = cn->area[CONE_LATERAL] + (capped ? cn->area[CONE_BASE] : 0);

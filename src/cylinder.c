@@ -152,18 +152,11 @@ static const cobject_ops cylinder_ops = {
 COBJECT *cylinder_new(const VECTOR3 base, const VECTOR3 top, real radius,
                       bool capped, svet_error *err)
 {
-    if (shape_check_finite("cylinder", "base", base, err) ||
-        shape_check_finite("cylinder", "top", top, err) ||
-        quadric_check_radius("cylinder", radius, err))
+    VECTOR3 w;
+    real H;
+    if (quadric_check_axis("cylinder", "base", base, "top", top, radius, w,
+                           &H, err) != SVET_OK)
         return NULL;
-    VECTOR3 axis, w;
-    vec_sub(axis, top, base);
-    real H = vec_normalize(w, axis);
-    if (H == 0) {
-        svet_error_set(err, SVET_ERR_RANGE, "cylinder: the axis from base "
-                       "to top has zero (or infinite) length");
-        return NULL;
-    }
     COBJECT *obj = shape_alloc(&cylinder_ops, sizeof(cylinder_t), err);
     if (!obj)
         return NULL;
@@ -173,10 +166,7 @@ COBJECT *cylinder_new(const VECTOR3 base, const VECTOR3 top, real radius,
     cy->H = H;
     cy->R = radius;
     cy->capped = capped;
-    real size = fmax(radius, H);
-    cy->margin = fmin(fmax(quadric_sample_margin(base, size),
-                           quadric_sample_margin(top, size)),
-                      REAL_C(0.5) * H);
+    cy->margin = quadric_lateral_margin(base, top, radius, H);
     cy->area[CYLINDER_LATERAL] = 2 * REAL_PI * radius * H;
     cy->area[CYLINDER_BASE] = cy->area[CYLINDER_TOP] =
         REAL_PI * radius * radius;

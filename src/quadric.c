@@ -239,6 +239,37 @@ svet_status quadric_check_radius(const char *shape, real radius,
                           shape, (double)radius);
 }
 
+svet_status quadric_check_axis(const char *shape, const char *from_name,
+                               const VECTOR3 from, const char *to_name,
+                               const VECTOR3 to, real radius, VECTOR3 w,
+                               real *H, svet_error *err)
+{
+    svet_status st = shape_check_finite(shape, from_name, from, err);
+    if (st == SVET_OK)
+        st = shape_check_finite(shape, to_name, to, err);
+    if (st == SVET_OK)
+        st = quadric_check_radius(shape, radius, err);
+    if (st != SVET_OK)
+        return st;
+    VECTOR3 axis;
+    vec_sub(axis, to, from);
+    *H = vec_normalize(w, axis);
+    if (*H == 0)
+        return svet_error_set(err, SVET_ERR_RANGE, "%s: the axis from %s to "
+                              "%s has zero (or infinite) length", shape,
+                              from_name, to_name);
+    return SVET_OK;
+}
+
+real quadric_lateral_margin(const VECTOR3 from, const VECTOR3 to, real radius,
+                            real H)
+{
+    real size = fmax(radius, H);
+    return fmin(fmax(quadric_sample_margin(from, size),
+                     quadric_sample_margin(to, size)),
+                REAL_C(0.5) * H);
+}
+
 COBJECT *quadric_object_done(COBJECT *obj, svet_error *err)
 {
     real area = obj->ops->area(obj);
