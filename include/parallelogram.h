@@ -8,8 +8,10 @@
 #ifndef SVET_PARALLELOGRAM_H
 #define SVET_PARALLELOGRAM_H
 
+#include <stdint.h>
 #include "cobject.h"
 #include "error.h"
+#include "triangle.h"
 
 /* The parallelogram with corners c0, c1, c2 = c1 + c3 - c0, c3 in order
  * around it: p(s, t) = c0 + s (c1 - c0) + t (c3 - c0) for (s, t) in
@@ -35,5 +37,44 @@ COBJECT *parallelogram_new(const VECTOR3 c0, const VECTOR3 c1,
 COBJECT *parallelogram_new4(const VECTOR3 c0, const VECTOR3 c1,
                             const VECTOR3 c2, const VECTOR3 c3,
                             svet_error *err);
+
+/* --- brute force over many parallelograms (accel.c) ---------------------- */
+
+/* True when obj was made by parallelogram_new or parallelogram_new4.
+ * This function can't fail. */
+bool parallelogram_is(const COBJECT *obj);
+
+/* Up to this many parallelograms in one batch (the bits of a uint64_t). */
+#define PARALLELOGRAM_BATCH_MAX 64
+
+typedef struct parallelogram_batch parallelogram_batch_t;
+
+/* A batch over objs[0 .. n): what the early rejections of each read,
+ * copied side by side. Returns NULL when n is outside
+ * [0, PARALLELOGRAM_BATCH_MAX], an object is not a parallelogram, or
+ * memory runs out. The objects must outlive the batch. */
+parallelogram_batch_t *parallelogram_batch_new(const COBJECT *const *objs,
+                                               int n);
+
+/* NULL is allowed. */
+void parallelogram_batch_free(parallelogram_batch_t *b);
+
+/* The early rejections that a parallelogram's intersect() makes before
+ * its watertight test, for every object of the batch and the ray r over
+ * (tmin, anything): bit i of the result is 0 when objs[i] rejects r there
+ * (it cannot report a hit: parallelogram.c proves it), 1 when it may hit.
+ * This function can't fail. */
+uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
+                                  const ray_t *r, real tmin);
+
+/* A parallelogram's intersect() without those early rejections, on a ray
+ * prepared once by triangle_ray_prepare(pr, r) for any number of them:
+ * the same answer and hit, bit for bit, as
+ * obj->ops->intersect(obj, prim, r, tmin, tmax, hit) whenever the
+ * rejections let the ray through (and, by their proofs, no hit where they
+ * do not). obj must be a parallelogram. This function can't fail. */
+bool parallelogram_intersect_prepared(const COBJECT *obj, int prim,
+                                      const triangle_ray_t *pr, real tmin,
+                                      real tmax, hit_t *hit);
 
 #endif

@@ -114,4 +114,56 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err);
 /* The transform of an object made by xform_new, or NULL for any other. */
 const xform_t *xform_of(const COBJECT *obj);
 
+/* --- the culling sphere, for brute force (accel.c) ----------------------- */
+
+/* A sphere around a transformed box, padded for rounding (xform.c
+ * proves the pad): a ray that stays outside it over t >= 0 cannot be
+ * reported as a hit. pad = pad0 + pad_o max|o| + pad_oc |c - o|_1. */
+typedef struct {
+    VECTOR3 centre;
+    real radius;
+    real pad0, pad_o, pad_oc;
+} xform_sphere_t;
+
+/* True, with the sphere in *s, when obj comes from xform_new and its
+ * intersect() starts with that sphere (transformed boxes, unless the
+ * transform is extreme); false otherwise. This function can't fail. */
+bool xform_culling_sphere(const COBJECT *obj, xform_sphere_t *s);
+
+/* The test that intersect() makes first, for tmin >= 0: true when the
+ * ray (over t >= 0) stays outside the culling sphere: its
+ * line passes the centre farther than the radius, or it starts outside
+ * the sphere and moves away from the centre. Evaluated with margins for
+ * its own rounding (the squares carry gamma(3), the difference of
+ * c2 dd and b^2 cancels down to what 32 u c2 dd covers, b carries
+ * gamma(3) |c - o|_1 max|d|). A NaN makes every comparison false: no
+ * early answer. Inline: brute force makes it for every ray. This function
+ * can't fail. */
+static inline bool xform_sphere_misses(const xform_sphere_t *sh,
+                                       const ray_t *r)
+{
+    VECTOR3 oc;
+    vec_sub(oc, sh->centre, r->o);
+    real oc1 = fabs(oc[X]) + fabs(oc[Y]) + fabs(oc[Z]);
+    real o_max = real_max(fabs(r->o[X]),
+                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
+    real rho = sh->radius + (sh->pad0 + sh->pad_o * o_max + sh->pad_oc * oc1);
+    real rho2 = rho * rho;
+    real c2 = SVECTOR3(oc, oc), b = SVECTOR3(oc, r->d);
+    real dd = SVECTOR3(r->d, r->d);
+    const real u = REAL_UNIT_ROUNDOFF;
+    /* the distance of the line from the centre, squared, times dd */
+    if (c2 * dd - b * b > (rho2 + 32 * u * c2) * dd)
+        return true;
+    real d_max = real_max(fabs(r->d[X]),
+                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+    return b + 4 * u * oc1 * d_max <= 0 && c2 > rho2 * (1 + 8 * u);
+}
+
+/* The intersect() of an object from xform_new without the sphere test:
+ * the same answer and hit, bit for bit, whenever the test lets the ray
+ * through. This function can't fail. */
+bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
+                              real tmin, real tmax, hit_t *hit);
+
 #endif

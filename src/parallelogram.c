@@ -6,8 +6,24 @@
  * Tests: tests/test_parallelogram.c; vectors: tests/vectors/parallelogram.csv
  */
 #include "parallelogram.h"
+
+#include <stdlib.h>
+
 #include "shape.h"
-#include "triangle.h"
+
+/* What the early rejections below read of a parallelogram, side by side:
+ * in the shape, and copied into a batch for brute force. */
+typedef struct {
+    VECTOR3 n;       /* unit e1 x e2, as in the shape */
+    VECTOR3 c0;      /* corner c0 */
+    real h_lo, h_hi; /* min and max of the computed n . c_i: the slab
+                        h_lo <= n . p <= h_hi holds the parallelogram */
+    real h_mid, h_half; /* its middle plane n . p = h_mid, half-width */
+    real c_max;      /* max |c_i| over corners and axes */
+    VECTOR3 a, b;    /* dual to e1, e2 in the plane: (p - c0) . a = s,
+                        (p - c0) . b = t for p = c0 + s e1 + t e2 */
+    real a1, b1;     /* |a|_1, |b|_1, rounded up */
+} para_cull_t;
 
 typedef struct {
     VECTOR3 c[4];   /* corners c0 c1 c2 c3 */
@@ -16,13 +32,7 @@ typedef struct {
     VECTOR3 u, v;   /* the frame of every point: shape_frame(n, e1) */
     bool degenerate[2]; /* triangle_is_degenerate of A and B: never hit */
     real area;
-    real h_lo, h_hi; /* min and max of the computed n . c_i: the slab
-                        h_lo <= n . p <= h_hi holds the parallelogram */
-    real h_mid, h_half; /* its middle plane n . p = h_mid, half-width */
-    real c_max;      /* max |c_i| over corners and axes */
-    VECTOR3 a, b;    /* dual to e1, e2 in the plane: (p - c0) . a = s,
-                        (p - c0) . b = t for p = c0 + s e1 + t e2 */
-    real a1, b1;     /* |a|_1, |b|_1, rounded up */
+    para_cull_t k;   /* what the early rejections read */
 } para_shape;
 
 /* The surface point at (s, t): in triangle A = (c0, c1, c2) where s >= t,
@@ -87,20 +97,32 @@ static bool two_triangles(const para_shape *sh, const triangle_ray_t *pr,
 #define SLAB_PAD (128 * REAL_UNIT_ROUNDOFF)
 #define DIR_PAD (16 * REAL_UNIT_ROUNDOFF)
 
-/* What the two plane tests below need of the ray: n . o, n . d, max|o|,
- * max|d|. */
+/* What the two plane tests below need of the ray: max|o| and max|d|,
+ * the same for every parallelogram (a batch computes them once per ray),
+ * and n . o, n . d. */
+typedef struct {
+    real o_max, d_max;
+} ray_size_t;
+
 typedef struct {
     real s, dn, o_max, d_max;
 } plane_ray_t;
 
-static void plane_ray(const para_shape *sh, const ray_t *r, plane_ray_t *pl)
+static inline void ray_size(const ray_t *r, ray_size_t *rs)
 {
-    pl->s = SVECTOR3(sh->n, r->o);
-    pl->dn = SVECTOR3(sh->n, r->d);
-    pl->o_max = real_max(fabs(r->o[X]),
+    rs->o_max = real_max(fabs(r->o[X]),
                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
-    pl->d_max = real_max(fabs(r->d[X]),
+    rs->d_max = real_max(fabs(r->d[X]),
                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+}
+
+static inline void plane_ray(const para_cull_t *k, const ray_t *r,
+                             const ray_size_t *rs, plane_ray_t *pl)
+{
+    pl->s = SVECTOR3(k->n, r->o);
+    pl->dn = SVECTOR3(k->n, r->d);
+    pl->o_max = rs->o_max;
+    pl->d_max = rs->d_max;
 }
 
 /* The two tests below rest on one fact of the watertight test
@@ -125,13 +147,15 @@ static void plane_ray(const para_shape *sh, const ray_t *r, plane_ray_t *pl)
  * a pad of 128 u (c_max + max|o|), more than three times the 34 u needed
  * with the rounding of the test's own sums, and n . d >= 16 u max|d|
  * keep every reported hit. */
-static bool leaves_plane(const para_shape *sh, const plane_ray_t *pl)
+static inline bool leaves_plane(const para_cull_t *k, const plane_ray_t *pl)
 {
-    real pad = SLAB_PAD * (sh->c_max + pl->o_max);
+    real pad = SLAB_PAD * (k->c_max + pl->o_max);
     real dpad = DIR_PAD * pl->d_max;
-    /* a NaN anywhere makes both comparisons false: no early answer */
-    return (pl->s > sh->h_hi + pad && pl->dn >= dpad) ||
-           (pl->s < sh->h_lo - pad && pl->dn <= -dpad);
+    /* a NaN anywhere makes both comparisons false: no early answer. & and
+     * | rather than && and ||: no branches, so that a batch's loop
+     * vectorises (the same values either way) */
+    return ((pl->s > k->h_hi + pad) & (pl->dn >= dpad)) |
+           ((pl->s < k->h_lo - pad) & (pl->dn <= -dpad));
 }
 
 /* True when the ray's line crosses the middle plane n . p = h_mid
@@ -155,26 +179,37 @@ static bool leaves_plane(const para_shape *sh, const plane_ray_t *pl)
  * told, with room to spare for the rounding of the margin itself:
  *   dist = G (h_half + 64 u (A + |t| max|d|)) + 32 u (A + max|p|),
  * and |a|_1 dist, |b|_1 dist bound the distance in s and t. */
-static bool misses_quad(const para_shape *sh, const ray_t *r,
-                        const plane_ray_t *pl)
+static inline bool misses_quad(const para_cull_t *k, const ray_t *r,
+                               const plane_ray_t *pl)
 {
     const real u = REAL_UNIT_ROUNDOFF;
     real adn = fabs(pl->dn);
-    if (!(adn >= DIR_PAD * pl->d_max))
-        return false;
-    real t = (sh->h_mid - pl->s) / pl->dn;
+    /* not grazing; what follows is computed in any case (no branch: see
+     * leaves_plane) and counts only then */
+    bool steep = adn >= DIR_PAD * pl->d_max;
+    real t = (k->h_mid - pl->s) / pl->dn;
     VECTOR3 p, q;
     vec_add_scaled(p, r->o, t, r->d);
-    vec_sub(q, p, sh->c[0]);
-    real s = SVECTOR3(q, sh->a), tt = SVECTOR3(q, sh->b);
-    real A = sh->c_max + pl->o_max;
+    vec_sub(q, p, k->c0);
+    real s = SVECTOR3(q, k->a), tt = SVECTOR3(q, k->b);
+    real A = k->c_max + pl->o_max;
     real p_max = real_max(fabs(p[X]), real_max(fabs(p[Y]), fabs(p[Z])));
     real G = 4 * pl->d_max / adn;
-    real dist = G * (sh->h_half + 64 * u * (A + fabs(t) * pl->d_max)) +
+    real dist = G * (k->h_half + 64 * u * (A + fabs(t) * pl->d_max)) +
                 32 * u * (A + p_max);
-    real ms = sh->a1 * dist, mt = sh->b1 * dist;
+    real ms = k->a1 * dist, mt = k->b1 * dist;
     /* a NaN or an infinity makes every comparison false */
-    return s < -ms || s > 1 + ms || tt < -mt || tt > 1 + mt;
+    return steep & ((s < -ms) | (s > 1 + ms) | (tt < -mt) | (tt > 1 + mt));
+}
+
+/* Both early rejections: true only when the watertight test would report
+ * no hit in (tmin, anything) (the proofs above). */
+static inline bool rejects(const para_cull_t *k, const ray_t *r,
+                           const ray_size_t *rs, real tmin)
+{
+    plane_ray_t pl;
+    plane_ray(k, r, rs, &pl);
+    return ((tmin >= 0) & leaves_plane(k, &pl)) | misses_quad(k, r, &pl);
 }
 
 /* True when the ray is outside (tmin, tmax) all along the parallelogram
@@ -199,54 +234,47 @@ static bool outside_interval(const real z[4], real tmin, real tmax)
  * are: a parallelogram sharing an edge with another shears the same two
  * corners into the same points. Only a zero edge function, which needs
  * the exact recomputation, takes the way of two separate tests. */
-static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
-                           real tmin, real tmax, hit_t *hit)
+static bool exact(const para_shape *sh, int prim, const triangle_ray_t *pr,
+                  real tmin, real tmax, hit_t *hit)
 {
-    const para_shape *sh = obj->shape;
-    plane_ray_t pl;
-    plane_ray(sh, r, &pl);
-    if ((tmin >= 0 && leaves_plane(sh, &pl)) || misses_quad(sh, r, &pl))
-        return false;
-    triangle_ray_t pr;
-    triangle_ray_prepare(&pr, r);
-    if (!pr.ok)
+    if (!pr->ok)
         return false;
     triangle_sheared_t v0, v1, v2, v3;
-    triangle_shear_z(&v0, sh->c[0], &pr);
-    triangle_shear_z(&v1, sh->c[1], &pr);
-    triangle_shear_z(&v2, sh->c[2], &pr);
-    triangle_shear_z(&v3, sh->c[3], &pr);
-    if (pr.scale == 0) {
-        const real z[4] = { pr.sz * v0.az, pr.sz * v1.az, pr.sz * v2.az,
-                            pr.sz * v3.az };
+    triangle_shear_z(&v0, sh->c[0], pr);
+    triangle_shear_z(&v1, sh->c[1], pr);
+    triangle_shear_z(&v2, sh->c[2], pr);
+    triangle_shear_z(&v3, sh->c[3], pr);
+    if (pr->scale == 0) {
+        const real z[4] = { pr->sz * v0.az, pr->sz * v1.az, pr->sz * v2.az,
+                            pr->sz * v3.az };
         if (outside_interval(z, tmin, tmax))
             return false;
     }
-    triangle_shear_xy(&v0, sh->c[0], &pr);
-    triangle_shear_xy(&v1, sh->c[1], &pr);
-    triangle_shear_xy(&v2, sh->c[2], &pr);
-    triangle_shear_xy(&v3, sh->c[3], &pr);
+    triangle_shear_xy(&v0, sh->c[0], pr);
+    triangle_shear_xy(&v1, sh->c[1], pr);
+    triangle_shear_xy(&v2, sh->c[2], pr);
+    triangle_shear_xy(&v3, sh->c[3], pr);
     real e01 = triangle_edge(&v0, &v1), e12 = triangle_edge(&v1, &v2);
     real e20 = triangle_edge(&v2, &v0), e23 = triangle_edge(&v2, &v3);
     real e30 = triangle_edge(&v3, &v0);
     real t, st[2];
     bool any = false;
     if (e01 == 0 || e12 == 0 || e20 == 0 || e23 == 0 || e30 == 0) {
-        any = two_triangles(sh, &pr, tmin, tmax, &t, st);
+        any = two_triangles(sh, pr, tmin, tmax, &t, st);
     } else {
         bool out_a = mixed(e12, e20, e01), out_b = mixed(e23, e30, -e20);
         if (out_a && out_b)
             return false; /* the usual answer, at the price of 4 shears */
         real b[3];
         if (!out_a && !sh->degenerate[0] &&
-            triangle_hit_sheared(&v0, &v1, &v2, e12, e20, e01, &pr, tmin,
+            triangle_hit_sheared(&v0, &v1, &v2, e12, e20, e01, pr, tmin,
                                  tmax, &t, b)) {
             any = true;
             tmax = t;
             st_of(0, b, st);
         }
         if (!out_b && !sh->degenerate[1] &&
-            triangle_hit_sheared(&v0, &v2, &v3, e23, e30, -e20, &pr, tmin,
+            triangle_hit_sheared(&v0, &v2, &v3, e23, e30, -e20, pr, tmin,
                                  tmax, &t, b)) {
             any = true;
             st_of(1, b, st);
@@ -260,6 +288,19 @@ static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
     hit->b[1] = clamp01(st[1]);
     hit->b[2] = 0;
     return true;
+}
+
+static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
+                           real tmin, real tmax, hit_t *hit)
+{
+    const para_shape *sh = obj->shape;
+    ray_size_t rs;
+    ray_size(r, &rs);
+    if (rejects(&sh->k, r, &rs, tmin))
+        return false;
+    triangle_ray_t pr;
+    triangle_ray_prepare(&pr, r);
+    return exact(sh, prim, &pr, tmin, tmax, hit);
 }
 
 static void para_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
@@ -307,12 +348,126 @@ static const cobject_ops parallelogram_ops = {
     para_sample, NULL
 };
 
-/* a and b of para_shape, in long double from the exact edges c1 - c0 and
+/* --- many parallelograms at once (brute force, accel.c) ------------------ */
+
+/* The early rejections of a whole batch run from one flat array, with
+ * max|o| and max|d| once per ray and no call per parallelogram; the
+ * watertight test (exact()) then runs only for those that pass, with
+ * the ray prepared once for all of them. Both are the very functions
+ * para_intersect() runs, so the answers are its answers bit for bit. */
+/* Lanes of one step of the batch loop: 4 floats or 2 doubles fill an SSE
+ * register, 8 floats an AVX one. */
+#define LANES 8
+
+/* An integer as wide as real: the answers of a step in integers of the
+ * width of the numbers, so that one vector holds as many of each. */
+#ifdef SVET_DOUBLE
+typedef int64_t lane_int;
+#else
+typedef int32_t lane_int;
+#endif
+
+/* The fields of para_cull_t, each an array over the batch (structure of
+ * arrays: lane j of a step reads element i0 + j of every array), padded
+ * with zeros to whole steps. */
+struct parallelogram_batch {
+    int n;
+    real nx[PARALLELOGRAM_BATCH_MAX], ny[PARALLELOGRAM_BATCH_MAX],
+        nz[PARALLELOGRAM_BATCH_MAX];
+    real c0x[PARALLELOGRAM_BATCH_MAX], c0y[PARALLELOGRAM_BATCH_MAX],
+        c0z[PARALLELOGRAM_BATCH_MAX];
+    real h_lo[PARALLELOGRAM_BATCH_MAX], h_hi[PARALLELOGRAM_BATCH_MAX],
+        h_mid[PARALLELOGRAM_BATCH_MAX], h_half[PARALLELOGRAM_BATCH_MAX],
+        c_max[PARALLELOGRAM_BATCH_MAX];
+    real ax[PARALLELOGRAM_BATCH_MAX], ay[PARALLELOGRAM_BATCH_MAX],
+        az[PARALLELOGRAM_BATCH_MAX];
+    real bx[PARALLELOGRAM_BATCH_MAX], by[PARALLELOGRAM_BATCH_MAX],
+        bz[PARALLELOGRAM_BATCH_MAX];
+    real a1[PARALLELOGRAM_BATCH_MAX], b1[PARALLELOGRAM_BATCH_MAX];
+};
+
+bool parallelogram_is(const COBJECT *obj)
+{
+    return obj && obj->ops == &parallelogram_ops;
+}
+
+parallelogram_batch_t *parallelogram_batch_new(const COBJECT *const *objs,
+                                               int n)
+{
+    if (n < 0 || n > PARALLELOGRAM_BATCH_MAX)
+        return NULL;
+    for (int i = 0; i < n; i++)
+        if (!parallelogram_is(objs[i]))
+            return NULL;
+    parallelogram_batch_t *b = calloc(1, sizeof *b);
+    if (!b)
+        return NULL;
+    b->n = n;
+    for (int i = 0; i < n; i++) {
+        const para_cull_t *k = &((const para_shape *)objs[i]->shape)->k;
+        b->nx[i] = k->n[X], b->ny[i] = k->n[Y], b->nz[i] = k->n[Z];
+        b->c0x[i] = k->c0[X], b->c0y[i] = k->c0[Y], b->c0z[i] = k->c0[Z];
+        b->h_lo[i] = k->h_lo, b->h_hi[i] = k->h_hi;
+        b->h_mid[i] = k->h_mid, b->h_half[i] = k->h_half;
+        b->c_max[i] = k->c_max;
+        b->ax[i] = k->a[X], b->ay[i] = k->a[Y], b->az[i] = k->a[Z];
+        b->bx[i] = k->b[X], b->by[i] = k->b[Y], b->bz[i] = k->b[Z];
+        b->a1[i] = k->a1, b->b1[i] = k->b1;
+    }
+    return b;
+}
+
+void parallelogram_batch_free(parallelogram_batch_t *b)
+{
+    free(b);
+}
+
+/* rejects() lane by lane: the loop over j has a fixed count and no
+ * branch, so that the compiler may run it as one vector of lanes (gcc
+ * does at -O2 with SSE2); it computes in each lane exactly what
+ * rejects() computes for that parallelogram, so the bits do not depend
+ * on whether it was vectorised. */
+uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
+                                  const ray_t *r, real tmin)
+{
+    ray_size_t rs;
+    ray_size(r, &rs);
+    uint64_t maybe = 0;
+    for (int i0 = 0; i0 < b->n; i0 += LANES) {
+        lane_int out[LANES];
+        for (int j = 0; j < LANES; j++) {
+            int i = i0 + j;
+            const para_cull_t k = {
+                { b->nx[i], b->ny[i], b->nz[i] },
+                { b->c0x[i], b->c0y[i], b->c0z[i] },
+                b->h_lo[i], b->h_hi[i], b->h_mid[i], b->h_half[i],
+                b->c_max[i],
+                { b->ax[i], b->ay[i], b->az[i] },
+                { b->bx[i], b->by[i], b->bz[i] },
+                b->a1[i], b->b1[i]
+            };
+            out[j] = rejects(&k, r, &rs, tmin);
+        }
+        for (int j = 0; j < LANES; j++)
+            maybe |= (uint64_t)!out[j] << (i0 + j);
+    }
+    /* the padding lanes past n */
+    return b->n < 64 ? maybe & (((uint64_t)1 << b->n) - 1) : maybe;
+}
+
+bool parallelogram_intersect_prepared(const COBJECT *obj, int prim,
+                                      const triangle_ray_t *pr, real tmin,
+                                      real tmax, hit_t *hit)
+{
+    return exact(obj->shape, prim, pr, tmin, tmax, hit);
+}
+
+/* a and b of para_cull_t, in long double from the exact edges c1 - c0 and
  * c3 - c0 and the stored n: a = (E2 x n) / (E1 . (E2 x n)) has a . E1 = 1,
  * a . E2 = a . n = 0; b likewise with E1 and E2 swapped. If they do not
  * come out finite (an edge far below the scale of the corners), a1 and b1
  * are infinite and misses_quad never answers early. */
-static void dual_vectors(para_shape *sh)
+static void dual_vectors(const para_shape *sh, para_cull_t *kc)
 {
     long double E1[3], E2[3], n[3], x[3], y[3];
     for (int k = 0; k < 3; k++) {
@@ -327,18 +482,18 @@ static void dual_vectors(para_shape *sh)
     }
     long double da = E1[0] * x[0] + E1[1] * x[1] + E1[2] * x[2];
     long double db = E2[0] * y[0] + E2[1] * y[1] + E2[2] * y[2];
-    sh->a1 = sh->b1 = 0;
+    kc->a1 = kc->b1 = 0;
     for (int k = 0; k < 3; k++) {
-        sh->a[k] = (real)(x[k] / da);
-        sh->b[k] = (real)(y[k] / db);
-        sh->a1 += fabs(sh->a[k]);
-        sh->b1 += fabs(sh->b[k]);
+        kc->a[k] = (real)(x[k] / da);
+        kc->b[k] = (real)(y[k] / db);
+        kc->a1 += fabs(kc->a[k]);
+        kc->b1 += fabs(kc->b[k]);
     }
-    sh->a1 = real_next_up(real_next_up(sh->a1));
-    sh->b1 = real_next_up(real_next_up(sh->b1));
-    if (!vec_is_finite(sh->a) || !vec_is_finite(sh->b) || !isfinite(sh->a1) ||
-        !isfinite(sh->b1))
-        sh->a1 = sh->b1 = (real)INFINITY;
+    kc->a1 = real_next_up(real_next_up(kc->a1));
+    kc->b1 = real_next_up(real_next_up(kc->b1));
+    if (!vec_is_finite(kc->a) || !vec_is_finite(kc->b) || !isfinite(kc->a1) ||
+        !isfinite(kc->b1))
+        kc->a1 = kc->b1 = (real)INFINITY;
 }
 
 /* The checks both constructors share, and the object. */
@@ -382,19 +537,22 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
     sh->degenerate[0] = triangle_is_degenerate(c0, c1, c2);
     sh->degenerate[1] = triangle_is_degenerate(c0, c2, c3);
     sh->area = area;
-    sh->h_lo = (real)INFINITY;
-    sh->h_hi = -(real)INFINITY;
-    sh->c_max = 0;
+    para_cull_t *k = &sh->k;
+    vec_copy(k->n, n);
+    vec_copy(k->c0, c0);
+    k->h_lo = (real)INFINITY;
+    k->h_hi = -(real)INFINITY;
+    k->c_max = 0;
     for (int i = 0; i < 4; i++) {
         real h = SVECTOR3(n, sh->c[i]);
-        sh->h_lo = real_min(sh->h_lo, h);
-        sh->h_hi = real_max(sh->h_hi, h);
-        for (int k = 0; k < 3; k++)
-            sh->c_max = real_max(sh->c_max, fabs(sh->c[i][k]));
+        k->h_lo = real_min(k->h_lo, h);
+        k->h_hi = real_max(k->h_hi, h);
+        for (int j = 0; j < 3; j++)
+            k->c_max = real_max(k->c_max, fabs(sh->c[i][j]));
     }
-    sh->h_mid = REAL_C(0.5) * sh->h_lo + REAL_C(0.5) * sh->h_hi;
-    sh->h_half = real_next_up(REAL_C(0.5) * (sh->h_hi - sh->h_lo));
-    dual_vectors(sh);
+    k->h_mid = REAL_C(0.5) * k->h_lo + REAL_C(0.5) * k->h_hi;
+    k->h_half = real_next_up(REAL_C(0.5) * (k->h_hi - k->h_lo));
+    dual_vectors(sh, k);
     return obj;
 }
 

@@ -279,9 +279,7 @@ typedef struct {
      * most rays are turned away by it before they are mapped to object
      * space. cull is false for other primitives and extreme transforms. */
     bool cull;
-    VECTOR3 centre;
-    real radius;
-    real pad0, pad_o, pad_oc; /* pad = pad0 + pad_o |o| + pad_oc |c - o|_1 */
+    xform_sphere_t sphere;
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -311,45 +309,18 @@ static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
-/* True when the ray (over t >= 0) stays outside the culling sphere: its
- * line passes the centre farther than the radius, or it starts outside
- * the sphere and moves away from the centre. Evaluated with margins for
- * its own rounding (the squares carry gamma(3), the difference of
- * c2 dd and b^2 cancels down to what 32 u c2 dd covers, b carries
- * gamma(3) |c - o|_1 max|d|). A NaN makes every comparison false: no
- * early answer. */
-static bool misses_sphere(const xf_shape *sh, const ray_t *r)
-{
-    VECTOR3 oc;
-    vec_sub(oc, sh->centre, r->o);
-    real oc1 = fabs(oc[X]) + fabs(oc[Y]) + fabs(oc[Z]);
-    real o_max = real_max(fabs(r->o[X]),
-                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
-    real rho = sh->radius + (sh->pad0 + sh->pad_o * o_max + sh->pad_oc * oc1);
-    real rho2 = rho * rho;
-    real c2 = SVECTOR3(oc, oc), b = SVECTOR3(oc, r->d);
-    real dd = SVECTOR3(r->d, r->d);
-    const real u = REAL_UNIT_ROUNDOFF;
-    /* the distance of the line from the centre, squared, times dd */
-    if (c2 * dd - b * b > (rho2 + 32 * u * c2) * dd)
-        return true;
-    real d_max = real_max(fabs(r->d[X]),
-                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
-    return b + 4 * u * oc1 * d_max <= 0 && c2 > rho2 * (1 + 8 * u);
-}
-
-static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
-                         real tmin, real tmax, hit_t *hit)
+bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
+                              real tmin, real tmax, hit_t *hit)
 {
     const xf_shape *sh = obj->shape;
-    if (sh->cull && tmin >= 0 && misses_sphere(sh, r))
-        return false;
     ray_t ro;
     int k;
     if (!object_ray(sh, r, &ro, &k))
         return false;
-    /* an affine map keeps t; only the power-of-two scaling of d moves it */
-    hit_t h;
+    /* an affine map keeps t; only the power-of-two scaling of d moves it.
+     * h zeroed: the inner primitive may leave part of its scratch b unset,
+     * and the same ray must give the same bytes */
+    hit_t h = { 0, 0, { 0, 0, 0 } };
     real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
     if (!sh->inner->ops->intersect(sh->inner, prim, &ro, lo, hi, &h))
         return false;
@@ -359,6 +330,15 @@ static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
     *hit = h;
     hit->t = t;
     return true;
+}
+
+static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
+                         real tmin, real tmax, hit_t *hit)
+{
+    const xf_shape *sh = obj->shape;
+    if (sh->cull && tmin >= 0 && xform_sphere_misses(&sh->sphere, r))
+        return false;
+    return xform_intersect_unculled(obj, prim, r, tmin, tmax, hit);
 }
 
 /* The world point of an object point p (error e), with its error bound,
@@ -487,6 +467,17 @@ const xform_t *xform_of(const COBJECT *obj)
     if (!obj || obj->ops != &xform_ops)
         return NULL;
     return &((const xf_shape *)obj->shape)->x;
+}
+
+bool xform_culling_sphere(const COBJECT *obj, xform_sphere_t *s)
+{
+    if (!xform_of(obj))
+        return false;
+    const xf_shape *sh = obj->shape;
+    if (!sh->cull)
+        return false;
+    *s = sh->sphere;
+    return true;
 }
 
 /* --- the area under the map ------------------------------------------------ */
@@ -674,13 +665,14 @@ static void set_culling(xf_shape *sh)
     ld R = sqrtl(r2);
     ld pad0 = 4 * (K * kappa * (mt + R + cmax) +
                    (ld)ray_gamma(9) * norm_inf(m) * box);
+    xform_sphere_t *s = &sh->sphere;
     for (int i = 0; i < 3; i++)
-        sh->centre[i] = (real)c[i];
-    sh->radius = real_next_up((real)R);
-    sh->pad0 = real_next_up((real)pad0);
-    sh->pad_o = sh->pad_oc = real_next_up((real)(2 * K * kappa));
-    sh->cull = vec_is_finite(sh->centre) && isfinite(sh->radius) &&
-               isfinite(sh->pad0) && isfinite(sh->pad_o);
+        s->centre[i] = (real)c[i];
+    s->radius = real_next_up((real)R);
+    s->pad0 = real_next_up((real)pad0);
+    s->pad_o = s->pad_oc = real_next_up((real)(2 * K * kappa));
+    sh->cull = vec_is_finite(s->centre) && isfinite(s->radius) &&
+               isfinite(s->pad0) && isfinite(s->pad_o);
 }
 
 /* --- construction ------------------------------------------------------------ */

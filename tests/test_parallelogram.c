@@ -4,7 +4,8 @@
  * rectangles and their normals, no ray slipping through a closed box of
  * parallelograms, input checks (degenerate, not a parallelogram), uniform
  * sampling, the geomcheck harness, tests/vectors/parallelogram.csv and a
- * NaN sweep.
+ * NaN sweep; the batch of brute force (its early rejections for many at
+ * once, then the prepared test) gives intersect()'s answers bit for bit.
  */
 #include "testutil.h"
 #include "geomcheck.h"
@@ -213,14 +214,42 @@ static bool two_triangle_reference(const VECTOR3 c[4], const ray_t *r,
     return any;
 }
 
+/* The same hit to the last bit, field by field (a hit_t of doubles has
+ * padding). */
+static bool same_hit(const hit_t *a, const hit_t *b)
+{
+    return memcmp(&a->t, &b->t, sizeof a->t) == 0 && a->prim == b->prim &&
+           memcmp(a->b, b->b, sizeof a->b) == 0;
+}
+
+/* o's intersect() the way brute force's fast path makes it (accel.c):
+ * the early rejections from a batch (of o alone, or of o among others at
+ * bit i), then the watertight test on a ray prepared apart. */
+static bool via_batch(const parallelogram_batch_t *batch, int i,
+                      const COBJECT *o, const ray_t *r, real tmin, real tmax,
+                      hit_t *h)
+{
+    if (!((parallelogram_batch_cull(batch, r, tmin) >> i) & 1))
+        return false;
+    triangle_ray_t pr;
+    triangle_ray_prepare(&pr, r);
+    return parallelogram_intersect_prepared(o, 0, &pr, tmin, tmax, h);
+}
+
 /* One ray against o over (tmin, tmax): the same answer, bit for bit, as
- * the two triangles. Returns whether it hit. */
+ * the two triangles, through intersect() and through a batch. Returns
+ * whether it hit. */
 static bool agrees_with_two_triangles(const COBJECT *o, const VECTOR3 c[4],
                                       const ray_t *r, real tmin, real tmax)
 {
-    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1, h3 = h1;
     bool a = two_triangle_reference(c, r, tmin, tmax, &h1);
     bool b = o->ops->intersect(o, 0, r, tmin, tmax, &h2);
+    parallelogram_batch_t *batch = parallelogram_batch_new(&o, 1);
+    ck_assert_ptr_nonnull(batch);
+    bool b3 = via_batch(batch, 0, o, r, tmin, tmax, &h3);
+    parallelogram_batch_free(batch);
+    ck_assert(b3 == b && (!b || same_hit(&h2, &h3)));
     ck_assert_msg(a == b, "hit %d vs %d: o (%a %a %a) d (%a %a %a) "
                   "(%a, %a)", (int)a, (int)b, (double)r->o[X],
                   (double)r->o[Y], (double)r->o[Z], (double)r->d[X],
@@ -383,6 +412,96 @@ START_TEST(parallelogram_early_rejections_lose_no_hit)
     }
     ck_assert(hits > n / 20);
     test_report_cases("parallelogram_early_rejections_lose_no_hit", n);
+}
+END_TEST
+
+START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
+{
+    /* Batches of 1 to 64 parallelograms (whole steps of the batch loop
+     * and padding lanes): for every ray, each bit of the batch's answer is
+     * the bit of a batch of that parallelogram alone, and where the batch
+     * lets the ray through, the prepared test gives intersect()'s hit to
+     * the last bit; where it does not, intersect() reports no hit. */
+    pcg32_t g;
+    pcg32_seed(&g, 51, 52);
+    long n = 0, hits = 0;
+    for (int round = 0; round < 60; round++) {
+        int m = 1 + (int)pcg32_bounded(&g, PARALLELOGRAM_BATCH_MAX);
+        COBJECT *o[PARALLELOGRAM_BATCH_MAX];
+        parallelogram_batch_t *one[PARALLELOGRAM_BATCH_MAX];
+        int k = 0;
+        while (k < m) {
+            VECTOR3 c0, c1, c3;
+            if (k < 7 && round % 2 == 0) { /* the Cornell box's */
+                vec_copy(c0, cbox[k][0]);
+                vec_copy(c1, cbox[k][1]);
+                vec_copy(c3, cbox[k][3]);
+            } else {
+                for (int a = 0; a < 3; a++) {
+                    c0[a] = 4 * pcg32_real(&g) - 2;
+                    c1[a] = c0[a] + 2 * pcg32_real(&g) - 1;
+                    c3[a] = c0[a] + 2 * pcg32_real(&g) - 1;
+                }
+            }
+            svet_error err;
+            o[k] = parallelogram_new(c0, c1, c3, &err);
+            if (!o[k])
+                continue;
+            one[k] = parallelogram_batch_new((const COBJECT *const *)&o[k],
+                                             1);
+            ck_assert_ptr_nonnull(one[k]);
+            k++;
+        }
+        parallelogram_batch_t *all =
+            parallelogram_batch_new((const COBJECT *const *)o, m);
+        ck_assert_ptr_nonnull(all);
+        for (int j = 0; j < 500; j++) {
+            ray_t r;
+            for (int a = 0; a < 3; a++)
+                r.o[a] = 6 * pcg32_real(&g) - 3;
+            real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+            cobject_sample_t sm;
+            const COBJECT *aim = o[pcg32_bounded(&g, (uint32_t)m)];
+            aim->ops->sample(aim, u, &sm);
+            vec_sub(r.d, sm.p, r.o); /* at a point of one of them */
+            if (j % 3 == 0)
+                geomcheck_random_dir(r.d, &g);
+            if (vec_length2(r.d) == 0)
+                continue;
+            real tmin = j % 7 == 0 ? -(real)INFINITY : 0;
+            uint64_t mask = parallelogram_batch_cull(all, &r, tmin);
+            ck_assert(m == 64 || mask >> m == 0);
+            for (int i = 0; i < m; i++, n++) {
+                uint64_t bit = (mask >> i) & 1;
+                ck_assert(bit == parallelogram_batch_cull(one[i], &r, tmin));
+                hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+                bool a = o[i]->ops->intersect(o[i], 0, &r, tmin,
+                                              (real)INFINITY, &h1);
+                bool b = via_batch(all, i, o[i], &r, tmin, (real)INFINITY,
+                                   &h2);
+                ck_assert(a == b && (!a || same_hit(&h1, &h2)));
+                hits += a;
+            }
+        }
+        parallelogram_batch_free(all);
+        for (int i = 0; i < m; i++) {
+            parallelogram_batch_free(one[i]);
+            cobject_free(o[i]);
+        }
+    }
+    ck_assert(hits > n / 50);
+    /* only parallelograms, at most 64 of them */
+    ck_assert_ptr_null(parallelogram_batch_new(NULL, -1));
+    ck_assert_ptr_null(parallelogram_batch_new(NULL,
+                                               PARALLELOGRAM_BATCH_MAX + 1));
+    VECTOR3 v = { 0, 0, 0 };
+    svet_error err;
+    COBJECT *t = triangle_new(v, cbox[0][1], cbox[0][3], &err);
+    ck_assert(!parallelogram_is(t) &&
+              parallelogram_batch_new((const COBJECT *const *)&t, 1) == NULL);
+    cobject_free(t);
+    test_report_cases("parallelogram_batch_answers_as_each_parallelogram_bit_"
+                      "for_bit", n);
 }
 END_TEST
 
@@ -563,6 +682,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, no_ray_slips_through_a_closed_box_of_parallelograms);
     tcase_add_test(tc, parallelogram_answers_as_its_two_triangles_bit_for_bit);
     tcase_add_test(tc, parallelogram_early_rejections_lose_no_hit);
+    tcase_add_test(tc,
+                   parallelogram_batch_answers_as_each_parallelogram_bit_for_bit);
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);
