@@ -34,6 +34,9 @@ typedef struct {
     double hgrid_child_k; /* child grids' k; 0 = HGRID_CHILD_K_DEFAULT */
     int brute_max;      /* AUTO: brute force up to this many primitives;
                            0 = ACCEL_BRUTE_MAX */
+    bool brute_generic; /* brute force through primset_test() alone,
+                           without the fast path over analytic primitives
+                           (accel.c): the same answers, for tests */
 } accel_params_t;
 
 /* AUTO's rule (measured by bench/bench_grid.c; chapters/ch07/README.md):

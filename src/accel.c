@@ -6,17 +6,48 @@
 #define _POSIX_C_SOURCE 200809L
 #include "accel.h"
 #include "grid.h"
+#include "parallelogram.h"
 #include "primset.h"
+#include "xform.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+/* Brute force over a scene of analytic primitives (no mesh triangles),
+ * without a call per primitive for the culling tests: every reference in
+ * the order of primset.h, each with the fastest way to the answer its
+ * intersect() gives. */
+typedef enum {
+    ITEM_PARALLELOGRAM, /* its early rejections from the batch, then its
+                           watertight test on a ray prepared once */
+    ITEM_SPHERE,        /* a transformed box: its culling sphere here */
+    ITEM_OTHER          /* intersect() through the table of functions */
+} item_kind;
+
+typedef struct {
+    item_kind kind;
+    int slot;           /* bit in the batch's mask, or index in spheres */
+    const COBJECT *obj;
+    int prim;
+} brute_item_t;
+
+typedef struct {
+    brute_item_t *items; /* refs[0 .. nrefs) of the primset */
+    uint32_t n;
+    parallelogram_batch_t *batch;
+    uint32_t para[PARALLELOGRAM_BATCH_MAX]; /* the item of each bit */
+    uint32_t *others;    /* the items not in the batch, in order */
+    uint32_t nothers;
+    xform_sphere_t *spheres;
+} brute_t;
+
 struct accel {
     accel_kind kind;
     primset_t ps;
     grid_t *grid; /* NULL for brute force */
+    brute_t *brute; /* the fast brute force, or NULL (accel.c) */
     double build_seconds;
     char describe[256];
 };
@@ -71,6 +102,66 @@ static double crowded_fraction(const grid_t *g, long crowd)
             crowded += n;
     }
     return all > 0 ? crowded / all : 0;
+}
+
+static void brute_free(brute_t *b)
+{
+    if (!b)
+        return;
+    free(b->items);
+    free(b->others);
+    parallelogram_batch_free(b->batch);
+    free(b->spheres);
+    free(b);
+}
+
+/* The fast brute force over ps, or NULL when ps has mesh triangles (they
+ * keep primset_test's inline test) or memory runs out (primset_test then
+ * serves, with the same answers). Parallelograms past the batch's 64 are
+ * tested through intersect(). */
+static brute_t *brute_new(const primset_t *ps)
+{
+    if (ps->ntri != 0)
+        return NULL;
+    brute_t *b = calloc(1, sizeof *b);
+    size_t n = (size_t)ps->nrefs + 1;
+    const COBJECT *para[PARALLELOGRAM_BATCH_MAX];
+    int npara = 0, nsph = 0;
+    if (b) {
+        b->items = malloc(n * sizeof *b->items);
+        b->others = malloc(n * sizeof *b->others);
+        b->spheres = malloc(n * sizeof *b->spheres);
+    }
+    if (!b || !b->items || !b->others || !b->spheres) {
+        brute_free(b);
+        return NULL;
+    }
+    b->n = ps->nrefs;
+    for (uint32_t i = 0; i < ps->nrefs; i++) {
+        brute_item_t *it = &b->items[i];
+        it->obj = ps->objs[ps->refs[i].obj];
+        it->prim = (int)ps->refs[i].prim;
+        it->kind = ITEM_OTHER;
+        it->slot = 0;
+        if (parallelogram_is(it->obj) && npara < PARALLELOGRAM_BATCH_MAX) {
+            it->kind = ITEM_PARALLELOGRAM;
+            it->slot = npara;
+            b->para[npara] = i;
+            para[npara++] = it->obj;
+            continue;
+        }
+        if (xform_culling_sphere(it->obj, &b->spheres[nsph])) {
+            it->kind = ITEM_SPHERE;
+            it->slot = nsph++;
+        }
+        b->others[b->nothers++] = i;
+    }
+    b->batch = parallelogram_batch_new(para, npara);
+    if (!b->batch) {
+        brute_free(b);
+        return NULL;
+    }
+    return b;
 }
 
 svet_status accel_build(accel_t **out, COBJECT *const *objs, int nobjs,
@@ -151,6 +242,8 @@ svet_status accel_build(accel_t **out, COBJECT *const *objs, int nobjs,
         return st;
     }
     primset_drop_bounds(&a->ps);
+    if (kind == ACCEL_BRUTE && !p->brute_generic)
+        a->brute = brute_new(&a->ps);
     a->kind = kind;
     a->build_seconds = now() - t0;
     snprintf(a->describe, sizeof a->describe, "%s%s", accel_kind_name(kind),
@@ -164,6 +257,7 @@ void accel_free(accel_t *a)
     if (!a)
         return;
     grid_free(a->grid);
+    brute_free(a->brute);
     primset_free(&a->ps);
     free(a);
 }
@@ -194,11 +288,106 @@ static bool run(const accel_t *a, primset_query_t *q, bool shadow)
     return shadow ? grid_occluded(a->grid, q) : grid_intersect(a->grid, q);
 }
 
+/* The search of the fast brute force: the primitives' nearest-hit rule
+ * of primset_test(), the same arguments to each intersect(). */
+typedef struct {
+    real tmin, tmax, tmax_tie;
+    bool shadow, found;
+    uint32_t best;  /* the item of the nearest hit so far */
+    hit_t hit;
+} brute_search_t;
+
+/* A hit hh of item i: is the search over (a shadow ray's first hit)? */
+static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
+                        const hit_t *hh)
+{
+    if (q->shadow)
+        return true;
+    if (q->found && !(hh->t < q->tmax || primset_before(ps, i, q->best)))
+        return false;
+    q->found = true;
+    q->best = i;
+    q->hit = *hh;
+    q->tmax = hh->t;
+    q->tmax_tie = real_next_up(hh->t); /* as primset_test() */
+    return false;
+}
+
+/* The fast brute force: what primset_test() over every ref gives, with
+ * each primitive's culling test made here instead of behind a call: a
+ * test skipped here is one whose intersect() would have answered "no
+ * hit" at its first step. The order differs (the parallelograms that
+ * pass the batch's rejections first, then the rest), which primset.h's
+ * nearest-hit rule makes irrelevant: ties go to the earlier primitive
+ * whatever the order. So the answer is primset_test's bit for bit
+ * (tests/test_accel.c compares them). A shadow ray (q->shadow) stops at
+ * the first hit. */
+static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
+                      brute_search_t *q)
+{
+    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin);
+    if (maybe) {
+        triangle_ray_t pr;
+        triangle_ray_prepare(&pr, r);
+        for (int slot = 0; maybe; slot++, maybe >>= 1) {
+            if (!(maybe & 1))
+                continue;
+            uint32_t i = b->para[slot];
+            hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
+            if (parallelogram_intersect_prepared(b->items[i].obj,
+                                                 b->items[i].prim, &pr,
+                                                 q->tmin, q->tmax_tie, &hh) &&
+                brute_found(q, ps, i, &hh))
+                return true;
+        }
+    }
+    for (uint32_t k = 0; k < b->nothers; k++) {
+        uint32_t i = b->others[k];
+        const brute_item_t *it = &b->items[i];
+        hit_t hh = { 0, 0, { 0, 0, 0 } };
+        bool hit;
+        if (it->kind == ITEM_SPHERE) {
+            if (q->tmin >= 0 &&
+                xform_sphere_misses(&b->spheres[it->slot], r))
+                continue;
+            hit = xform_intersect_unculled(it->obj, it->prim, r, q->tmin,
+                                           q->tmax_tie, &hh);
+        } else {
+            hit = it->obj->ops->intersect(it->obj, it->prim, r, q->tmin,
+                                          q->tmax_tie, &hh);
+        }
+        if (hit && brute_found(q, ps, i, &hh))
+            return true;
+    }
+    return q->found;
+}
+
+/* Start a search of (tmin, tmax). */
+static void brute_search_init(brute_search_t *q, real tmin, real tmax,
+                              bool shadow)
+{
+    q->tmin = tmin;
+    q->tmax = q->tmax_tie = tmax;
+    q->shadow = shadow;
+    q->found = false;
+    q->best = 0;
+}
+
 static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
                     accel_hit_t *h, accel_counters_t *c)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
+    if (a->brute && !c) {
+        brute_search_t q;
+        brute_search_init(&q, tmin, tmax, false);
+        if (!brute_run(a->brute, &a->ps, r, &q))
+            return false;
+        h->obj = a->brute->items[q.best].obj;
+        h->hit = q.hit;
+        h->hit.prim = a->brute->items[q.best].prim;
+        return true;
+    }
     primset_query_t q;
     primset_query_init(&q, r, tmin, tmax);
     run(a, &q, false);
@@ -229,6 +418,11 @@ bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
+    if (a->brute) {
+        brute_search_t q;
+        brute_search_init(&q, tmin, tmax, true);
+        return brute_run(a->brute, &a->ps, r, &q);
+    }
     primset_query_t q;
     primset_query_init(&q, r, tmin, tmax);
     return run(a, &q, true);
@@ -242,6 +436,10 @@ void accel_get_stats(const accel_t *a, accel_stats_t *s)
     s->kind = a->kind;
     s->build_seconds = a->build_seconds;
     s->bytes = sizeof *a + primset_bytes(&a->ps) + grid_bytes(a->grid);
+    if (a->brute)
+        s->bytes += sizeof *a->brute + (size_t)a->brute->n *
+                    (sizeof *a->brute->items + sizeof *a->brute->others +
+                     sizeof *a->brute->spheres);
     s->prims = (long)a->ps.nrefs;
     s->unbounded = (long)(a->ps.nrefs - a->ps.nbounded);
     if (a->grid) {

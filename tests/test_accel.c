@@ -6,7 +6,10 @@
  * cell boundaries, parallel to an axis, lying in a cell plane, aimed at
  * mesh vertices, from far away, with long and short and exact tmax; shadow
  * queries agree with nearest-hit queries; empty and degenerate scenes;
- * queries from two threads; the automatic choice.
+ * queries from two threads; the automatic choice. Brute force's fast path
+ * over analytic primitives answers what primset_test() answers, to the
+ * last bit of the hit, on random scenes, the Cornell box and path-like
+ * rays.
  */
 #include "testutil.h"
 #include "accel.h"
@@ -27,15 +30,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define NKIND 6
-/* The structures compared with brute force: the defaults, and grids made
- * coarse, fine and deep so that every path of the build and the walk
- * runs (few and many primitives per cell, nested child grids). */
+#define NKIND 7
+/* The structures compared with brute force through primset_test() alone
+ * (kind 0): the defaults, grids made coarse, fine and deep so that every
+ * path of the build and the walk runs (few and many primitives per cell,
+ * nested child grids), and brute force with its fast path over analytic
+ * primitives (kind 6). */
 static void kind_params(int k, accel_params_t *p)
 {
     accel_params_default(p);
     switch (k) {
-    case 0: p->kind = ACCEL_BRUTE; break;
+    case 0: p->kind = ACCEL_BRUTE; p->brute_generic = true; break;
+    case 6: p->kind = ACCEL_BRUTE; break;
     case 1: p->kind = ACCEL_GRID; break;
     case 2: p->kind = ACCEL_HGRID; break;
     case 3: p->kind = ACCEL_GRID; p->grid_k = 0.4; break;
@@ -197,11 +203,12 @@ static void compare(bench_t *b, const ray_t *r, real tmin, real tmax)
     for (int k = 1; k < NKIND; k++) {
         bool same = found[k] == found[0];
         /* b is each primitive's own scratch: compared for meshes (ours),
-         * whose surface() reads all three barycentrics */
+         * whose surface() reads all three barycentrics, and for brute
+         * force's fast path, which claims the very same bytes */
         if (same && found[0])
             same = h[k].obj == h[0].obj && h[k].hit.prim == h[0].hit.prim &&
                    memcmp(&h[k].hit.t, &h[0].hit.t, sizeof(real)) == 0 &&
-                   (!mesh_get(h[0].obj) ||
+                   ((!mesh_get(h[0].obj) && k != 6) ||
                     memcmp(h[k].hit.b, h[0].hit.b, sizeof h[0].hit.b) == 0);
         ck_assert_msg(same,
                       "kind %d disagrees with brute force: found %d/%d, t %.9g "
@@ -600,6 +607,139 @@ START_TEST(auto_picks_from_the_scene_and_says_why)
 }
 END_TEST
 
+/* The Cornell box of scenes/cbox.scn (walls, light, two transformed
+ * boxes), with ties added: a second floor on the first, and an infinite
+ * plane through the back wall listed before everything (the unbounded go
+ * last in primset's order but win ties by the order of the objects). */
+static void cornell_box(scene_t_ *s, bool ties)
+{
+    svet_error e;
+    static const real q[7][4][3] = {
+        { { -1, -1, 1 }, { 1, -1, 1 }, { 1, -1, -1 }, { -1, -1, -1 } },
+        { { -1, 1, -1 }, { 1, 1, -1 }, { 1, 1, 1 }, { -1, 1, 1 } },
+        { { -1, -1, -1 }, { 1, -1, -1 }, { 1, 1, -1 }, { -1, 1, -1 } },
+        { { 1, -1, -1 }, { 1, -1, 1 }, { 1, 1, 1 }, { 1, 1, -1 } },
+        { { -1, -1, 1 }, { -1, -1, -1 }, { -1, 1, -1 }, { -1, 1, 1 } },
+        { { -0.23, 0.99, -0.18 }, { 0.23, 0.99, -0.18 }, { 0.23, 0.99, 0.2 },
+          { -0.23, 0.99, 0.2 } },
+        { { -1, -1, 1 }, { 1, -1, 1 }, { 1, -1, -1 }, { -1, -1, -1 } } };
+    if (ties) {
+        VECTOR3 p = { 0, 0, -1 }, n = { 0, 0, 1 };
+        add(s, plane_new(p, n, &e));
+    }
+    for (int i = 0; i < (ties ? 7 : 6); i++)
+        add(s, parallelogram_new4(q[i][0], q[i][1], q[i][2], q[i][3], &e));
+    VECTOR3 lo = { -1, -1, -1 }, hi = { 1, 1, 1 }, y = { 0, 1, 0 };
+    VECTOR3 s1 = { 0.3, 0.3, 0.3 }, t1 = { 0.335, -0.7, 0.38 };
+    VECTOR3 s2 = { 0.3, 0.61, 0.3 }, t2 = { -0.33, -0.4, -0.28 };
+    xform_t x1 = xform_compose(xform_compose(xform_scale(s1),
+                                             xform_rotate(y, -17)),
+                               xform_translate(t1));
+    xform_t x2 = xform_compose(xform_compose(xform_scale(s2),
+                                             xform_rotate(y, 18.25)),
+                               xform_translate(t2));
+    add(s, xform_new(box_new(lo, hi, &e), &x1, &e));
+    add(s, xform_new(box_new(lo, hi, &e), &x2, &e));
+}
+
+/* Rays as a path tracer makes them: leaving a sampled surface point along
+ * a random direction (ray_spawn, tmin 0), and shadow rays from one
+ * sampled point to another (ray_spawn_to), grazing ones included. */
+static void path_rays(bench_t *b, const COBJECT *const *objs, int n,
+                      pcg32_t *g, int count)
+{
+    for (int i = 0; i < count; i++) {
+        const COBJECT *o = objs[pcg32_bounded(g, (uint32_t)n)];
+        const COBJECT *o2 = objs[pcg32_bounded(g, (uint32_t)n)];
+        real u[2] = { pcg32_real(g), pcg32_real(g) };
+        cobject_sample_t a, c;
+        o->ops->sample(o, u, &a);
+        u[0] = pcg32_real(g);
+        u[1] = pcg32_real(g);
+        o2->ops->sample(o2, u, &c);
+        if (!vec_is_finite(a.p) || !vec_is_finite(c.p))
+            continue;
+        ray_t r;
+        VECTOR3 w;
+        geomcheck_random_dir(w, g);
+        if (i % 4 == 0) /* grazing: nearly in the tangent plane */
+            vec_add_scaled(w, w, -SVECTOR3(w, a.n) * REAL_C(0.999), a.n);
+        if (vec_length2(w) == 0)
+            continue;
+        ray_spawn(&r, a.p, a.p_error, a.n, w);
+        compare(b, &r, 0, (real)INFINITY);
+        real tmax = ray_spawn_to(&r, a.p, a.p_error, a.n, c.p, c.p_error,
+                                 c.n);
+        if (vec_length2(r.d) > 0)
+            compare(b, &r, 0, tmax);
+    }
+}
+
+START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 77, 5);
+    long rays = 0;
+    /* random scenes of analytic primitives (their meshes dropped) */
+    for (int sc = 0; sc < 16; sc++) {
+        scene_t_ all = { 0 }, s = { 0 };
+        random_scene(&all, &g, 4 + (int)pcg32_bounded(&g, 40), sc % 3 == 0);
+        for (int i = 0; i < all.n; i++)
+            if (mesh_get(all.objs[i]))
+                cobject_free(all.objs[i]);
+            else
+                add(&s, all.objs[i]);
+        free(all.objs);
+        if (s.n == 0)
+            continue;
+        bench_t b;
+        build_all(&b, s.objs, s.n);
+        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 2000);
+        path_rays(&b, (const COBJECT *const *)s.objs, s.n, &g, 1000);
+        rays += b.rays;
+        free_all(&b);
+        free_scene(&s);
+    }
+    /* the Cornell box, with and without ties */
+    for (int ties = 0; ties < 2; ties++) {
+        scene_t_ s = { 0 };
+        cornell_box(&s, ties);
+        bench_t b;
+        build_all(&b, s.objs, s.n);
+        path_rays(&b, (const COBJECT *const *)s.objs, s.n, &g, 20000);
+        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 5000);
+        ck_assert_msg(b.hits > b.rays / 3, "%ld hits of %ld", b.hits, b.rays);
+        rays += b.rays;
+        free_all(&b);
+        free_scene(&s);
+    }
+    /* more parallelograms than one batch holds: the rest go through
+     * intersect() */
+    scene_t_ s = { 0 };
+    for (int i = 0; i < PARALLELOGRAM_BATCH_MAX + 9; i++) {
+        VECTOR3 c0, c1, c3;
+        svet_error e;
+        rand_point(c0, &g, -5, 5);
+        rand_point(c1, &g, -2, 2);
+        rand_point(c3, &g, -2, 2);
+        vec_add(c1, c1, c0);
+        vec_add(c3, c3, c0);
+        COBJECT *o = parallelogram_new(c0, c1, c3, &e);
+        if (o)
+            add(&s, o);
+    }
+    bench_t b;
+    build_all(&b, s.objs, s.n);
+    rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 3000);
+    path_rays(&b, (const COBJECT *const *)s.objs, s.n, &g, 2000);
+    rays += b.rays;
+    free_all(&b);
+    free_scene(&s);
+    test_report_cases("fast_brute_force_answers_bit_for_bit_what_primset_"
+                      "test_answers (rays x 6 structures)", rays);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("accel");
@@ -612,6 +752,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, bad_rays_are_misses);
     tcase_add_test(tc, queries_from_two_threads_match_one);
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
+    tcase_add_test(tc,
+                   fast_brute_force_answers_bit_for_bit_what_primset_test_answers);
     suite_add_tcase(s, tc);
     return s;
 }
