@@ -67,6 +67,10 @@ struct material {
     material_params params;                /* as given to material_init */
     brdf_t comp[MATERIAL_MAX_COMPONENTS];  /* the components */
     int ncomp;
+    bool lambert;   /* set by material_init: a single Lambert component
+                       (the Cornell box's walls), for which eval, pdf and
+                       sample take a shortcut with the same answers, bit
+                       for bit (material.c); false takes the general way */
 };
 typedef struct material material_t;
 

@@ -8,6 +8,8 @@
 
 #include <stdlib.h>
 
+#include "sample.h"
+
 static const RADIANCE black = { 0, 0, 0 };
 
 void material_params_default(material_params *p)
@@ -56,6 +58,7 @@ static void make_black(material_t *m)
 {
     material_params_default(&m->params);
     m->ncomp = 0;
+    m->lambert = false;
 }
 
 svet_status material_init(material_t *m, const material_params *p,
@@ -101,6 +104,7 @@ svet_status material_init(material_t *m, const material_params *p,
         add(m, &g);
     add(m, &t);
     add(m, &dt);
+    m->lambert = m->ncomp == 1 && m->comp[0].kind == BRDF_LAMBERT;
     if (err)
         svet_error_clear(err);
     return SVET_OK;
@@ -184,6 +188,9 @@ svet_status material_glass(material_t *m, RADIANCE rho_s, RADIANCE rho_t,
 RADIANCE material_eval(const material_t *m, const VECTOR3 wi,
                        const VECTOR3 wo)
 {
+    /* a single Lambert lobe: the loop below with its one term */
+    if (m->lambert)
+        return rad_add(black, brdf_eval(&m->comp[0], wi, wo));
     /* the book's f = f_r^s + f_r^d + f_r^g + f_t^s + f_t^d; the delta terms
      * are zero away from their one direction */
     RADIANCE f = black;
@@ -216,8 +223,50 @@ static real combined_pdf(const material_t *m, const real w[], real sum,
     return pdf;
 }
 
+/* The shortcuts for a single Lambert lobe of reflectance rho, and why
+ * they give the general answers bit for bit. Its weight is w = Y(rho) and
+ * the sum of the weights 0 + w = w; the general code gives up unless
+ * w > 0, and then chooses it with probability w / w = 1 exactly (a finite
+ * nonzero number divided by itself). Its combined pdf is 0 + 1 * pdf =
+ * pdf, as pdf >= +0 (|cos| / pi or 0). Its one-sample MIS weight is
+ * f |cos| / pdf with f = 0 + rho / pi, kept as written: rho may hold a
+ * -0, which 0 + turns into +0. */
+static real lambert_pdf(const material_t *m, const VECTOR3 wi,
+                        const VECTOR3 wo)
+{
+    if (!(rad_luminance(m->comp[0].rho) > 0))
+        return 0;
+    return brdf_pdf(&m->comp[0], wi, wo);
+}
+
+/* material_sample for one Lambert lobe, s already cleared. brdf_sample
+ * of Lambert draws wi cosine-weighted on wo's side, and rejects it within
+ * BRDF_COS_MIN of the tangent plane; given that, wi and wo lie on the same
+ * side, so brdf_pdf is |wi_z| / pi and brdf_eval rho / pi. */
+static bool lambert_sample(const material_t *m, const VECTOR3 wo,
+                           const real u[3], brdf_sample_t *s)
+{
+    const RADIANCE rho = m->comp[0].rho;
+    if (!(rad_luminance(rho) > 0))
+        return false; /* also when rho is black: brdf_sample's test */
+    VECTOR3 wi;
+    sample_cosine_hemisphere(wi, u + 1); /* about +z */
+    if (wo[Z] < 0)
+        wi[Z] = -wi[Z];
+    real c = fabs(wi[Z]);
+    if (c < BRDF_COS_MIN)
+        return false;
+    vec_copy(s->wi, wi);
+    s->pdf = c * REAL_INV_PI;
+    RADIANCE f = rad_add(black, rad_scale(rho, REAL_INV_PI));
+    s->weight = rad_scale(f, c / s->pdf);
+    return true;
+}
+
 real material_pdf(const material_t *m, const VECTOR3 wi, const VECTOR3 wo)
 {
+    if (m->lambert)
+        return lambert_pdf(m, wi, wo);
     real w[MATERIAL_MAX_COMPONENTS];
     real sum = weights(m, wo, w);
     if (!(sum > 0))
@@ -235,6 +284,8 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
     s->component = 0;
     if (!(fabs(wo[Z]) >= BRDF_COS_MIN))
         return false;
+    if (m->lambert)
+        return lambert_sample(m, wo, u, s);
     real w[MATERIAL_MAX_COMPONENTS];
     real sum = weights(m, wo, w);
     if (!(sum > 0))

@@ -4,7 +4,8 @@
  * mixed materials (delta components included), grazing and inside
  * directions; a wrong pdf that must fail; reciprocity; albedo <= 1 by
  * Monte Carlo, = 1 for the lossless mixes; component choice frequencies;
- * no NaN or Inf; and tests/vectors/materials.csv read back.
+ * no NaN or Inf; tests/vectors/materials.csv read back; the shortcut for
+ * a single Lambert lobe gives the general answers bit for bit.
  */
 #include "testutil.h"
 #include "chi2.h"
@@ -726,6 +727,81 @@ START_TEST(materials_match_the_vectors)
 }
 END_TEST
 
+/* Bit for bit, field by field. */
+static bool same_bits(const void *a, const void *b, size_t n)
+{
+    return memcmp(a, b, n) == 0;
+}
+
+static bool same_rad(RADIANCE a, RADIANCE b)
+{
+    return same_bits(&a.r, &b.r, sizeof a.r) &&
+           same_bits(&a.g, &b.g, sizeof a.g) &&
+           same_bits(&a.b, &b.b, sizeof a.b);
+}
+
+START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
+{
+    /* material.c answers eval, pdf and sample of a single Lambert lobe by
+     * a shortcut; with m.lambert cleared the general code (component
+     * weights, one-sample MIS) runs. Reflectances of every kind (black,
+     * -0 channels, tiny, up to 1), directions on both sides, grazing and
+     * in the tangent plane, random numbers up to the last below 1. */
+    pcg32_t g;
+    pcg32_seed(&g, 61, 62);
+    long n = 0;
+    const real special[6] = { 0, -REAL_C(0.0), REAL_MIN, REAL_C(1e-30), 1,
+                              REAL_C(0.5) };
+    for (int i = 0; i < 400; i++) {
+        real c[3];
+        for (int k = 0; k < 3; k++)
+            c[k] = pcg32_bounded(&g, 3) == 0 ? special[pcg32_bounded(&g, 6)]
+                                             : pcg32_real(&g);
+        material_t fast, general;
+        ck_assert(material_lambert(&fast, rad_make(c[0], c[1], c[2]), NULL) ==
+                  SVET_OK);
+        ck_assert(fast.lambert);
+        general = fast;
+        general.lambert = false;
+        for (int j = 0; j < 250; j++, n++) {
+            VECTOR3 wi, wo;
+            random_dir(wi, &g);
+            random_dir(wo, &g);
+            if (j % 5 == 0)
+                wo[Z] = j % 10 == 0 ? 0 : REAL_C(1e-13) * (wo[Z] > 0 ? 1 : -1);
+            if (j % 7 == 0)
+                wi[Z] = 0;
+            real u[3] = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
+            if (j % 11 == 0)
+                u[1] = u[2] = 1 - REAL_EPSILON / 2; /* the last below 1 */
+            ck_assert(same_rad(material_eval(&fast, wi, wo),
+                               material_eval(&general, wi, wo)));
+            real p1 = material_pdf(&fast, wi, wo),
+                 p2 = material_pdf(&general, wi, wo);
+            ck_assert(same_bits(&p1, &p2, sizeof p1));
+            brdf_sample_t s1, s2;
+            bool a = material_sample(&fast, wo, u, &s1);
+            bool b = material_sample(&general, wo, u, &s2);
+            ck_assert(a == b);
+            ck_assert(same_bits(s1.wi, s2.wi, sizeof s1.wi) &&
+                      same_rad(s1.weight, s2.weight) &&
+                      same_bits(&s1.pdf, &s2.pdf, sizeof s1.pdf) &&
+                      s1.delta == s2.delta && s1.component == s2.component);
+        }
+    }
+    /* only a lone Lambert lobe takes the shortcut */
+    material_t m;
+    ck_assert(material_phong(&m, rad_grey(REAL_C(0.5)), rad_grey(REAL_C(0.3)),
+                             10, NULL) == SVET_OK && !m.lambert);
+    ck_assert(material_mirror(&m, rad_grey(REAL_C(0.9)), NULL) == SVET_OK &&
+              !m.lambert);
+    ck_assert(material_lambert(&m, rad_grey(0), NULL) == SVET_OK &&
+              !m.lambert); /* black: no component at all */
+    test_report_cases("lambert_shortcut_answers_as_the_general_way_bit_for_bit",
+                      n);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("material (" REAL_NAME ")");
@@ -742,6 +818,7 @@ Suite *test_suite(void)
     tcase_add_test(t, materials_match_the_vectors);
     tcase_add_test(t, mixed_materials_sample_wi_with_their_pdf);
     tcase_add_test(t, a_wrong_mixture_pdf_fails_the_chi2_test);
+    tcase_add_test(t, lambert_shortcut_answers_as_the_general_way_bit_for_bit);
     suite_add_tcase(s, t);
     return s;
 }
