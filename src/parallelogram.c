@@ -359,14 +359,6 @@ static const cobject_ops parallelogram_ops = {
  * register, 8 floats an AVX one. */
 #define LANES 8
 
-/* An integer as wide as real: the answers of a step in integers of the
- * width of the numbers, so that one vector holds as many of each. */
-#ifdef SVET_DOUBLE
-typedef int64_t lane_int;
-#else
-typedef int32_t lane_int;
-#endif
-
 /* The fields of para_cull_t, each an array over the batch (structure of
  * arrays: lane j of a step reads element i0 + j of every array), padded
  * with zeros to whole steps. */
@@ -434,7 +426,10 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
     ray_size(r, &rs);
     uint64_t maybe = 0;
     for (int i0 = 0; i0 < b->n; i0 += LANES) {
-        lane_int out[LANES];
+        /* the answers as reals 1 and 0, as wide as the numbers they come
+         * from, so that one vector holds as many of each (as bools or as
+         * 64-bit integers gcc does not vectorise the doubles' loop) */
+        real out[LANES];
         for (int j = 0; j < LANES; j++) {
             int i = i0 + j;
             const para_cull_t k = {
@@ -446,10 +441,10 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
                 { b->bx[i], b->by[i], b->bz[i] },
                 b->a1[i], b->b1[i]
             };
-            out[j] = rejects(&k, r, &rs, tmin);
+            out[j] = rejects(&k, r, &rs, tmin) ? 1 : 0;
         }
         for (int j = 0; j < LANES; j++)
-            maybe |= (uint64_t)!out[j] << (i0 + j);
+            maybe |= (uint64_t)(out[j] == 0) << (i0 + j);
     }
     /* the padding lanes past n */
     return b->n < 64 ? maybe & (((uint64_t)1 << b->n) - 1) : maybe;
