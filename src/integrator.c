@@ -93,14 +93,15 @@ static void draw2(real u[2], pcg32_t *g)
     u[1] = pcg32_real(g);
 }
 
-/* Next-event estimation at pp: one light, chosen by power, sampled once,
+/* Next-event estimation at pp (material m, which transmits when two is
+ * true): one light, chosen by power, sampled once,
  * weighted against BSDF sampling by the power heuristic (unless the light
  * is a point or BSDF sampling is off). Returns the contribution before the
  * path throughput. Always draws 3 numbers, so the numbers of later bounces
  * do not depend on what happened here. */
 static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
-                             const material_t *m, const VECTOR3 wo, bool mis,
-                             pcg32_t *g, integrator_stats_t *st)
+                             const material_t *m, bool two, const VECTOR3 wo,
+                             bool mis, pcg32_t *g, integrator_stats_t *st)
 {
     real upick = pcg32_real(g), u[2];
     draw2(u, g);
@@ -108,7 +109,6 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     const light_t *l = lightset_pick(it->lights, upick, &pmf);
     if (!l || !(pmf > 0))
         return rad_grey(0);
-    bool two = transmits(m);
     light_sample_t ls;
     if (!light_sample(l, pp, two, u, &ls))
         return rad_grey(0);
@@ -245,10 +245,12 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
             break;
 
         const material_t *m = obj->material;
+        const bool two = transmits(m);
         VECTOR3 wo;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         if (nee && !material_is_specular(m)) {
-            RADIANCE Ld = direct_light(it, &pp, m, wo, bsdf_hits, g, st);
+            RADIANCE Ld = direct_light(it, &pp, m, two, wo, bsdf_hits, g,
+                                       st);
             /* with bsdf_hits false the light sample's weight is 1 */
             L = rad_add(L, rad_mul(beta, Ld));
         } else if (nee) {
@@ -267,7 +269,7 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
         prev = pp;
         prev_delta = bs.delta;
         prev_pdf = bs.pdf;
-        prev_two = transmits(m);
+        prev_two = two;
         ray_spawn(&r, pp.cross_point, pp.p_error, pp.ng, wi);
 
         /* Russian roulette (ch. 4): continue with probability q, dividing
