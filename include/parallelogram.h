@@ -67,6 +67,13 @@ void parallelogram_batch_free(parallelogram_batch_t *b);
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
                                   const ray_t *r, real tmin);
 
+/* The same answer, bit for bit, by a plain loop over the parallelograms:
+ * what parallelogram_batch_cull runs where SSE2 is missing (it runs
+ * several at once with SSE2 where it is there). For tests. This function
+ * can't fail. */
+uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
+                                        const ray_t *r, real tmin);
+
 /* A parallelogram's intersect() without those early rejections, on a ray
  * prepared once by triangle_ray_prepare(pr, r) for any number of them:
  * the same answer and hit, bit for bit, as

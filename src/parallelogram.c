@@ -355,13 +355,9 @@ static const cobject_ops parallelogram_ops = {
  * watertight test (exact()) then runs only for those that pass, with
  * the ray prepared once for all of them. Both are the very functions
  * para_intersect() runs, so the answers are its answers bit for bit. */
-/* Lanes of one step of the batch loop: 4 floats or 2 doubles fill an SSE
- * register, 8 floats an AVX one. */
-#define LANES 8
-
 /* The fields of para_cull_t, each an array over the batch (structure of
- * arrays: lane j of a step reads element i0 + j of every array), padded
- * with zeros to whole steps. */
+ * arrays: lane j of a vector step reads element i + j of every array),
+ * zero past n (whole steps of 4 or 2 lanes, their answers dropped). */
 struct parallelogram_batch {
     int n;
     real nx[PARALLELOGRAM_BATCH_MAX], ny[PARALLELOGRAM_BATCH_MAX],
@@ -414,41 +410,149 @@ void parallelogram_batch_free(parallelogram_batch_t *b)
     free(b);
 }
 
-/* rejects() lane by lane: the loop over j has a fixed count and no
- * branch, so that the compiler may run it as one vector of lanes (gcc
- * does at -O2 with SSE2); it computes in each lane exactly what
- * rejects() computes for that parallelogram, so the bits do not depend
- * on whether it was vectorised. */
-uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin)
+uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
+                                        const ray_t *r, real tmin)
 {
     ray_size_t rs;
     ray_size(r, &rs);
     uint64_t maybe = 0;
-    for (int i0 = 0; i0 < b->n; i0 += LANES) {
-        /* the answers as reals 1 and 0, as wide as the numbers they come
-         * from, so that one vector holds as many of each (as bools or as
-         * 64-bit integers gcc does not vectorise the doubles' loop) */
-        real out[LANES];
-        for (int j = 0; j < LANES; j++) {
-            int i = i0 + j;
-            const para_cull_t k = {
-                { b->nx[i], b->ny[i], b->nz[i] },
-                { b->c0x[i], b->c0y[i], b->c0z[i] },
-                b->h_lo[i], b->h_hi[i], b->h_mid[i], b->h_half[i],
-                b->c_max[i],
-                { b->ax[i], b->ay[i], b->az[i] },
-                { b->bx[i], b->by[i], b->bz[i] },
-                b->a1[i], b->b1[i]
-            };
-            out[j] = rejects(&k, r, &rs, tmin) ? 1 : 0;
-        }
-        for (int j = 0; j < LANES; j++)
-            maybe |= (uint64_t)(out[j] == 0) << (i0 + j);
+    for (int i = 0; i < b->n; i++) {
+        const para_cull_t k = {
+            { b->nx[i], b->ny[i], b->nz[i] },
+            { b->c0x[i], b->c0y[i], b->c0z[i] },
+            b->h_lo[i], b->h_hi[i], b->h_mid[i], b->h_half[i], b->c_max[i],
+            { b->ax[i], b->ay[i], b->az[i] },
+            { b->bx[i], b->by[i], b->bz[i] },
+            b->a1[i], b->b1[i]
+        };
+        if (!rejects(&k, r, &rs, tmin))
+            maybe |= (uint64_t)1 << i;
+    }
+    return maybe;
+}
+
+#ifdef __SSE2__
+/* rejects() on a vector of parallelograms at once with SSE2: 4 floats or
+ * 2 doubles per step. Every operation is the IEEE operation rejects()
+ * makes, on the same operands in the same order (no fused multiply-add:
+ * SSE2 has none), so each lane gets exactly the bits of the plain loop;
+ * max is the instruction whose answer is a > b ? a : b, real_max's, NaN
+ * included. tests/test_parallelogram.c compares the two. */
+#include <emmintrin.h>
+#ifdef SVET_DOUBLE
+typedef __m128d vreal;
+#define VLANES 2
+#define V_SET1 _mm_set1_pd
+#define V_LOAD _mm_loadu_pd
+#define V_ADD _mm_add_pd
+#define V_SUB _mm_sub_pd
+#define V_MUL _mm_mul_pd
+#define V_DIV _mm_div_pd
+#define V_MAX _mm_max_pd
+#define V_AND _mm_and_pd
+#define V_ANDNOT _mm_andnot_pd
+#define V_OR _mm_or_pd
+#define V_XOR _mm_xor_pd
+#define V_GT _mm_cmpgt_pd
+#define V_GE _mm_cmpge_pd
+#define V_LT _mm_cmplt_pd
+#define V_LE _mm_cmple_pd
+#define V_MASK _mm_movemask_pd
+#else
+typedef __m128 vreal;
+#define VLANES 4
+#define V_SET1 _mm_set1_ps
+#define V_LOAD _mm_loadu_ps
+#define V_ADD _mm_add_ps
+#define V_SUB _mm_sub_ps
+#define V_MUL _mm_mul_ps
+#define V_DIV _mm_div_ps
+#define V_MAX _mm_max_ps
+#define V_AND _mm_and_ps
+#define V_ANDNOT _mm_andnot_ps
+#define V_OR _mm_or_ps
+#define V_XOR _mm_xor_ps
+#define V_GT _mm_cmpgt_ps
+#define V_GE _mm_cmpge_ps
+#define V_LT _mm_cmplt_ps
+#define V_LE _mm_cmple_ps
+#define V_MASK _mm_movemask_ps
+#endif
+
+uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
+                                  const ray_t *r, real tmin)
+{
+    const real u = REAL_UNIT_ROUNDOFF;
+    ray_size_t rs;
+    ray_size(r, &rs);
+    const vreal sign = V_SET1(-REAL_C(0.0)); /* fabs: clear the sign bit */
+    const vreal ox = V_SET1(r->o[X]), oy = V_SET1(r->o[Y]),
+                oz = V_SET1(r->o[Z]);
+    const vreal dx = V_SET1(r->d[X]), dy = V_SET1(r->d[Y]),
+                dz = V_SET1(r->d[Z]);
+    const vreal o_max = V_SET1(rs.o_max), d_max = V_SET1(rs.d_max);
+    const vreal dpad = V_SET1(DIR_PAD * rs.d_max);
+    const vreal g4 = V_SET1(4 * rs.d_max);
+    const vreal one = V_SET1(1), slab = V_SET1(SLAB_PAD);
+    const vreal u64 = V_SET1(64 * u), u32 = V_SET1(32 * u);
+    const int ahead = tmin >= 0;
+    uint64_t maybe = 0;
+    for (int i = 0; i < b->n; i += VLANES) {
+        /* plane_ray(): n . o, n . d */
+        vreal nx = V_LOAD(b->nx + i), ny = V_LOAD(b->ny + i),
+              nz = V_LOAD(b->nz + i);
+        vreal s = V_ADD(V_ADD(V_MUL(nx, ox), V_MUL(ny, oy)), V_MUL(nz, oz));
+        vreal dn = V_ADD(V_ADD(V_MUL(nx, dx), V_MUL(ny, dy)), V_MUL(nz, dz));
+        /* leaves_plane() */
+        vreal c_max = V_LOAD(b->c_max + i);
+        vreal pad = V_MUL(slab, V_ADD(c_max, o_max));
+        vreal leaves = V_OR(
+            V_AND(V_GT(s, V_ADD(V_LOAD(b->h_hi + i), pad)), V_GE(dn, dpad)),
+            V_AND(V_LT(s, V_SUB(V_LOAD(b->h_lo + i), pad)),
+                  V_LE(dn, V_XOR(dpad, sign))));
+        /* misses_quad() */
+        vreal adn = V_ANDNOT(sign, dn);
+        vreal steep = V_GE(adn, dpad);
+        vreal t = V_DIV(V_SUB(V_LOAD(b->h_mid + i), s), dn);
+        vreal px = V_ADD(ox, V_MUL(t, dx)), py = V_ADD(oy, V_MUL(t, dy)),
+              pz = V_ADD(oz, V_MUL(t, dz));
+        vreal qx = V_SUB(px, V_LOAD(b->c0x + i)),
+              qy = V_SUB(py, V_LOAD(b->c0y + i)),
+              qz = V_SUB(pz, V_LOAD(b->c0z + i));
+        vreal ss = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->ax + i)),
+                               V_MUL(qy, V_LOAD(b->ay + i))),
+                         V_MUL(qz, V_LOAD(b->az + i)));
+        vreal tt = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->bx + i)),
+                               V_MUL(qy, V_LOAD(b->by + i))),
+                         V_MUL(qz, V_LOAD(b->bz + i)));
+        vreal A = V_ADD(c_max, o_max);
+        vreal p_max = V_MAX(V_ANDNOT(sign, px),
+                            V_MAX(V_ANDNOT(sign, py), V_ANDNOT(sign, pz)));
+        vreal G = V_DIV(g4, adn);
+        vreal dist = V_ADD(
+            V_MUL(G, V_ADD(V_LOAD(b->h_half + i),
+                           V_MUL(u64, V_ADD(A, V_MUL(V_ANDNOT(sign, t),
+                                                    d_max))))),
+            V_MUL(u32, V_ADD(A, p_max)));
+        vreal ms = V_MUL(V_LOAD(b->a1 + i), dist),
+              mt = V_MUL(V_LOAD(b->b1 + i), dist);
+        vreal outside = V_OR(
+            V_OR(V_LT(ss, V_XOR(ms, sign)), V_GT(ss, V_ADD(one, ms))),
+            V_OR(V_LT(tt, V_XOR(mt, sign)), V_GT(tt, V_ADD(one, mt))));
+        vreal misses = V_AND(steep, outside);
+        int rejected = V_MASK(misses) | (ahead ? V_MASK(leaves) : 0);
+        maybe |= (uint64_t)(~rejected & ((1 << VLANES) - 1)) << i;
     }
     /* the padding lanes past n */
     return b->n < 64 ? maybe & (((uint64_t)1 << b->n) - 1) : maybe;
 }
+#else
+uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
+                                  const ray_t *r, real tmin)
+{
+    return parallelogram_batch_cull_plain(b, r, tmin);
+}
+#endif
 
 bool parallelogram_intersect_prepared(const COBJECT *obj, int prim,
                                       const triangle_ray_t *pr, real tmin,

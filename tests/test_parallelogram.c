@@ -417,9 +417,10 @@ END_TEST
 
 START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
 {
-    /* Batches of 1 to 64 parallelograms (whole steps of the batch loop
-     * and padding lanes): for every ray, each bit of the batch's answer is
-     * the bit of a batch of that parallelogram alone, and where the batch
+    /* Batches of 1 to 64 parallelograms (whole vector steps and padding
+     * lanes): for every ray the batch answers as its plain loop, bit for
+     * bit (NaN and infinite rays too); each bit of the answer is the bit
+     * of a batch of that parallelogram alone, and where the batch
      * lets the ray through, the prepared test gives intersect()'s hit to
      * the last bit; where it does not, intersect() reports no hit. */
     pcg32_t g;
@@ -466,11 +467,35 @@ START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
             vec_sub(r.d, sm.p, r.o); /* at a point of one of them */
             if (j % 3 == 0)
                 geomcheck_random_dir(r.d, &g);
+            if (j % 13 == 0) /* lengths far from 1 */
+                vec_scale(r.d, r.d,
+                          ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 61) - 30));
+            if (j % 17 == 0) /* along an axis: n . d is 0 for some */
+                vec_set(r.d, 0, j % 2 ? 1 : -1, 0);
+            if (j % 17 == 1) { /* grazing: n . d tiny but not 0 */
+                int a = (int)pcg32_bounded(&g, 3);
+                vec_set(r.d, 0, 0, 0);
+                r.d[a] = j % 2 ? 1 : -1;
+                r.d[(a + 1) % 3] =
+                    ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 40));
+            }
             if (vec_length2(r.d) == 0)
                 continue;
             real tmin = j % 7 == 0 ? -(real)INFINITY : 0;
             uint64_t mask = parallelogram_batch_cull(all, &r, tmin);
             ck_assert(m == 64 || mask >> m == 0);
+            ck_assert(mask == parallelogram_batch_cull_plain(all, &r, tmin));
+            if (j % 19 == 0) { /* NaN and infinity: every lane as the plain
+                                  loop answers */
+                ray_t bad = r;
+                bad.o[j % 3] = j % 2 ? (real)NAN : (real)INFINITY;
+                ck_assert(parallelogram_batch_cull(all, &bad, 0) ==
+                          parallelogram_batch_cull_plain(all, &bad, 0));
+                bad = r;
+                bad.d[j % 3] = (real)NAN;
+                ck_assert(parallelogram_batch_cull(all, &bad, 0) ==
+                          parallelogram_batch_cull_plain(all, &bad, 0));
+            }
             for (int i = 0; i < m; i++, n++) {
                 uint64_t bit = (mask >> i) & 1;
                 ck_assert(bit == parallelogram_batch_cull(one[i], &r, tmin));
