@@ -63,33 +63,62 @@ typedef struct {
     double inv_w[3];    /* 1 / w */
     double max[3];      /* upper corner: min + res w */
     int res[3];         /* cells per axis */
-    uint32_t first;     /* its cells are cells[first .. first + ncells) */
+    int nb[3];          /* blocks of GRID_BLOCK^3 cells per axis: ceil(res /
+                           GRID_BLOCK); the last may reach past res */
+    uint32_t first;     /* cells of the nodes before it */
+    uint32_t bfirst;    /* its blocks are blocks[bfirst ..) */
     int depth;          /* 0 for the top level */
 } grid_node_t;
+
+/* Cells per axis of a block (macro-cell): a block's 4 x 4 x 4 cells have
+ * one bit each in a 64-bit word, so the walk tests a cell without touching
+ * memory and crosses a block with no cell in it in one step (grid.c). */
+#define GRID_BLOCK 4
 
 /* An item with this bit set is a child grid's node number; otherwise the
  * number of a primitive in the primset. */
 #define GRID_CHILD ((uint32_t)1 << 31)
 
-/* The grid: flat arrays, so a cell costs 4 bytes plus 4 per primitive in
- * it, and the whole structure is three allocations. */
+/* One block of GRID_BLOCK^3 cells: bit x + 4 y + 16 z of mask is set
+ * when the cell at (x, y, z) within the block holds something; the
+ * non-empty cells of all blocks are numbered in block order, then bit
+ * order, from base on: the k-th set bit of the block is cell base + k. */
+typedef struct {
+    uint64_t mask;
+    uint32_t base;
+    uint32_t unused; /* (16 bytes: one block never straddles a cache line) */
+} grid_block_t;
+
+/* The grid: flat arrays. An empty cell costs a bit, an empty block 16
+ * bytes (1/4 byte a cell); a non-empty cell 4 bytes plus 4 per item. */
 typedef struct {
     const primset_t *ps;  /* the primitives (borrowed) */
     grid_node_t *nodes;   /* nodes[0] is the top level */
     uint32_t nnodes;
-    uint32_t *cells;      /* cell c holds items[cells[c] .. cells[c+1]) */
-    uint32_t ncells;
+    grid_block_t *blocks; /* every node's blocks */
+    uint32_t nblocks;
+    uint32_t *cstart;     /* non-empty cell s holds items[cstart[s] ..
+                             cstart[s + 1]) */
+    uint32_t nfull;       /* non-empty cells */
     uint32_t *items;      /* primitive numbers, child markers last */
     uint32_t nitems;
-    uint64_t *occupied;   /* bit c: cell c is not empty. 1/32 of the size
-                             of cells, so it stays in cache where cells
-                             would not, and an empty cell costs one bit */
+    uint32_t ncells;      /* cells of every node, empty or not */
+    uint32_t *cells;      /* the top level's cells only, x fastest: cell c
+                             holds cells[c + 1] - cells[c] items (prefix
+                             sums, for callers that count; the walk does
+                             not read it, see grid_cell_items()) */
     double diag;          /* diagonal of the top level */
     /* statistics of the build */
     int depth;            /* deepest level */
     uint32_t max_items;   /* most primitives in one cell */
     uint32_t empty_cells;
 } grid_t;
+
+/* The items of cell c of node n (c = x + res_x (y + res_y z)):
+ * items[*begin .. *end), empty when the cell is. This function can't
+ * fail. */
+void grid_cell_items(const grid_t *g, uint32_t n, long c, uint32_t *begin,
+                     uint32_t *end);
 
 /* Build a grid over ps (whose bounds must still be there). Fails with
  * SVET_ERR_NOMEM, or SVET_ERR_UNSUPPORTED when the scene's extent does not

@@ -172,7 +172,9 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
     if (e0 == 0 || e1 == 0 || e2 == 0)
         return triangle_intersect_watertight(q, q + 3, q + 6, r, tmin, tmax,
                                              t, b);
-    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0))
+    /* | and & rather than || and &&: one branch, not six (the signs are
+     * as good as random, so each branch would be mispredicted often) */
+    if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0)))
         return false;
     real det = e0 + e1 + e2;
     if (det == 0 || !isfinite(det))

@@ -111,8 +111,10 @@ static void node_init(grid_node_t *nd, const double min[3],
             nd->w[a] = 1; /* cannot happen with pad > 0; no division by 0 */
         nd->inv_w[a] = 1 / nd->w[a];
         nd->max[a] = max[a];
+        nd->nb[a] = (res[a] + GRID_BLOCK - 1) / GRID_BLOCK;
     }
     nd->first = 0;
+    nd->bfirst = 0;
     nd->depth = depth;
 }
 
@@ -124,7 +126,9 @@ static long node_cells(const grid_node_t *nd)
 /* Cell coordinate of x on axis a, clamped into the grid. */
 static int cell_of(const grid_node_t *nd, int a, double x)
 {
-    double c = floor((x - nd->min[a]) * nd->inv_w[a]);
+    /* floor(c) by the conversion, which truncates: the same for c >= 0
+     * (plain x86-64 has no floor instruction; libm's is a call) */
+    double c = (x - nd->min[a]) * nd->inv_w[a];
     if (!(c >= 0))
         return 0;
     if (c >= nd->res[a] - 1)
@@ -591,57 +595,130 @@ static bool refine(build_t *B, uint32_t ni, uint32_t parent_n)
 
 /* --- flattening and statistics -------------------------------------------- */
 
+static long node_blocks(const grid_node_t *nd)
+{
+    return (long)nd->nb[0] * nd->nb[1] * nd->nb[2];
+}
+
+/* The number of bits set in x (a portable popcount: the build targets
+ * plain x86-64, which has no such instruction). */
+static inline int bits_set(uint64_t x)
+{
+    x = x - ((x >> 1) & UINT64_C(0x5555555555555555));
+    x = (x & UINT64_C(0x3333333333333333)) +
+        ((x >> 2) & UINT64_C(0x3333333333333333));
+    x = (x + (x >> 4)) & UINT64_C(0x0f0f0f0f0f0f0f0f);
+    return (int)((x * UINT64_C(0x0101010101010101)) >> 56);
+}
+
+/* The non-empty cell of bit `bit` (set) of block b. */
+static inline uint32_t full_cell(const grid_block_t *b, int bit)
+{
+    return b->base + (uint32_t)bits_set(b->mask &
+                                        ((UINT64_C(1) << bit) - 1));
+}
+
 static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
 {
-    uint64_t cells = 0, items = 0;
+    uint64_t cells = 0, items = 0, blocks = 0, full = 0;
     for (uint32_t i = 0; i < B->nnodes; i++) {
-        long nc = node_cells(&B->nodes[i].node);
+        const bnode_t *bn = &B->nodes[i];
+        long nc = node_cells(&bn->node);
         cells += (uint64_t)nc;
-        items += B->nodes[i].start[nc];
+        items += bn->start[nc];
+        blocks += (uint64_t)node_blocks(&bn->node);
+        for (long c = 0; c < nc; c++)
+            full += bn->start[c + 1] > bn->start[c];
     }
-    if (cells + 1 > UINT32_MAX || items > GRID_CHILD - 1)
+    if (cells + 1 > UINT32_MAX || items > GRID_CHILD - 1 ||
+        blocks > UINT32_MAX)
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "grid: %llu cells, %llu items: too many",
                               (unsigned long long)cells,
                               (unsigned long long)items);
+    long ntop = node_cells(&B->nodes[0].node);
     g->nodes = malloc(B->nnodes * sizeof *g->nodes);
-    g->cells = malloc((size_t)(cells + 1) * sizeof *g->cells);
+    g->blocks = calloc((size_t)(blocks ? blocks : 1), sizeof *g->blocks);
+    g->cstart = malloc((size_t)(full + 1) * sizeof *g->cstart);
     g->items = malloc((size_t)(items ? items : 1) * sizeof *g->items);
-    g->occupied = calloc((size_t)(cells / 64 + 1), sizeof *g->occupied);
-    if (!g->nodes || !g->cells || !g->items || !g->occupied)
+    g->cells = malloc((size_t)(ntop + 1) * sizeof *g->cells);
+    if (!g->nodes || !g->blocks || !g->cstart || !g->items || !g->cells)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
-    uint32_t c0 = 0, i0 = 0;
+    /* the top level's counts, x fastest */
+    memcpy(g->cells, B->nodes[0].start, (size_t)(ntop + 1) * sizeof *g->cells);
+    uint32_t c0 = 0, i0 = 0, b0 = 0, s0 = 0;
     g->depth = 0;
     g->max_items = 0;
     g->empty_cells = 0;
     for (uint32_t i = 0; i < B->nnodes; i++) {
-        bnode_t *bn = &B->nodes[i];
-        long nc = node_cells(&bn->node);
-        g->nodes[i] = bn->node;
+        const bnode_t *bn = &B->nodes[i];
+        const grid_node_t *nd = &bn->node;
+        g->nodes[i] = *nd;
         g->nodes[i].first = c0;
-        for (long c = 0; c < nc; c++) {
-            uint32_t b = bn->start[c], e = bn->start[c + 1];
-            g->cells[c0 + c] = i0 + b;
-            uint32_t prims = 0;
-            for (uint32_t k = b; k < e; k++)
-                prims += !(bn->items[k] & GRID_CHILD);
-            g->max_items = prims > g->max_items ? prims : g->max_items;
-            g->empty_cells += b == e;
-            if (b != e)
-                g->occupied[(c0 + c) >> 6] |= UINT64_C(1) << ((c0 + c) & 63);
+        g->nodes[i].bfirst = b0;
+        /* block by block, bit by bit: the order of grid_block_t */
+        long nbk = node_blocks(nd);
+        for (long k = 0; k < nbk; k++) {
+            int bxyz[3] = { (int)(k % nd->nb[0]),
+                            (int)(k / nd->nb[0] % nd->nb[1]),
+                            (int)(k / ((long)nd->nb[0] * nd->nb[1])) };
+            grid_block_t *blk = &g->blocks[b0 + k];
+            blk->base = s0;
+            for (int bit = 0; bit < GRID_BLOCK * GRID_BLOCK * GRID_BLOCK;
+                 bit++) {
+                int x = bxyz[0] * GRID_BLOCK + bit % GRID_BLOCK;
+                int y = bxyz[1] * GRID_BLOCK + bit / GRID_BLOCK % GRID_BLOCK;
+                int z = bxyz[2] * GRID_BLOCK +
+                        bit / (GRID_BLOCK * GRID_BLOCK);
+                if (x >= nd->res[0] || y >= nd->res[1] || z >= nd->res[2])
+                    continue;
+                long c = x + nd->res[0] * (y + (long)nd->res[1] * z);
+                uint32_t b = bn->start[c], e = bn->start[c + 1];
+                g->empty_cells += b == e;
+                if (b == e)
+                    continue;
+                uint32_t prims = 0;
+                for (uint32_t m = b; m < e; m++)
+                    prims += !(bn->items[m] & GRID_CHILD);
+                g->max_items = prims > g->max_items ? prims : g->max_items;
+                blk->mask |= UINT64_C(1) << bit;
+                g->cstart[s0++] = i0;
+                memcpy(g->items + i0, bn->items + b, (e - b) * sizeof *g->items);
+                i0 += e - b;
+            }
         }
-        memcpy(g->items + i0, bn->items,
-               bn->start[nc] * sizeof *g->items);
-        c0 += (uint32_t)nc;
-        i0 += bn->start[nc];
-        if (bn->node.depth > g->depth)
-            g->depth = bn->node.depth;
+        c0 += (uint32_t)node_cells(nd);
+        b0 += (uint32_t)nbk;
+        if (nd->depth > g->depth)
+            g->depth = nd->depth;
     }
-    g->cells[c0] = i0;
+    g->cstart[s0] = i0;
     g->nnodes = B->nnodes;
     g->ncells = c0;
     g->nitems = i0;
+    g->nblocks = b0;
+    g->nfull = s0;
     return SVET_OK;
+}
+
+void grid_cell_items(const grid_t *g, uint32_t n, long c, uint32_t *begin,
+                     uint32_t *end)
+{
+    const grid_node_t *nd = &g->nodes[n];
+    int x = (int)(c % nd->res[0]), y = (int)(c / nd->res[0] % nd->res[1]);
+    int z = (int)(c / ((long)nd->res[0] * nd->res[1]));
+    int bit = x % GRID_BLOCK + GRID_BLOCK * (y % GRID_BLOCK) +
+              GRID_BLOCK * GRID_BLOCK * (z % GRID_BLOCK);
+    const grid_block_t *b =
+        &g->blocks[nd->bfirst + x / GRID_BLOCK +
+                   nd->nb[0] * (y / GRID_BLOCK +
+                                (long)nd->nb[1] * (z / GRID_BLOCK))];
+    *begin = *end = 0;
+    if (b->mask >> bit & 1) {
+        uint32_t s = full_cell(b, bit);
+        *begin = g->cstart[s];
+        *end = g->cstart[s + 1];
+    }
 }
 
 svet_status grid_build(grid_t **out, const primset_t *ps,
@@ -716,12 +793,15 @@ svet_status grid_build(grid_t **out, const primset_t *ps,
 
 size_t grid_bytes(const grid_t *g)
 {
-    if (!g)
-        return 0;
+    if (!g || !g->nodes)
+        return g ? sizeof *g : 0;
+    const grid_node_t *top = &g->nodes[0];
+    long ntop = (long)top->res[0] * top->res[1] * top->res[2];
     return sizeof *g + g->nnodes * sizeof *g->nodes +
-           ((size_t)g->ncells + 1) * sizeof *g->cells +
+           (size_t)g->nblocks * sizeof *g->blocks +
+           ((size_t)g->nfull + 1) * sizeof *g->cstart +
            (size_t)g->nitems * sizeof *g->items +
-           ((size_t)g->ncells / 64 + 1) * sizeof *g->occupied;
+           ((size_t)ntop + 1) * sizeof *g->cells;
 }
 
 void grid_free(grid_t *g)
@@ -731,18 +811,21 @@ void grid_free(grid_t *g)
     free(g->nodes);
     free(g->cells);
     free(g->items);
-    free(g->occupied);
+    free(g->blocks);
+    free(g->cstart);
     free(g);
 }
 
 /* --- the walk (Amanatides & Woo 1987) ------------------------------------- */
 
+/* The walk's slack, 256 u (see the top of the file). */
+#define WALK_SLACK (256 * (double)REAL_UNIT_ROUNDOFF)
+
 /* The ray in double, and the walk's margins (see the top of the file). */
 typedef struct {
     double o[3], d[3], inv_d[3];
-    double t0, t1;           /* the query interval widened by the slack */
-    double stop_scale;       /* stop when best t < t_exit stop_scale - */
-    double stop_bias;        /* stop_bias */
+    double t0, t1;  /* the query interval widened by the slack */
+    double bias;    /* WALK_SLACK diag / |d| */
 } walk_t;
 
 /* The part [*t0, *t1] of [lo, hi] (ray interval) inside the box. */
@@ -779,98 +862,285 @@ static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
         w->inv_d[a] = 1 / w->d[a];
         len2 += w->d[a] * w->d[a];
     }
-    const double s = 256 * (double)REAL_UNIT_ROUNDOFF;
-    double bias = s * g->diag / sqrt(len2);
-    w->stop_scale = 1 - s;
-    w->stop_bias = bias;
+    w->bias = WALK_SLACK * g->diag / sqrt(len2);
     double tmin = (double)q->tmin, tmax = (double)q->tmax;
-    w->t0 = tmin - s * fabs(tmin) - bias;
-    w->t1 = tmax + s * fabs(tmax) + bias;
+    w->t0 = tmin - WALK_SLACK * fabs(tmin) - w->bias;
+    w->t1 = tmax + WALK_SLACK * fabs(tmax) + w->bias;
+}
+
+/* Where the walk may stop once the nearest hit so far is at tmax: a cell
+ * whose exit t_exit lies beyond it has t_exit (1 - WALK_SLACK) - bias >
+ * tmax, the stopping rule at the top of the file (x + 2 s |x| >=
+ * x / (1 - s) for either sign of x = tmax + bias; the double rounding of
+ * this line is far below s). Never beyond t1. */
+static double walk_end(const walk_t *w, const primset_query_t *q, double t1)
+{
+    if (!q->found)
+        return t1;
+    double x = (double)q->tmax + w->bias;
+    x += 2 * WALK_SLACK * fabs(x);
+    return x < t1 ? x : t1;
+}
+
+/* The t at which the ray crosses plane p (x_a = min_a + p w_a) of nd:
+ * every crossing the walk compares comes from this one formula, the
+ * planes between cells and those between blocks alike. */
+static double plane_t(const grid_node_t *nd, const walk_t *w, int a, long p)
+{
+    return (nd->min[a] + (double)p * nd->w[a] - w->o[a]) * w->inv_d[a];
+}
+
+/* The state of a walk through one node (see walk()): per axis, t the t
+ * of the next cell plane crossed, dt the t between two cell planes, lc
+ * the cells left ahead in the current block, lb the blocks left ahead in
+ * the grid, sg the direction (+1, -1, or 0 for an axis the ray does not
+ * move along: d = 0, or 1/d not finite), ix the cell of an axis with sg 0;
+ * blk and bit the current block and the cell's bit in its word; steps
+ * the cells and empty blocks visited. */
+typedef struct {
+    double t[3], dt[3];
+    int lc[3], lb[3], sg[3], ix[3];
+    long blk;
+    int bit;
+    long steps;
+} dda_t;
+
+static const int bit_stride[3] = { 1, GRID_BLOCK, GRID_BLOCK * GRID_BLOCK };
+
+/* The last cell on axis a of the block whose first is lo: the grid's
+ * last blocks may reach past res, and the walk never steps into a cell
+ * that is not there. */
+static long block_last(const grid_node_t *nd, int a, long lo)
+{
+    long last = lo + GRID_BLOCK - 1;
+    return last < nd->res[a] - 1 ? last : nd->res[a] - 1;
+}
+
+/* Cross empty blocks (the current one is empty) until one holds
+ * something, and set the walk on the cell of that block it enters first;
+ * returns that block, or NULL when the walk is over (past tend, or out of
+ * the grid). tb is the t of the next plane between blocks on each axis.
+ * See walk() for why the cell entered is right. */
+static const grid_block_t *skip_empty(const grid_t *g,
+                                      const grid_node_t *nd, const walk_t *w,
+                                      dda_t *s, double tend)
+{
+    const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
+    const grid_block_t *blocks = g->blocks + nd->bfirst;
+    double tb[3];
+    long pb[3];
+    for (int a = 0; a < 3; a++) {
+        pb[a] = s->sg[a] > 0 ? (long)GRID_BLOCK * (nd->nb[a] - s->lb[a])
+                             : (long)GRID_BLOCK * s->lb[a];
+        tb[a] = s->sg[a] ? plane_t(nd, w, a, pb[a]) : (double)INFINITY;
+    }
+    int a;
+    double tin;
+    const grid_block_t *bk;
+    do {
+        int bx = (tb[0] < tb[1]) & (tb[0] < tb[2]);
+        a = 2 - 2 * bx - (!bx & (tb[1] < tb[2]));
+        tin = tb[a];
+        if (!(tin <= tend) || s->lb[a] == 0)
+            return NULL;
+        s->steps++;
+        s->lb[a]--;
+        s->lc[a] = s->sg[a] > 0
+                       ? (int)(block_last(nd, a, pb[a]) - pb[a])
+                       : GRID_BLOCK - 1;
+        s->blk += s->sg[a] * bstride[a];
+        pb[a] += s->sg[a] * GRID_BLOCK;
+        tb[a] = plane_t(nd, w, a, pb[a]);
+        bk = &blocks[s->blk];
+    } while (bk->mask == 0);
+    /* Enter the block at tin through its face on axis a. */
+    s->bit = 0;
+    for (int b = 0; b < 3; b++) {
+        int sg = s->sg[b];
+        long lo = GRID_BLOCK * (sg > 0   ? nd->nb[b] - 1 - s->lb[b]
+                                : sg < 0 ? s->lb[b]
+                                         : s->ix[b] / GRID_BLOCK);
+        long last = block_last(nd, b, lo);
+        if (b != a && sg != 0) {
+            /* the cell of the entry point, clamped into the block (floor
+             * by truncation, as in cell_of()), then no earlier than lc */
+            double u = (w->o[b] + tin * w->d[b] - nd->min[b]) * nd->inv_w[b];
+            long c = !(u >= (double)lo)    ? lo
+                     : u >= (double)last ? last
+                                         : (long)u;
+            int left = (int)(sg > 0 ? last - c : c - lo);
+            if (left < s->lc[b])
+                s->lc[b] = left;
+        }
+        long c = sg > 0 ? last - s->lc[b] : sg < 0 ? lo + s->lc[b] : s->ix[b];
+        s->bit += (int)(c - lo) * bit_stride[b];
+        if (sg)
+            s->t[b] = plane_t(nd, w, b, sg > 0 ? c + 1 : c);
+    }
+    return bk;
 }
 
 /* Walk node ni over [t0, t1] (inside its box). Returns true when a
  * shadow query found a hit.
  *
- * The 3D-DDA of Amanatides & Woo 1987: tx is the t at which the ray
- * crosses the next cell boundary on x, dtx the t between two boundaries,
- * lx the steps left before it leaves the grid on x (and so on for y, z);
- * each step goes to the nearest crossing. t grows by adding dt, in
- * double: after n steps its rounding error is below n 2^-53 of t, far
- * inside the cells' padding (2^-20 of the scene) for any grid of at most
- * 2^16 cells a side. The three axes live in scalars and each step picks
- * its axis with selects instead of branches (Amanatides & Woo do it with
- * a table): the state stays in registers and random directions cause no
- * mispredicted jumps. */
+ * The 3D-DDA of Amanatides & Woo 1987 over the cells, with the empty
+ * space skipped block by block (the macro-regions of Devillers, "The
+ * macro-regions: an efficient space subdivision structure for ray
+ * tracing", Eurographics 1989, here fixed blocks of 4^3 cells). Inside a
+ * block that holds something, each step goes to the nearest cell
+ * crossing and a cell is tested against the block's 64-bit word in a
+ * register; t grows by adding dt, in double: after n steps its rounding
+ * error is below n 2^-53 of t, far inside the cells' padding (2^-20 of
+ * the scene). The step picks its axis with arithmetic instead of
+ * branches (Amanatides & Woo do it with a table): which axis comes next is
+ * as good as random, and a mispredicted branch costs more than the step.
+ * Stepping out of the last cell of a block loads the next block's word;
+ * when it is 0, skip_empty() goes block by block (the same DDA over the
+ * planes between blocks) until a block holds something.
+ *
+ * Why skipping never jumps past a cell it should visit. The planes between
+ * blocks are cell planes, and every crossing t comes from plane_t(), so
+ * the block DDA enters a block at the t the cell DDA would (to a few ulps).
+ * The cell entered is, on the axis crossed, the block's first; on each
+ * other axis the cell of the entry point o + t d, found by floor and then
+ * clamped into the block and to no earlier than the cell the walk was in
+ * on that axis: by exact arithmetic the point lies there (the axis crossed
+ * was the nearest crossing, and t only grows), so the clamp moves it only
+ * when rounding put it across a boundary, by a few ulps. A primitive hit
+ * there lies within its padding (2^-20 of the scene, grid.c's top) of the
+ * cells on both sides, so it is in a cell the walk visits. The clamps also
+ * make every step advance on one axis and never go back on another: the
+ * walk ends after at most res_x + res_y + res_z steps, whatever rounding
+ * does. An axis the ray does not move along has lc = lb = 0 and t = inf:
+ * it is never chosen before another, and choosing it ends the walk. */
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow)
 {
     const grid_node_t *nd = &g->nodes[ni];
     const primset_t *ps = g->ps;
-    const uint32_t *cells = g->cells, *items = g->items;
-    const uint64_t *occ = g->occupied;
-    int ix[3], left[3];
-    long delta[3];
-    long stride[3] = { 1, nd->res[0], (long)nd->res[0] * nd->res[1] };
-    double tn[3], dt[3];
-    long cell = nd->first;
+    const uint32_t *cstart = g->cstart, *items = g->items;
+    const grid_block_t *blocks = g->blocks + nd->bfirst;
+    const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
+    dda_t s;
+    s.blk = 0;
+    s.bit = 0;
+    s.steps = 1;
+    int dbit[3];
     for (int a = 0; a < 3; a++) {
-        ix[a] = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
-        cell += ix[a] * stride[a];
-        if (w->d[a] > 0) {
-            left[a] = nd->res[a] - 1 - ix[a];
-            delta[a] = stride[a];
-            tn[a] = (nd->min[a] + (ix[a] + 1) * nd->w[a] - w->o[a]) *
-                    w->inv_d[a];
-            dt[a] = nd->w[a] * w->inv_d[a];
-        } else if (w->d[a] < 0) {
-            left[a] = ix[a];
-            delta[a] = -stride[a];
-            tn[a] = (nd->min[a] + ix[a] * nd->w[a] - w->o[a]) * w->inv_d[a];
-            dt[a] = -nd->w[a] * w->inv_d[a];
+        int ix = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
+        int sg = !isfinite(w->inv_d[a]) ? 0 : w->d[a] > 0 ? 1
+                                           : w->d[a] < 0 ? -1 : 0;
+        int loc = ix % GRID_BLOCK, bl = ix / GRID_BLOCK;
+        s.ix[a] = ix;
+        s.sg[a] = sg;
+        if (sg > 0) {
+            s.lc[a] = (int)(block_last(nd, a, (long)bl * GRID_BLOCK) - ix);
+            s.lb[a] = nd->nb[a] - 1 - bl;
+            s.t[a] = plane_t(nd, w, a, ix + 1);
+            s.dt[a] = nd->w[a] * w->inv_d[a];
+        } else if (sg < 0) {
+            s.lc[a] = loc;
+            s.lb[a] = bl;
+            s.t[a] = plane_t(nd, w, a, ix);
+            s.dt[a] = -nd->w[a] * w->inv_d[a];
         } else {
-            left[a] = 0; /* never chosen: tn is infinite */
-            delta[a] = 0;
-            tn[a] = (double)INFINITY;
-            dt[a] = 0;
+            s.lc[a] = s.lb[a] = 0;
+            s.t[a] = (double)INFINITY;
+            s.dt[a] = 0;
         }
+        dbit[a] = sg * bit_stride[a];
+        s.blk += bl * bstride[a];
+        s.bit += loc * bit_stride[a];
     }
-    double tx = tn[0], ty = tn[1], tz = tn[2];
-    const double dtx = dt[0], dty = dt[1], dtz = dt[2];
-    const long cx = delta[0], cy = delta[1], cz = delta[2];
-    int lx = left[0], ly = left[1], lz = left[2];
+    const double dtx = s.dt[0], dty = s.dt[1], dtz = s.dt[2];
+    const int dbx = dbit[0], dby = dbit[1], dbz = dbit[2];
+    double tend = walk_end(w, q, t1);
+    bool hit = false;
+    const grid_block_t *bk = &blocks[s.blk];
+    if (bk->mask == 0 && !(bk = skip_empty(g, nd, w, &s, tend)))
+        goto done;
     for (;;) {
-        q->cells++;
-        if (occ[cell >> 6] >> (cell & 63) & 1) {
-            for (uint32_t k = cells[cell], e = cells[cell + 1]; k < e; k++) {
-                uint32_t it = items[k];
-                if (it & GRID_CHILD) {
-                    const grid_node_t *ch = &g->nodes[it & ~GRID_CHILD];
-                    double c0, c1;
-                    if (slab(w, ch->min, ch->max, w->t0, w->t1, &c0, &c1) &&
-                        walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow))
-                        return true;
-                } else if (primset_test(ps, q, it) && shadow) {
-                    return true;
+        /* the hot state in scalars: the compiler keeps them in registers */
+        double tx = s.t[0], ty = s.t[1], tz = s.t[2];
+        int lx = s.lc[0], ly = s.lc[1], lz = s.lc[2];
+        const uint64_t mask = bk->mask;
+        long steps = s.steps;
+        int bit = s.bit;
+        int bx, by, bz;
+        for (;;) {
+            if (mask >> bit & 1) {
+                uint32_t f = full_cell(bk, bit);
+                for (uint32_t k = cstart[f], e = cstart[f + 1]; k < e; k++) {
+                    uint32_t it = items[k];
+                    if (it & GRID_CHILD) {
+                        const grid_node_t *ch = &g->nodes[it & ~GRID_CHILD];
+                        double c0, c1;
+                        if (slab(w, ch->min, ch->max, w->t0, w->t1, &c0,
+                                 &c1) &&
+                            walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow)) {
+                            s.steps = steps;
+                            hit = true;
+                            goto done;
+                        }
+                    } else if (primset_test(ps, q, it) && shadow) {
+                        s.steps = steps;
+                        hit = true;
+                        goto done;
+                    }
                 }
+                tend = walk_end(w, q, t1);
             }
+            /* the axis of the nearest crossing (one of bx, by, bz is 1);
+             * past tend (the query's end or the stopping rule) the walk is
+             * over */
+            bx = (tx < ty) & (tx < tz);
+            by = !bx & (ty < tz);
+            bz = !bx & !by;
+            double tmn = tx < ty ? tx : ty;
+            double texit = tmn < tz ? tmn : tz;
+            if (!(texit <= tend)) {
+                s.steps = steps;
+                goto done;
+            }
+            if ((bx & (lx == 0)) | (by & (ly == 0)) | (bz & (lz == 0)))
+                break; /* out of the block */
+            steps++;
+            lx -= bx;
+            ly -= by;
+            lz -= bz;
+            bit += (-bx & dbx) + (-by & dby) + (-bz & dbz);
+            tx += (double)bx * dtx;
+            ty += (double)by * dty;
+            tz += (double)bz * dtz;
         }
-        /* the axis of the nearest crossing */
-        bool bx = tx < ty && tx < tz, by = !bx && ty < tz, bz = !bx && !by;
-        double texit = bx ? tx : (by ? ty : tz);
-        /* the nearest hit lies before this cell's exit, with margin */
-        if (q->found && (double)q->tmax < texit * w->stop_scale - w->stop_bias)
-            return false;
-        if (!(texit <= t1) || isinf(texit) ||
-            ((bx & (lx == 0)) | (by & (ly == 0)) | (bz & (lz == 0))))
-            return false;
-        lx -= bx;
-        ly -= by;
-        lz -= bz;
-        cell += bx ? cx : (by ? cy : cz);
-        tx = bx ? tx + dtx : tx;
-        ty = by ? ty + dty : ty;
-        tz = bz ? tz + dtz : tz;
+        /* out of the block, into the next one or out of the grid */
+        int a = by + 2 * bz;
+        s.t[0] = tx;
+        s.t[1] = ty;
+        s.t[2] = tz;
+        s.lc[0] = lx;
+        s.lc[1] = ly;
+        s.lc[2] = lz;
+        s.steps = steps;
+        if (s.lb[a] == 0)
+            goto done;
+        s.steps++;
+        s.lb[a]--;
+        /* the first cell of the next block: lo below */
+        long lo = (s.sg[a] > 0 ? (long)nd->nb[a] - 1 - s.lb[a] : s.lb[a]) *
+                  GRID_BLOCK;
+        s.lc[a] = s.sg[a] > 0 ? (int)(block_last(nd, a, lo) - lo)
+                              : GRID_BLOCK - 1;
+        s.bit = bit - (GRID_BLOCK - 1) * dbit[a];
+        s.blk += s.sg[a] * bstride[a];
+        s.t[a] += s.dt[a];
+        bk = &blocks[s.blk];
+        if (bk->mask == 0 && !(bk = skip_empty(g, nd, w, &s, tend)))
+            goto done;
     }
+done:
+    q->cells += s.steps;
+    return hit;
 }
 
 static bool query(const grid_t *g, primset_query_t *q, bool shadow)

@@ -137,9 +137,13 @@ START_TEST(every_triangle_is_in_every_cell_it_overlaps)
         for (int z = 0; z < nd->res[2]; z++)
             for (int y = 0; y < nd->res[1]; y++)
                 for (int x = 0; x < nd->res[0]; x++) {
-                    long c = nd->first + x + nd->res[0] * (y + (long)nd->res[1] * z);
+                    long c = x + nd->res[0] * (y + (long)nd->res[1] * z);
                     memset(in, 0, ps.ntri);
-                    for (uint32_t i = g->cells[c]; i < g->cells[c + 1]; i++)
+                    uint32_t cb, ce;
+                    grid_cell_items(g, 0, c, &cb, &ce);
+                    /* the top level's counts agree */
+                    ck_assert_uint_eq(ce - cb, g->cells[c + 1] - g->cells[c]);
+                    for (uint32_t i = cb; i < ce; i++)
                         in[g->items[i]] = 1;
                     int ix[3] = { x, y, z };
                     double lo[3], hi[3];
@@ -171,10 +175,16 @@ START_TEST(every_triangle_is_in_every_cell_it_overlaps)
 }
 END_TEST
 
-/* Rays whose cells are known: along a row of an n^3 grid, n cells; along
- * a diagonal slightly off the corners, 3n - 2 (each step crosses one
- * plane: n - 1 per axis, plus the first cell). Nothing is hit: a tiny
- * mesh sits in a corner, so the walk goes to the end. */
+/* Rays whose steps are known. The grid is 5^3 cells, so 2^3 blocks of
+ * 4^3 (the last ones one cell thick); tiny meshes sit in the corner cells
+ * (0,0,0) and (4,4,4), so only blocks (0,0,0) and (1,1,1) hold anything.
+ * The walk counts every cell of a block that holds something and every
+ * empty block once. Each row below crosses 4 cells of block (0,0,0) and
+ * one empty block: 5. The diagonal slightly off the corners crosses 10
+ * cells of block (0,0,0) (3 * 4 - 2: each step crosses one plane), then
+ * the empty blocks (0,1,0) and (0,1,1) (y, z and x cross in that order),
+ * then cell (4,4,4) of block (1,1,1): 13. Nothing is hit, so the walk goes
+ * to the end. */
 START_TEST(the_walk_visits_the_cells_a_ray_crosses)
 {
     /* two tiny triangles at opposite corners of [0, 10]^3 */
@@ -256,15 +266,17 @@ START_TEST(a_crowded_cell_gets_a_child_grid)
     int *refd = calloc(h->nnodes, sizeof *refd);
     for (uint32_t n = 0; n < h->nnodes; n++) {
         const grid_node_t *nd = &h->nodes[n];
-        for (long c = 0; c < cells_of(nd); c++)
-            for (uint32_t k = h->cells[nd->first + c];
-                 k < h->cells[nd->first + c + 1]; k++)
+        for (long c = 0; c < cells_of(nd); c++) {
+            uint32_t cb, ce;
+            grid_cell_items(h, n, c, &cb, &ce);
+            for (uint32_t k = cb; k < ce; k++)
                 if (h->items[k] & GRID_CHILD) {
                     uint32_t ch = h->items[k] & ~GRID_CHILD;
                     ck_assert_uint_lt(ch, h->nnodes);
                     ck_assert_int_eq(h->nodes[ch].depth, nd->depth + 1);
                     refd[ch]++;
                 }
+        }
     }
     for (uint32_t n = 1; n < h->nnodes; n++)
         ck_assert_int_eq(refd[n], 1);
