@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "shape.h"
+#include "simd.h"
 
 /* What the early rejections below read of a parallelogram, side by side:
  * in the shape, and copied into a batch for brute force. */
@@ -431,54 +432,11 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
     return maybe;
 }
 
-#ifdef __SSE2__
-/* rejects() on a vector of parallelograms at once with SSE2: 4 floats or
- * 2 doubles per step. Every operation is the IEEE operation rejects()
- * makes, on the same operands in the same order (no fused multiply-add:
- * SSE2 has none), so each lane gets exactly the bits of the plain loop;
- * max is the instruction whose answer is a > b ? a : b, real_max's, NaN
- * included. tests/test_parallelogram.c compares the two. */
-#include <emmintrin.h>
-#ifdef SVET_DOUBLE
-typedef __m128d vreal;
-#define VLANES 2
-#define V_SET1 _mm_set1_pd
-#define V_LOAD _mm_loadu_pd
-#define V_ADD _mm_add_pd
-#define V_SUB _mm_sub_pd
-#define V_MUL _mm_mul_pd
-#define V_DIV _mm_div_pd
-#define V_MAX _mm_max_pd
-#define V_AND _mm_and_pd
-#define V_ANDNOT _mm_andnot_pd
-#define V_OR _mm_or_pd
-#define V_XOR _mm_xor_pd
-#define V_GT _mm_cmpgt_pd
-#define V_GE _mm_cmpge_pd
-#define V_LT _mm_cmplt_pd
-#define V_LE _mm_cmple_pd
-#define V_MASK _mm_movemask_pd
-#else
-typedef __m128 vreal;
-#define VLANES 4
-#define V_SET1 _mm_set1_ps
-#define V_LOAD _mm_loadu_ps
-#define V_ADD _mm_add_ps
-#define V_SUB _mm_sub_ps
-#define V_MUL _mm_mul_ps
-#define V_DIV _mm_div_ps
-#define V_MAX _mm_max_ps
-#define V_AND _mm_and_ps
-#define V_ANDNOT _mm_andnot_ps
-#define V_OR _mm_or_ps
-#define V_XOR _mm_xor_ps
-#define V_GT _mm_cmpgt_ps
-#define V_GE _mm_cmpge_ps
-#define V_LT _mm_cmplt_ps
-#define V_LE _mm_cmple_ps
-#define V_MASK _mm_movemask_ps
-#endif
-
+#ifdef SIMD_REAL
+/* rejects() on a vector of parallelograms at once (simd.h): every
+ * operation is the IEEE operation rejects() makes, on the same operands in
+ * the same order, so each lane gets exactly the bits of the plain loop.
+ * tests/test_parallelogram.c compares the two. */
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
                                   const ray_t *r, real tmin)
 {
