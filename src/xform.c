@@ -217,14 +217,21 @@ svet_status xform_from_matrix(const real m[12], xform_t *out,
     return SVET_OK;
 }
 
+/* One row of apply(): m_i0 p_x + m_i1 p_y + m_i2 p_z + (m_i3 or 0). */
+static inline real row(const real *m, int i, const VECTOR3 p, bool point)
+{
+    return AT(m, i, 0) * p[X] + AT(m, i, 1) * p[Y] + AT(m, i, 2) * p[Z] +
+           (point ? AT(m, i, 3) : 0);
+}
+
+/* m p for a point, or its linear part for a vector; the rows written
+ * out, which every ray that meets a transformed object makes twice */
 static inline void apply(const real *m, VECTOR3 out, const VECTOR3 p,
                          bool point)
 {
-    real r[3];
-    for (int i = 0; i < 3; i++)
-        r[i] = AT(m, i, 0) * p[X] + AT(m, i, 1) * p[Y] + AT(m, i, 2) * p[Z] +
-               (point ? AT(m, i, 3) : 0);
-    vec_set(out, r[0], r[1], r[2]);
+    real r0 = row(m, 0, p, point), r1 = row(m, 1, p, point),
+         r2 = row(m, 2, p, point);
+    vec_set(out, r0, r1, r2);
 }
 
 void xform_point(const xform_t *x, VECTOR3 out, const VECTOR3 p)
