@@ -919,40 +919,65 @@ static long block_last(const grid_node_t *nd, int a, long lo)
 /* Cross empty blocks (the current one is empty) until one holds
  * something, and set the walk on the cell of that block it enters first;
  * returns that block, or NULL when the walk is over (past tend, or out of
- * the grid). tb is the t of the next plane between blocks on each axis.
- * See walk() for why the cell entered is right. */
+ * the grid). tb is the t of the next plane between blocks on each axis,
+ * from plane_t() and then by steps of GRID_BLOCK dt, as the cells' t
+ * (GRID_BLOCK dt is exact: a power of two times dt); the axis is picked
+ * without branches, as in walk(). See walk() for why the cell entered is
+ * right. */
 static const grid_block_t *skip_empty(const grid_t *g,
                                       const grid_node_t *nd, const walk_t *w,
                                       dda_t *s, double tend)
 {
-    const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
     const grid_block_t *blocks = g->blocks + nd->bfirst;
-    double tb[3];
-    long pb[3];
+    double tb[3], db[3];
+    long dblk[3];
+    const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
     for (int a = 0; a < 3; a++) {
-        pb[a] = s->sg[a] > 0 ? (long)GRID_BLOCK * (nd->nb[a] - s->lb[a])
-                             : (long)GRID_BLOCK * s->lb[a];
-        tb[a] = s->sg[a] ? plane_t(nd, w, a, pb[a]) : (double)INFINITY;
+        long pb = s->sg[a] > 0 ? (long)GRID_BLOCK * (nd->nb[a] - s->lb[a])
+                               : (long)GRID_BLOCK * s->lb[a];
+        tb[a] = s->sg[a] ? plane_t(nd, w, a, pb) : (double)INFINITY;
+        db[a] = GRID_BLOCK * s->dt[a];
+        dblk[a] = s->sg[a] * bstride[a];
     }
-    int a;
+    double tx = tb[0], ty = tb[1], tz = tb[2];
+    int lx = s->lb[0], ly = s->lb[1], lz = s->lb[2];
+    int mx = 0, my = 0, mz = 0; /* the axes stepped on */
+    int bx, by, bz;
+    long blk = s->blk, steps = s->steps;
     double tin;
     const grid_block_t *bk;
     do {
-        int bx = (tb[0] < tb[1]) & (tb[0] < tb[2]);
-        a = 2 - 2 * bx - (!bx & (tb[1] < tb[2]));
-        tin = tb[a];
-        if (!(tin <= tend) || s->lb[a] == 0)
+        bx = (tx < ty) & (tx < tz);
+        by = !bx & (ty < tz);
+        bz = !bx & !by;
+        double tmn = tx < ty ? tx : ty;
+        tin = tmn < tz ? tmn : tz;
+        if (!(tin <= tend) ||
+            ((bx & (lx == 0)) | (by & (ly == 0)) | (bz & (lz == 0)))) {
+            s->steps = steps;
             return NULL;
-        s->steps++;
-        s->lb[a]--;
-        s->lc[a] = s->sg[a] > 0
-                       ? (int)(block_last(nd, a, pb[a]) - pb[a])
-                       : GRID_BLOCK - 1;
-        s->blk += s->sg[a] * bstride[a];
-        pb[a] += s->sg[a] * GRID_BLOCK;
-        tb[a] = plane_t(nd, w, a, pb[a]);
-        bk = &blocks[s->blk];
+        }
+        steps++;
+        lx -= bx;
+        ly -= by;
+        lz -= bz;
+        mx |= bx;
+        my |= by;
+        mz |= bz;
+        blk += (-(long)bx & dblk[0]) + (-(long)by & dblk[1]) +
+               (-(long)bz & dblk[2]);
+        tx += (double)bx * db[0];
+        ty += (double)by * db[1];
+        tz += (double)bz * db[2];
+        bk = &blocks[blk];
     } while (bk->mask == 0);
+    s->steps = steps;
+    s->blk = blk;
+    s->lb[0] = lx;
+    s->lb[1] = ly;
+    s->lb[2] = lz;
+    const int moved[3] = { mx, my, mz };
+    const int a = by + 2 * bz;
     /* Enter the block at tin through its face on axis a. */
     s->bit = 0;
     for (int b = 0; b < 3; b++) {
@@ -961,6 +986,8 @@ static const grid_block_t *skip_empty(const grid_t *g,
                                 : sg < 0 ? s->lb[b]
                                          : s->ix[b] / GRID_BLOCK);
         long last = block_last(nd, b, lo);
+        if (moved[b]) /* a new block on this axis: all of it ahead */
+            s->lc[b] = (int)(last - lo);
         if (b != a && sg != 0) {
             /* the cell of the entry point, clamped into the block (floor
              * by truncation, as in cell_of()), then no earlier than lc */
