@@ -239,6 +239,187 @@ START_TEST(the_walk_visits_the_cells_a_ray_crosses)
 }
 END_TEST
 
+/* Brute force: every primitive, in number order. */
+static void brute(const primset_t *ps, const ray_t *r, primset_query_t *q)
+{
+    primset_query_init(q, r, 0, (real)INFINITY);
+    for (uint32_t i = 0; i < ps->nrefs; i++)
+        primset_test(ps, q, i);
+}
+
+/* The grid's answers (nearest hit, and any hit) for r are brute force's,
+ * bit for bit. */
+static void check_ray(const grid_t *g, const primset_t *ps, const ray_t *r)
+{
+    primset_query_t want, got, shadow;
+    brute(ps, r, &want);
+    primset_query_init(&got, r, 0, (real)INFINITY);
+    grid_intersect(g, &got);
+    ck_assert_msg(got.found == want.found,
+                  "ray (%g %g %g) (%g %g %g): grid %d, brute force %d",
+                  (double)r->o[0], (double)r->o[1], (double)r->o[2],
+                  (double)r->d[0], (double)r->d[1], (double)r->d[2],
+                  got.found, want.found);
+    if (want.found) {
+        ck_assert_uint_eq(got.ref, want.ref);
+        ck_assert(memcmp(&got.hit.t, &want.hit.t, sizeof got.hit.t) == 0);
+        ck_assert(memcmp(got.hit.b, want.hit.b, sizeof got.hit.b) == 0);
+    }
+    primset_query_init(&shadow, r, 0, (real)INFINITY);
+    ck_assert(grid_occluded(g, &shadow) == want.found);
+}
+
+/* A point of the grid in cell coordinates u (cell (i, j, k) spans
+ * [i, i + 1] x ...), rounded to real. */
+static void grid_point(const grid_node_t *nd, const double u[3], VECTOR3 p)
+{
+    for (int a = 0; a < 3; a++)
+        p[a] = (real)(nd->min[a] + u[a] * nd->w[a]);
+}
+
+/* Empty-space skipping (grid.c: blocks of 4^3 cells) never skips a cell it
+ * should visit. A sparse scene on a 32^3 grid (8^3 blocks, half of them
+ * empty): tiny triangles around block corners, thin ones lying in block
+ * faces and along block edges, a few large ones across many blocks. Rays
+ * through block corners in every direction, along block edges and faces
+ * (parallel to one or two axes), crossing a block only at an edge or a
+ * corner, starting inside empty blocks, on block planes and outside the
+ * grid; each answered as brute force answers, nearest and any hit, by the
+ * uniform grid and by a hierarchy whose children have blocks too. */
+START_TEST(skipping_empty_blocks_never_misses_a_cell)
+{
+    pcg32_t rng;
+    pcg32_seed(&rng, 2024, 6);
+    int ntri = 0, cap = 400;
+    mesh_t m = { 0 };
+    m.p = calloc(3 * (size_t)cap, sizeof *m.p);
+    m.tri = calloc((size_t)cap, sizeof *m.tri);
+    /* one triangle: corners c + s (random offsets), or given */
+#define TRI(P0, P1, P2)                                                      \
+    do {                                                                     \
+        vec_copy(m.p[3 * ntri], P0);                                         \
+        vec_copy(m.p[3 * ntri + 1], P1);                                     \
+        vec_copy(m.p[3 * ntri + 2], P2);                                     \
+        for (int k_ = 0; k_ < 3; k_++)                                       \
+            m.tri[ntri][k_] = 3 * ntri + k_;                                 \
+        ntri++;                                                              \
+    } while (0)
+    /* the box [0, 32]^3: tiny triangles at its corners fix it */
+    for (int c = 0; c < 8; c++) {
+        VECTOR3 p0 = { 32 * (real)(c & 1), 32 * (real)(c >> 1 & 1),
+                       32 * (real)(c >> 2) };
+        VECTOR3 p1, p2;
+        vec_copy(p1, p0);
+        vec_copy(p2, p0);
+        p1[0] += p0[0] > 0 ? REAL_C(-0.2) : REAL_C(0.2);
+        p2[1] += p0[1] > 0 ? REAL_C(-0.2) : REAL_C(0.2);
+        TRI(p0, p1, p2);
+    }
+    /* small triangles around 40 block corners (multiples of 4) */
+    for (int i = 0; i < 40; i++) {
+        VECTOR3 c = { 4 * (real)(1 + pcg32_bounded(&rng, 7)),
+                      4 * (real)(1 + pcg32_bounded(&rng, 7)),
+                      4 * (real)(1 + pcg32_bounded(&rng, 7)) };
+        VECTOR3 q[3];
+        for (int k = 0; k < 3; k++)
+            for (int a = 0; a < 3; a++)
+                q[k][a] = c[a] + REAL_C(0.6) * (pcg32_real(&rng) - REAL_C(0.5));
+        TRI(q[0], q[1], q[2]);
+    }
+    /* thin triangles lying in block faces (x, y or z = 4 i), and along
+     * block edges */
+    for (int i = 0; i < 40; i++) {
+        int a = (int)pcg32_bounded(&rng, 3), b = (a + 1) % 3, c = (a + 2) % 3;
+        real plane = 4 * (real)(1 + pcg32_bounded(&rng, 7));
+        real ob = 24 * pcg32_real(&rng), oc = 24 * pcg32_real(&rng);
+        real edge = 4 * (real)(1 + pcg32_bounded(&rng, 7));
+        VECTOR3 q[3];
+        for (int k = 0; k < 3; k++) {
+            q[k][a] = plane;
+            q[k][b] = ob + 6 * pcg32_real(&rng);
+            q[k][c] = i % 2 ? edge : oc + 6 * pcg32_real(&rng);
+        }
+        q[1][c] += REAL_C(0.3); /* thin, not degenerate */
+        TRI(q[0], q[1], q[2]);
+    }
+    /* a few large ones */
+    for (int i = 0; i < 3; i++) {
+        VECTOR3 q[3];
+        for (int k = 0; k < 3; k++)
+            for (int a = 0; a < 3; a++)
+                q[k][a] = 8 + 16 * pcg32_real(&rng);
+        TRI(q[0], q[1], q[2]);
+    }
+#undef TRI
+    m.nverts = 3 * ntri;
+    m.ntris = ntri;
+    COBJECT *o;
+    svet_error e;
+    ck_assert(mesh_new(&o, &m, &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, &o, 1, &e) == SVET_OK);
+    long cases = 0;
+    for (int depth = 0; depth <= 2; depth += 2) {
+        grid_params_t p;
+        grid_params_uniform(&p);
+        p.k = 32 / cbrt((double)ps.nbounded); /* 32 cells per axis */
+        p.max_depth = depth;
+        p.leaf_max = 1; /* the hierarchy refines every shared cell */
+        grid_t *g;
+        ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
+        const grid_node_t *nd = &g->nodes[0];
+        ck_assert_int_eq(nd->res[0], 32);
+        ck_assert_int_eq(nd->res[1], 32);
+        ck_assert_int_eq(nd->res[2], 32);
+        if (depth > 0)
+            ck_assert_uint_gt(g->nnodes, 1);
+        /* many blocks are empty (some 250 of the 512) */
+        uint32_t empty = 0;
+        for (uint32_t b = 0; b < 512; b++)
+            empty += g->blocks[b].mask == 0;
+        ck_assert_uint_gt(empty, 200);
+        for (int i = 0; i < 3000; i++) {
+            double u[3], v[3];
+            for (int a = 0; a < 3; a++) {
+                /* a block corner, a block plane, or anywhere (and a
+                 * little outside) */
+                int kind = (int)pcg32_bounded(&rng, 3);
+                u[a] = kind == 0   ? 4.0 * pcg32_bounded(&rng, 9)
+                       : kind == 1 ? 4.0 * pcg32_bounded(&rng, 9) +
+                                         (pcg32_real(&rng) < 0.5f ? 0 : 1e-7)
+                                   : -2 + 36 * (double)pcg32_real(&rng);
+                /* directions: along an axis, in a face's plane, through
+                 * block corners (multiples of 4 apart), or any */
+                int dk = (int)pcg32_bounded(&rng, 4);
+                v[a] = dk == 0   ? 0
+                       : dk == 1 ? (pcg32_real(&rng) < 0.5f ? -1 : 1)
+                       : dk == 2 ? 4.0 * ((int)pcg32_bounded(&rng, 5) - 2)
+                                 : 2 * (double)pcg32_real(&rng) - 1;
+            }
+            if (v[0] == 0 && v[1] == 0 && v[2] == 0)
+                v[i % 3] = 1;
+            ray_t r;
+            grid_point(nd, u, r.o);
+            for (int a = 0; a < 3; a++)
+                r.d[a] = (real)v[a];
+            check_ray(g, &ps, &r);
+            /* the same line from well outside the grid, backwards */
+            ray_t back;
+            for (int a = 0; a < 3; a++) {
+                back.o[a] = r.o[a] + 40 * r.d[a];
+                back.d[a] = -r.d[a];
+            }
+            check_ray(g, &ps, &back);
+            cases += 2;
+        }
+        grid_free(g);
+    }
+    test_report_cases("skipping_empty_blocks_never_misses_a_cell", cases);
+    primset_free(&ps);
+    cobject_free(o);
+}
+END_TEST
+
 /* The teapot's cell gets a child grid; the child lies inside its parent
  * cell (padded); budgets hold; a uniform grid of the same scene holds
  * the teapot in a handful of crowded cells. */
@@ -334,6 +515,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, resolution_follows_k_cubed_n_over_the_aspect);
     tcase_add_test(tc, every_triangle_is_in_every_cell_it_overlaps);
     tcase_add_test(tc, the_walk_visits_the_cells_a_ray_crosses);
+    tcase_add_test(tc, skipping_empty_blocks_never_misses_a_cell);
     tcase_add_test(tc, a_crowded_cell_gets_a_child_grid);
     tcase_add_test(tc, huge_primitives_coarsen_the_grid_instead_of_exploding);
     suite_add_tcase(s, tc);
