@@ -921,9 +921,8 @@ static long block_last(const grid_node_t *nd, int a, long lo)
  * returns that block, or NULL when the walk is over (past tend, or out of
  * the grid). tb is the t of the next plane between blocks on each axis,
  * from plane_t() and then by steps of GRID_BLOCK dt, as the cells' t
- * (GRID_BLOCK dt is exact: a power of two times dt); the axis is picked
- * without branches, as in walk(). See walk() for why the cell entered is
- * right. */
+ * (GRID_BLOCK dt is exact: a power of two times dt). Here the axis is
+ * picked by branches, as in walk(). See walk() for why the cell entered is right. */
 static const grid_block_t *skip_empty(const grid_t *g,
                                       const grid_node_t *nd, const walk_t *w,
                                       dda_t *s, double tend)
@@ -942,33 +941,43 @@ static const grid_block_t *skip_empty(const grid_t *g,
     double tx = tb[0], ty = tb[1], tz = tb[2];
     int lx = s->lb[0], ly = s->lb[1], lz = s->lb[2];
     int mx = 0, my = 0, mz = 0; /* the axes stepped on */
-    int bx, by, bz;
+    int ent = 0; /* the axis of the last step */
     long blk = s->blk, steps = s->steps;
     double tin;
     const grid_block_t *bk;
     do {
-        bx = (tx < ty) & (tx < tz);
-        by = !bx & (ty < tz);
-        bz = !bx & !by;
-        double tmn = tx < ty ? tx : ty;
-        tin = tmn < tz ? tmn : tz;
-        if (!(tin <= tend) ||
-            ((bx & (lx == 0)) | (by & (ly == 0)) | (bz & (lz == 0)))) {
+        int a;
+        if (tx < ty && tx < tz) {
+            a = 0;
+            tin = tx;
+        } else if (ty < tz) {
+            a = 1;
+            tin = ty;
+        } else {
+            a = 2;
+            tin = tz;
+        }
+        ent = a;
+        int l = a == 0 ? lx : a == 1 ? ly : lz;
+        if (!(tin <= tend) || l == 0) {
             s->steps = steps;
             return NULL;
         }
         steps++;
-        lx -= bx;
-        ly -= by;
-        lz -= bz;
-        mx |= bx;
-        my |= by;
-        mz |= bz;
-        blk += (-(long)bx & dblk[0]) + (-(long)by & dblk[1]) +
-               (-(long)bz & dblk[2]);
-        tx += (double)bx * db[0];
-        ty += (double)by * db[1];
-        tz += (double)bz * db[2];
+        blk += dblk[a];
+        if (a == 0) {
+            lx--;
+            mx = 1;
+            tx += db[0];
+        } else if (a == 1) {
+            ly--;
+            my = 1;
+            ty += db[1];
+        } else {
+            lz--;
+            mz = 1;
+            tz += db[2];
+        }
         bk = &blocks[blk];
     } while (bk->mask == 0);
     s->steps = steps;
@@ -977,7 +986,7 @@ static const grid_block_t *skip_empty(const grid_t *g,
     s->lb[1] = ly;
     s->lb[2] = lz;
     const int moved[3] = { mx, my, mz };
-    const int a = by + 2 * bz;
+    const int a = ent;
     /* Enter the block at tin through its face on axis a. */
     s->bit = 0;
     for (int b = 0; b < 3; b++) {
@@ -1018,10 +1027,10 @@ static const grid_block_t *skip_empty(const grid_t *g,
  * crossing and a cell is tested against the block's 64-bit word in a
  * register; t grows by adding dt, in double: after n steps its rounding
  * error is below n 2^-53 of t, far inside the cells' padding (2^-20 of
- * the scene). The step picks its axis with arithmetic instead of
- * branches (Amanatides & Woo do it with a table): which axis comes next is
- * as good as random, and a mispredicted branch costs more than the step.
- * Stepping out of the last cell of a block loads the next block's word;
+ * the scene). The step picks its axis with plain branches: selects
+ * without branches (and Amanatides & Woo's table) ran slower, measured
+ * on this machine; the patterns of a ray's steps are regular enough for
+ * the branch predictor. Stepping out of the last cell of a block loads the next block's word;
  * when it is 0, skip_empty() goes block by block (the same DDA over the
  * planes between blocks) until a block holds something.
  *
@@ -1087,13 +1096,13 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     if (bk->mask == 0 && !(bk = skip_empty(g, nd, w, &s, tend)))
         goto done;
     for (;;) {
-        /* the hot state in scalars: the compiler keeps them in registers */
+        /* the hot state in scalars, which the compiler keeps in registers */
         double tx = s.t[0], ty = s.t[1], tz = s.t[2];
         int lx = s.lc[0], ly = s.lc[1], lz = s.lc[2];
         const uint64_t mask = bk->mask;
         long steps = s.steps;
         int bit = s.bit;
-        int bx, by, bz;
+        int a; /* the axis of the step */
         for (;;) {
             if (mask >> bit & 1) {
                 uint32_t f = full_cell(bk, bit);
@@ -1117,31 +1126,45 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                 }
                 tend = walk_end(w, q, t1);
             }
-            /* the axis of the nearest crossing (one of bx, by, bz is 1);
-             * past tend (the query's end or the stopping rule) the walk is
-             * over */
-            bx = (tx < ty) & (tx < tz);
-            by = !bx & (ty < tz);
-            bz = !bx & !by;
-            double tmn = tx < ty ? tx : ty;
-            double texit = tmn < tz ? tmn : tz;
+            /* the axis of the nearest crossing; past tend (the query's end
+             * or the stopping rule) the walk is over */
+            double texit;
+            if (tx < ty && tx < tz) {
+                a = 0;
+                texit = tx;
+            } else if (ty < tz) {
+                a = 1;
+                texit = ty;
+            } else {
+                a = 2;
+                texit = tz;
+            }
             if (!(texit <= tend)) {
                 s.steps = steps;
                 goto done;
             }
-            if ((bx & (lx == 0)) | (by & (ly == 0)) | (bz & (lz == 0)))
-                break; /* out of the block */
+            if (a == 0) {
+                if (lx == 0)
+                    break; /* out of the block */
+                lx--;
+                bit += dbx;
+                tx += dtx;
+            } else if (a == 1) {
+                if (ly == 0)
+                    break;
+                ly--;
+                bit += dby;
+                ty += dty;
+            } else {
+                if (lz == 0)
+                    break;
+                lz--;
+                bit += dbz;
+                tz += dtz;
+            }
             steps++;
-            lx -= bx;
-            ly -= by;
-            lz -= bz;
-            bit += (-bx & dbx) + (-by & dby) + (-bz & dbz);
-            tx += (double)bx * dtx;
-            ty += (double)by * dty;
-            tz += (double)bz * dtz;
         }
         /* out of the block, into the next one or out of the grid */
-        int a = by + 2 * bz;
         s.t[0] = tx;
         s.t[1] = ty;
         s.t[2] = tz;

@@ -386,13 +386,13 @@ START_TEST(skipping_empty_blocks_never_misses_a_cell)
                 int kind = (int)pcg32_bounded(&rng, 3);
                 u[a] = kind == 0   ? 4.0 * pcg32_bounded(&rng, 9)
                        : kind == 1 ? 4.0 * pcg32_bounded(&rng, 9) +
-                                         (pcg32_real(&rng) < 0.5f ? 0 : 1e-7)
+                                         (pcg32_real(&rng) < REAL_C(0.5) ? 0 : 1e-7)
                                    : -2 + 36 * (double)pcg32_real(&rng);
                 /* directions: along an axis, in a face's plane, through
                  * block corners (multiples of 4 apart), or any */
                 int dk = (int)pcg32_bounded(&rng, 4);
                 v[a] = dk == 0   ? 0
-                       : dk == 1 ? (pcg32_real(&rng) < 0.5f ? -1 : 1)
+                       : dk == 1 ? (pcg32_real(&rng) < REAL_C(0.5) ? -1 : 1)
                        : dk == 2 ? 4.0 * ((int)pcg32_bounded(&rng, 5) - 2)
                                  : 2 * (double)pcg32_real(&rng) - 1;
             }
