@@ -165,11 +165,14 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
     real x1 = a1x + sx * a1z, y1 = a1y + sy * a1z;
     real x2 = a2x + sx * a2z, y2 = a2y + sy * a2z;
     /* Edge functions. A zero may be rounding, and the exact recomputation
-     * of all three may change any sign: the full test does it. */
+     * of all three may change any sign: the full test does it. The
+     * product is zero when one of them is (one test, not three), and
+     * also when it underflows: then the full test gives the same answer,
+     * only slower. */
     real e0 = x1 * y2 - y1 * x2;
     real e1 = x2 * y0 - y2 * x0;
     real e2 = x0 * y1 - y0 * x1;
-    if (e0 == 0 || e1 == 0 || e2 == 0)
+    if (e0 * e1 * e2 == 0)
         return triangle_intersect_watertight(q, q + 3, q + 6, r, tmin, tmax,
                                              t, b);
     /* | and & rather than || and &&: one branch, not six (the signs are
