@@ -611,11 +611,11 @@ static inline int bits_set(uint64_t x)
     return (int)((x * UINT64_C(0x0101010101010101)) >> 56);
 }
 
-/* The non-empty cell of bit `bit` (set) of block b. */
-static inline uint32_t full_cell(const grid_block_t *b, int bit)
+/* The non-empty cell of bit `bit` (set) of a block: base its bbase, mask
+ * its bmask. */
+static inline uint32_t full_cell(uint32_t base, uint64_t mask, int bit)
 {
-    return b->base + (uint32_t)bits_set(b->mask &
-                                        ((UINT64_C(1) << bit) - 1));
+    return base + (uint32_t)bits_set(mask & ((UINT64_C(1) << bit) - 1));
 }
 
 static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
@@ -638,11 +638,13 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
                               (unsigned long long)items);
     long ntop = node_cells(&B->nodes[0].node);
     g->nodes = malloc(B->nnodes * sizeof *g->nodes);
-    g->blocks = calloc((size_t)(blocks ? blocks : 1), sizeof *g->blocks);
+    g->bmask = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bmask);
+    g->bbase = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bbase);
     g->cstart = malloc((size_t)(full + 1) * sizeof *g->cstart);
     g->items = malloc((size_t)(items ? items : 1) * sizeof *g->items);
     g->cells = malloc((size_t)(ntop + 1) * sizeof *g->cells);
-    if (!g->nodes || !g->blocks || !g->cstart || !g->items || !g->cells)
+    if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items ||
+        !g->cells)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
     /* the top level's counts, x fastest */
     memcpy(g->cells, B->nodes[0].start, (size_t)(ntop + 1) * sizeof *g->cells);
@@ -656,14 +658,13 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
         g->nodes[i] = *nd;
         g->nodes[i].first = c0;
         g->nodes[i].bfirst = b0;
-        /* block by block, bit by bit: the order of grid_block_t */
+        /* block by block, bit by bit: the order of bbase */
         long nbk = node_blocks(nd);
         for (long k = 0; k < nbk; k++) {
             int bxyz[3] = { (int)(k % nd->nb[0]),
                             (int)(k / nd->nb[0] % nd->nb[1]),
                             (int)(k / ((long)nd->nb[0] * nd->nb[1])) };
-            grid_block_t *blk = &g->blocks[b0 + k];
-            blk->base = s0;
+            g->bbase[b0 + k] = s0;
             for (int bit = 0; bit < GRID_BLOCK * GRID_BLOCK * GRID_BLOCK;
                  bit++) {
                 int x = bxyz[0] * GRID_BLOCK + bit % GRID_BLOCK;
@@ -681,7 +682,7 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
                 for (uint32_t m = b; m < e; m++)
                     prims += !(bn->items[m] & GRID_CHILD);
                 g->max_items = prims > g->max_items ? prims : g->max_items;
-                blk->mask |= UINT64_C(1) << bit;
+                g->bmask[b0 + k] |= UINT64_C(1) << bit;
                 g->cstart[s0++] = i0;
                 memcpy(g->items + i0, bn->items + b, (e - b) * sizeof *g->items);
                 i0 += e - b;
@@ -709,13 +710,11 @@ void grid_cell_items(const grid_t *g, uint32_t n, long c, uint32_t *begin,
     int z = (int)(c / ((long)nd->res[0] * nd->res[1]));
     int bit = x % GRID_BLOCK + GRID_BLOCK * (y % GRID_BLOCK) +
               GRID_BLOCK * GRID_BLOCK * (z % GRID_BLOCK);
-    const grid_block_t *b =
-        &g->blocks[nd->bfirst + x / GRID_BLOCK +
-                   nd->nb[0] * (y / GRID_BLOCK +
-                                (long)nd->nb[1] * (z / GRID_BLOCK))];
+    long b = nd->bfirst + x / GRID_BLOCK +
+             nd->nb[0] * (y / GRID_BLOCK + (long)nd->nb[1] * (z / GRID_BLOCK));
     *begin = *end = 0;
-    if (b->mask >> bit & 1) {
-        uint32_t s = full_cell(b, bit);
+    if (g->bmask[b] >> bit & 1) {
+        uint32_t s = full_cell(g->bbase[b], g->bmask[b], bit);
         *begin = g->cstart[s];
         *end = g->cstart[s + 1];
     }
@@ -798,7 +797,7 @@ size_t grid_bytes(const grid_t *g)
     const grid_node_t *top = &g->nodes[0];
     long ntop = (long)top->res[0] * top->res[1] * top->res[2];
     return sizeof *g + g->nnodes * sizeof *g->nodes +
-           (size_t)g->nblocks * sizeof *g->blocks +
+           (size_t)g->nblocks * (sizeof *g->bmask + sizeof *g->bbase) +
            ((size_t)g->nfull + 1) * sizeof *g->cstart +
            (size_t)g->nitems * sizeof *g->items +
            ((size_t)ntop + 1) * sizeof *g->cells;
@@ -811,7 +810,8 @@ void grid_free(grid_t *g)
     free(g->nodes);
     free(g->cells);
     free(g->items);
-    free(g->blocks);
+    free(g->bmask);
+    free(g->bbase);
     free(g->cstart);
     free(g);
 }
@@ -918,16 +918,15 @@ static long block_last(const grid_node_t *nd, int a, long lo)
 
 /* Cross empty blocks (the current one is empty) until one holds
  * something, and set the walk on the cell of that block it enters first;
- * returns that block, or NULL when the walk is over (past tend, or out of
- * the grid). tb is the t of the next plane between blocks on each axis,
+ * returns that block's word, or 0 when the walk is over (past tend, or out
+ * of the grid). tb is the t of the next plane between blocks on each axis,
  * from plane_t() and then by steps of GRID_BLOCK dt, as the cells' t
  * (GRID_BLOCK dt is exact: a power of two times dt). Here the axis is
  * picked by branches, as in walk(). See walk() for why the cell entered is right. */
-static const grid_block_t *skip_empty(const grid_t *g,
-                                      const grid_node_t *nd, const walk_t *w,
-                                      dda_t *s, double tend)
+static uint64_t skip_empty(const grid_t *g, const grid_node_t *nd,
+                           const walk_t *w, dda_t *s, double tend)
 {
-    const grid_block_t *blocks = g->blocks + nd->bfirst;
+    const uint64_t *bmask = g->bmask + nd->bfirst;
     double tb[3], db[3];
     long dblk[3];
     const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
@@ -944,7 +943,7 @@ static const grid_block_t *skip_empty(const grid_t *g,
     int ent = 0; /* the axis of the last step */
     long blk = s->blk, steps = s->steps;
     double tin;
-    const grid_block_t *bk;
+    uint64_t mask;
     do {
         int a;
         if (tx < ty && tx < tz) {
@@ -961,7 +960,7 @@ static const grid_block_t *skip_empty(const grid_t *g,
         int l = a == 0 ? lx : a == 1 ? ly : lz;
         if (!(tin <= tend) || l == 0) {
             s->steps = steps;
-            return NULL;
+            return 0;
         }
         steps++;
         blk += dblk[a];
@@ -978,8 +977,8 @@ static const grid_block_t *skip_empty(const grid_t *g,
             mz = 1;
             tz += db[2];
         }
-        bk = &blocks[blk];
-    } while (bk->mask == 0);
+        mask = bmask[blk];
+    } while (mask == 0);
     s->steps = steps;
     s->blk = blk;
     s->lb[0] = lx;
@@ -1013,7 +1012,7 @@ static const grid_block_t *skip_empty(const grid_t *g,
         if (sg)
             s->t[b] = plane_t(nd, w, b, sg > 0 ? c + 1 : c);
     }
-    return bk;
+    return mask;
 }
 
 /* Walk node ni over [t0, t1] (inside its box). Returns true when a
@@ -1055,7 +1054,8 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     const grid_node_t *nd = &g->nodes[ni];
     const primset_t *ps = g->ps;
     const uint32_t *cstart = g->cstart, *items = g->items;
-    const grid_block_t *blocks = g->blocks + nd->bfirst;
+    const uint64_t *bmask = g->bmask + nd->bfirst;
+    const uint32_t *bbase = g->bbase + nd->bfirst;
     const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
     dda_t s;
     s.blk = 0;
@@ -1092,20 +1092,19 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     const int dbx = dbit[0], dby = dbit[1], dbz = dbit[2];
     double tend = walk_end(w, q, t1);
     bool hit = false;
-    const grid_block_t *bk = &blocks[s.blk];
-    if (bk->mask == 0 && !(bk = skip_empty(g, nd, w, &s, tend)))
+    uint64_t mask = bmask[s.blk];
+    if (mask == 0 && !(mask = skip_empty(g, nd, w, &s, tend)))
         goto done;
     for (;;) {
         /* the hot state in scalars, which the compiler keeps in registers */
         double tx = s.t[0], ty = s.t[1], tz = s.t[2];
         int lx = s.lc[0], ly = s.lc[1], lz = s.lc[2];
-        const uint64_t mask = bk->mask;
         long steps = s.steps;
         int bit = s.bit;
         int a; /* the axis of the step */
         for (;;) {
             if (mask >> bit & 1) {
-                uint32_t f = full_cell(bk, bit);
+                uint32_t f = full_cell(bbase[s.blk], mask, bit);
                 for (uint32_t k = cstart[f], e = cstart[f + 1]; k < e; k++) {
                     uint32_t it = items[k];
                     if (it & GRID_CHILD) {
@@ -1184,8 +1183,8 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         s.bit = bit - (GRID_BLOCK - 1) * dbit[a];
         s.blk += s.sg[a] * bstride[a];
         s.t[a] += s.dt[a];
-        bk = &blocks[s.blk];
-        if (bk->mask == 0 && !(bk = skip_empty(g, nd, w, &s, tend)))
+        mask = bmask[s.blk];
+        if (mask == 0 && !(mask = skip_empty(g, nd, w, &s, tend)))
             goto done;
     }
 done:
