@@ -39,7 +39,9 @@ static double cpu_now(void)
 /* --- rays ------------------------------------------------------------------ */
 
 /* The rays of camera.h's pinhole camera at eye looking at target (up +z,
- * horizontal field of view fov degrees) through the n x n pixel centres. */
+ * horizontal field of view fov degrees) through the n x n pixel centres,
+ * tile by tile (16 x 16 pixels, the renderer's order: render.h
+ * RENDER_TILE), rows within a tile. */
 static ray_t *camera_rays(const VECTOR3 eye, const VECTOR3 target, double fov,
                           int n)
 {
@@ -52,10 +54,13 @@ static ray_t *camera_rays(const VECTOR3 eye, const VECTOR3 target, double fov,
         fprintf(stderr, "camera: %s\n", r ? e.msg : "out of memory");
         exit(1);
     }
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++)
-            camera_ray(&cam, (real)i + REAL_C(0.5), (real)j + REAL_C(0.5),
-                       &r[(size_t)j * n + i]);
+    size_t k = 0;
+    for (int ty = 0; ty < n; ty += 16)
+        for (int tx = 0; tx < n; tx += 16)
+            for (int j = ty; j < ty + 16 && j < n; j++)
+                for (int i = tx; i < tx + 16 && i < n; i++)
+                    camera_ray(&cam, (real)i + REAL_C(0.5),
+                               (real)j + REAL_C(0.5), &r[k++]);
     return r;
 }
 
@@ -259,7 +264,8 @@ static void machine(int argc, char **argv)
     printf("- command:");
     for (int i = 0; i < argc; i++)
         printf(" %s", argv[i]);
-    printf("\n- rays: camera %d x %d (pinhole, 40 degrees, pixel centres), "
+    printf("\n- rays: camera %d x %d (pinhole, 40 degrees, pixel centres, "
+           "in 16 x 16 tiles as the renderer traces them), "
            "incoherent %ld (origins uniform in the scene's box, "
            "directions uniform on the sphere); brute force traces a "
            "sample\n",
@@ -357,7 +363,7 @@ static void tune(void)
         default_view(&b, eye, target);
         ray_t *cam = camera_rays(eye, target, 40, 256);
         ray_t *inc = random_rays(&b, 1L << 16, 7);
-        double ks[] = { 0.5, 1, 1.5, 2, 3, 4 };
+        double ks[] = { 1, 1.5, 2, 2.5, 3, 4 };
         for (int i = 0; i < 6; i++) {
             accel_params_t p;
             accel_params_default(&p);
@@ -365,7 +371,7 @@ static void tune(void)
             p.grid_k = ks[i];
             tune_row(&s, &p, cam, 256 * 256, inc, 1L << 16);
         }
-        double hk[] = { 0.5, 1, 2 }, ck[] = { 1.5, 2 };
+        double hk[] = { 1, 2, 2.5 }, ck[] = { 1.5, 2 };
         int leaf[] = { 12, 32 };
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 2; j++)

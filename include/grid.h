@@ -18,9 +18,10 @@
 
 /* Cells per axis = about k N^(1/3) over the box's aspect (N primitives):
  * k^3 N cells in all. k measured by bench/bench_grid.c (`--tune`) on the
- * sphere grids of 1e4 to 1e6 triangles: 1.5 to 2 is best for both camera
- * and random rays, 3 and up costs memory and time (chapters/ch07/README.md
- * has the table). */
+ * sphere grids of 1e4 to 1e6 triangles: 2 is best or within the noise of
+ * the best for both camera and random rays; once empty blocks cost one
+ * step, a finer grid (2.5, 3) tests fewer triangles but walks more cells
+ * and did not win at 1e6 (chapters/ch07/README.md has the table). */
 #define GRID_K_DEFAULT 2.0
 /* Hierarchical grid (Jevans & Wyvill 1989): the top level is the uniform
  * grid (k = HGRID_K_DEFAULT); a cell with more than HGRID_LEAF_DEFAULT
@@ -35,7 +36,7 @@
 #define HGRID_CHILD_K_DEFAULT 1.5
 #define HGRID_LEAF_DEFAULT 32
 #define HGRID_DEPTH_DEFAULT 2
-/* No grid has more cells than this, at any level (4 B each). */
+/* No grid has more cells than this, at any level. */
 #define GRID_MAX_CELLS (1L << 25)
 /* The most cell entries the bounds of n primitives may span in the top
  * level: a finer grid over large primitives is coarsened (k times 0.7)

@@ -3,12 +3,15 @@
  *   build: primitives go into every cell their padded bounds overlap,
  *          triangles only into the cells they truly overlap (the
  *          separating-axis test of Akenine-Moller, "Fast 3D triangle-box
- *          overlap testing", JGT 6(1), 2001); two passes (count, fill)
- *          into flat arrays;
+ *          overlap testing", JGT 6(1), 2001); one pass lists the
+ *          (cell, primitive) pairs, a counting sort lays them out; then
+ *          flat arrays: blocks of 4^3 cells with a 64-bit word of which
+ *          cells hold something, and only the non-empty cells numbered;
  *   hierarchy (Jevans & Wyvill 1989): a cell with more than leaf_max
  *          primitives gets a child grid over the part of the cell its
  *          primitives occupy, recursively, bounded by depth and size;
- *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double.
+ *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
+ *          an empty block in one step (macro-regions, Devillers 1989).
  * Tests: tests/test_grid.c, tests/test_accel.c
  *
  * Why the answers are exactly brute force's. A walk may stop in a cell
