@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch07/ch07_grids.c src/accel.c src/grid.c src/primset.c src/mesh.c src/meshgen.c src/triangle.c src/shape.c src/frame.c src/vec.c src/bbox.c src/cobject.c src/ray.c src/rng.c src/error.c src/camera.c src/image.c src/netpbm.c src/fileio.c -lm -o ch07 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch07/ch07_grids.c src/accel.c src/grid.c src/primset.c src/mesh.c src/meshgen.c src/triangle.c src/shape.c src/frame.c src/vec.c src/bbox.c src/cobject.c src/ray.c src/rng.c src/error.c src/camera.c src/image.c src/netpbm.c src/fileio.c src/parallelogram.c src/xform.c -lm -o ch07 */
 /*
  * ch07_grids.c - chapter 7, hierarchical grids: where the time of a ray
  * goes. For two procedural scenes (5 x 5 x 5 spheres of 1e5 triangles, and
