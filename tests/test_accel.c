@@ -675,11 +675,25 @@ static void path_rays(bench_t *b, const COBJECT *const *objs, int n,
     }
 }
 
+/* Every structure on scene s: n1 rays of every kind and n2 path-like
+ * rays; then s is freed. Returns the rays compared, their hits in *hits. */
+static long compare_on(scene_t_ *s, pcg32_t *g, int n1, int n2, long *hits)
+{
+    bench_t b;
+    build_all(&b, s->objs, s->n);
+    rays_of_every_kind(&b, (const COBJECT *const *)s->objs, s->n, g, n1);
+    path_rays(&b, (const COBJECT *const *)s->objs, s->n, g, n2);
+    free_all(&b);
+    free_scene(s);
+    *hits = b.hits;
+    return b.rays;
+}
+
 START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
 {
     pcg32_t g;
     pcg32_seed(&g, 77, 5);
-    long rays = 0;
+    long rays = 0, hits;
     /* random scenes of analytic primitives (their meshes dropped) */
     for (int sc = 0; sc < 16; sc++) {
         scene_t_ all = { 0 }, s = { 0 };
@@ -690,28 +704,16 @@ START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
             else
                 add(&s, all.objs[i]);
         free(all.objs);
-        if (s.n == 0)
-            continue;
-        bench_t b;
-        build_all(&b, s.objs, s.n);
-        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 2000);
-        path_rays(&b, (const COBJECT *const *)s.objs, s.n, &g, 1000);
-        rays += b.rays;
-        free_all(&b);
-        free_scene(&s);
+        if (s.n > 0)
+            rays += compare_on(&s, &g, 2000, 1000, &hits);
     }
     /* the Cornell box, with and without ties */
     for (int ties = 0; ties < 2; ties++) {
         scene_t_ s = { 0 };
         cornell_box(&s, ties);
-        bench_t b;
-        build_all(&b, s.objs, s.n);
-        path_rays(&b, (const COBJECT *const *)s.objs, s.n, &g, 20000);
-        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 5000);
-        ck_assert_msg(b.hits > b.rays / 3, "%ld hits of %ld", b.hits, b.rays);
-        rays += b.rays;
-        free_all(&b);
-        free_scene(&s);
+        long n = compare_on(&s, &g, 5000, 20000, &hits);
+        ck_assert_msg(hits > n / 3, "%ld hits of %ld", hits, n);
+        rays += n;
     }
     /* more parallelograms than one batch holds: the rest go through
      * intersect() */
@@ -728,13 +730,7 @@ START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
         if (o)
             add(&s, o);
     }
-    bench_t b;
-    build_all(&b, s.objs, s.n);
-    rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 3000);
-    path_rays(&b, (const COBJECT *const *)s.objs, s.n, &g, 2000);
-    rays += b.rays;
-    free_all(&b);
-    free_scene(&s);
+    rays += compare_on(&s, &g, 3000, 2000, &hits);
     test_report_cases("fast_brute_force_answers_bit_for_bit_what_primset_"
                       "test_answers (rays x 6 structures)", rays);
 }
