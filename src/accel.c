@@ -316,8 +316,8 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
 /* The fast brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
  * test skipped here is one whose intersect() would have answered "no
- * hit" at its first step. The order differs (the parallelograms that
- * pass the batch's rejections first, then the rest), which primset.h's
+ * hit" at its first step. The order differs (the rest first, then the
+ * parallelograms that pass the batch's rejections), which primset.h's
  * nearest-hit rule makes irrelevant: ties go to the earlier primitive
  * whatever the order. So the answer is primset_test's bit for bit
  * (tests/test_accel.c compares them). A shadow ray (q->shadow) stops at
@@ -325,26 +325,14 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
 static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
                       brute_search_t *q)
 {
-    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin);
-    if (maybe) {
-        triangle_ray_t pr;
-        triangle_ray_prepare(&pr, r);
-        for (int slot = 0; maybe; slot++, maybe >>= 1) {
-            if (!(maybe & 1))
-                continue;
-            uint32_t i = b->para[slot];
-            hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
-            if (parallelogram_intersect_prepared(b->items[i].obj,
-                                                 b->items[i].prim, &pr,
-                                                 q->tmin, q->tmax_tie, &hh) &&
-                brute_found(q, ps, i, &hh))
-                return true;
-        }
-    }
+    /* The objects in the room first (in the Cornell box, its two boxes):
+     * a hit there shortens tmax, so the walls behind it are turned away
+     * early by their watertight test's interval check, and a shadow ray
+     * they block ends before any wall is looked at. */
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
         const brute_item_t *it = &b->items[i];
-        hit_t hh = { 0, 0, { 0, 0, 0 } };
+        hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
         bool hit;
         if (it->kind == ITEM_SPHERE) {
             if (q->tmin >= 0 &&
@@ -358,6 +346,22 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
         }
         if (hit && brute_found(q, ps, i, &hh))
             return true;
+    }
+    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin);
+    if (maybe) {
+        triangle_ray_t pr;
+        triangle_ray_prepare(&pr, r);
+        for (int slot = 0; maybe; slot++, maybe >>= 1) {
+            if (!(maybe & 1))
+                continue;
+            uint32_t i = b->para[slot];
+            hit_t hh = { 0, 0, { 0, 0, 0 } };
+            if (parallelogram_intersect_prepared(b->items[i].obj,
+                                                 b->items[i].prim, &pr,
+                                                 q->tmin, q->tmax_tie, &hh) &&
+                brute_found(q, ps, i, &hh))
+                return true;
+        }
     }
     return q->found;
 }
