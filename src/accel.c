@@ -16,9 +16,9 @@
 #include <time.h>
 
 /* Brute force over a scene of analytic primitives (no mesh triangles),
- * without a call per primitive for the culling tests: every reference in
- * the order of primset.h, each with the fastest way to the answer its
- * intersect() gives. */
+ * without a call per primitive for the culling tests: every reference of
+ * the primset, each with the fastest way to the answer its intersect()
+ * gives (brute_run). */
 typedef enum {
     ITEM_PARALLELOGRAM, /* its early rejections from the batch, then its
                            watertight test on a ray prepared once */
