@@ -919,6 +919,23 @@ static long block_last(const grid_node_t *nd, int a, long lo)
     return last < nd->res[a] - 1 ? last : nd->res[a] - 1;
 }
 
+/* The axis of the nearest of the crossings tx, ty, tz (ties to the
+ * later axis), and that crossing's t in *t. Branches, not selects: see
+ * walk(). */
+static inline int nearest_axis(double tx, double ty, double tz, double *t)
+{
+    if (tx < ty && tx < tz) {
+        *t = tx;
+        return 0;
+    }
+    if (ty < tz) {
+        *t = ty;
+        return 1;
+    }
+    *t = tz;
+    return 2;
+}
+
 /* Cross empty blocks (the current one is empty) until one holds
  * something, and set the walk on the cell of that block it enters first;
  * returns that block's word, or 0 when the walk is over (past tend, or out
@@ -948,17 +965,7 @@ static uint64_t skip_empty(const grid_t *g, const grid_node_t *nd,
     double tin;
     uint64_t mask;
     do {
-        int a;
-        if (tx < ty && tx < tz) {
-            a = 0;
-            tin = tx;
-        } else if (ty < tz) {
-            a = 1;
-            tin = ty;
-        } else {
-            a = 2;
-            tin = tz;
-        }
+        int a = nearest_axis(tx, ty, tz, &tin);
         ent = a;
         int l = a == 0 ? lx : a == 1 ? ly : lz;
         if (!(tin <= tend) || l == 0) {
@@ -1131,16 +1138,7 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
             /* the axis of the nearest crossing; past tend (the query's end
              * or the stopping rule) the walk is over */
             double texit;
-            if (tx < ty && tx < tz) {
-                a = 0;
-                texit = tx;
-            } else if (ty < tz) {
-                a = 1;
-                texit = ty;
-            } else {
-                a = 2;
-                texit = tz;
-            }
+            a = nearest_axis(tx, ty, tz, &texit);
             if (!(texit <= tend)) {
                 s.steps = steps;
                 goto done;
