@@ -96,7 +96,9 @@ static double crowded_fraction(const grid_t *g, long crowd)
     long nc = (long)top->res[0] * top->res[1] * top->res[2];
     double crowded = 0, all = 0;
     for (long c = 0; c < nc; c++) {
-        double n = g->cells[top->first + c + 1] - g->cells[top->first + c];
+        uint32_t begin, end;
+        grid_cell_items(g, 0, c, &begin, &end);
+        double n = end - begin;
         all += n;
         if (n > crowd)
             crowded += n;
