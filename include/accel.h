@@ -91,6 +91,22 @@ bool accel_intersect(const accel_t *a, const ray_t *r, real tmin, real tmax,
  * fail. */
 bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax);
 
+/* accel_intersect() and accel_occluded() told which surfaces the ray
+ * cannot meet in (tmin, tmax), so that they may skip their exact tests:
+ * skip[0], skip[1] (either may be NULL) name the object a ray spawned by
+ * ray_spawn() leaves, traced from tmin = 0, or, for a shadow ray made by
+ * ray_spawn_to() and traced over (0, its returned tmax), the objects of
+ * both of its ends. Only planar primitives are ever skipped (brute
+ * force's parallelograms; accel.c gives the argument): a ray can meet a
+ * curved or closed surface it leaves again. The answers are those of the
+ * queries without skip, bit for bit (tests/test_accel.c compares them on
+ * spawned rays). This function can't fail. */
+bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
+                          real tmax, const COBJECT *const skip[2],
+                          accel_hit_t *h);
+bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
+                         real tmax, const COBJECT *const skip[2]);
+
 /* Work done by one query, for the heat maps of ch. 7. */
 typedef struct {
     long cells; /* grid cells visited, at every level */

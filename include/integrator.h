@@ -21,11 +21,15 @@
 /* How rays find surfaces: brute force over the scene's objects, or an
  * acceleration structure (ch. 7). */
 typedef struct {
-    /* Nearest hit in (tmin, tmax): fills *hit and *obj. */
+    /* Nearest hit in (tmin, tmax): fills *hit and *obj. skip: the objects
+     * the ray cannot meet, which the tracer may leave out (accel.h's
+     * accel_intersect_skip(); each entry may be NULL). */
     bool (*intersect)(const void *ctx, const ray_t *r, real tmin, real tmax,
-                      hit_t *hit, const COBJECT **obj);
-    /* Any hit in (tmin, tmax) (shadow rays). */
-    bool (*occluded)(const void *ctx, const ray_t *r, real tmin, real tmax);
+                      const COBJECT *const skip[2], hit_t *hit,
+                      const COBJECT **obj);
+    /* Any hit in (tmin, tmax) (shadow rays); skip as for intersect. */
+    bool (*occluded)(const void *ctx, const ray_t *r, real tmin, real tmax,
+                     const COBJECT *const skip[2]);
     const void *ctx;
 } tracer_t;
 

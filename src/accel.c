@@ -297,6 +297,7 @@ typedef struct {
     bool shadow, found;
     uint32_t best;  /* the item of the nearest hit so far */
     hit_t hit;
+    const COBJECT *skip[2]; /* parallelograms the ray cannot meet */
 } brute_search_t;
 
 /* A hit hh of item i: is the search over (a shadow ray's first hit)? */
@@ -314,6 +315,29 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
     q->tmax_tie = real_next_up(hh->t); /* as primset_test() */
     return false;
 }
+
+/* The parallelograms in q->skip are left out (accel_intersect_skip()).
+ * Why their exact test would answer "no hit" anyway (pbrt-v3 sec. 3.9.5's
+ * argument, with its test made exact by the triangle test's bound dt):
+ * - A ray spawned from a point p of a plane (ray_spawn) starts at p moved
+ *   past p's error box along the normal, to the side its direction
+ *   points, so the whole ray (t > 0) lies on that side of the plane: it
+ *   can meet the plane only at t <= 0, and the watertight test rejects
+ *   every candidate whose t is not certainly > 0 when tmin >= 0
+ *   (triangle.c, dt).
+ * - A shadow ray from ray_spawn_to() runs from o, off the first surface
+ *   toward the second point p1, to q1, p1 moved off the second surface
+ *   toward o; it is traced over t < 1 - RAY_SHADOW_EPSILON < 1, part of
+ *   the segment o q1. Both ends lie on one side of the second surface's
+ *   plane (q1 was moved to o's side), and of the first's (o was moved to
+ *   p1's side, and q1 is p1 moved by no more than its own error), and a
+ *   segment whose ends lie on one side of a plane never crosses it.
+ * A curved or closed surface can be met again, so only the batch's
+ * parallelograms are skipped. The sides are those of the computed
+ * normal; that they are the true plane's too is pbrt's argument, not a
+ * proof: tests/test_accel.c checks on spawned rays, grazing ones
+ * included, that the skipped parallelogram's own test never reports a
+ * hit and that the answers are those of the query without skip. */
 
 /* The fast brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
@@ -357,6 +381,8 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
             if (!(maybe & 1))
                 continue;
             uint32_t i = b->para[slot];
+            if (b->items[i].obj == q->skip[0] || b->items[i].obj == q->skip[1])
+                continue;
             hit_t hh = { 0, 0, { 0, 0, 0 } };
             if (parallelogram_intersect_prepared(b->items[i].obj,
                                                  b->items[i].prim, &pr,
@@ -370,8 +396,10 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
 
 /* Start a search of (tmin, tmax). */
 static void brute_search_init(brute_search_t *q, real tmin, real tmax,
-                              bool shadow)
+                              bool shadow, const COBJECT *const skip[2])
 {
+    q->skip[0] = skip ? skip[0] : NULL;
+    q->skip[1] = skip ? skip[1] : NULL;
     q->tmin = tmin;
     q->tmax = q->tmax_tie = tmax;
     q->shadow = shadow;
@@ -380,13 +408,14 @@ static void brute_search_init(brute_search_t *q, real tmin, real tmax,
 }
 
 static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
-                    accel_hit_t *h, accel_counters_t *c)
+                    const COBJECT *const skip[2], accel_hit_t *h,
+                    accel_counters_t *c)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
     if (a->brute && !c) {
         brute_search_t q;
-        brute_search_init(&q, tmin, tmax, false);
+        brute_search_init(&q, tmin, tmax, false, skip);
         if (!brute_run(a->brute, &a->ps, r, &q))
             return false;
         h->obj = a->brute->items[q.best].obj;
@@ -411,22 +440,35 @@ static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
 bool accel_intersect(const accel_t *a, const ray_t *r, real tmin, real tmax,
                      accel_hit_t *h)
 {
-    return nearest(a, r, tmin, tmax, h, NULL);
+    return nearest(a, r, tmin, tmax, NULL, h, NULL);
+}
+
+bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
+                          real tmax, const COBJECT *const skip[2],
+                          accel_hit_t *h)
+{
+    return nearest(a, r, tmin, tmax, skip, h, NULL);
 }
 
 bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
                              real tmax, accel_hit_t *h, accel_counters_t *c)
 {
-    return nearest(a, r, tmin, tmax, h, c);
+    return nearest(a, r, tmin, tmax, NULL, h, c);
 }
 
 bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
+{
+    return accel_occluded_skip(a, r, tmin, tmax, NULL);
+}
+
+bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
+                         real tmax, const COBJECT *const skip[2])
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
     if (a->brute) {
         brute_search_t q;
-        brute_search_init(&q, tmin, tmax, true);
+        brute_search_init(&q, tmin, tmax, true, skip);
         return brute_run(a->brute, &a->ps, r, &q);
     }
     primset_query_t q;

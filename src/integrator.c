@@ -24,9 +24,12 @@
 
 /* --- brute-force tracing over the scene's objects ------------------------ */
 
+/* skip is only a hint (integrator.h): brute force tests everything */
 static bool brute_intersect(const void *ctx, const ray_t *r, real tmin,
-                            real tmax, hit_t *hit, const COBJECT **obj)
+                            real tmax, const COBJECT *const skip[2],
+                            hit_t *hit, const COBJECT **obj)
 {
+    (void)skip;
     const scene_t *s = ctx;
     bool any = false;
     for (int i = 0; i < s->nobjects; i++) {
@@ -40,8 +43,9 @@ static bool brute_intersect(const void *ctx, const ray_t *r, real tmin,
 }
 
 static bool brute_occluded(const void *ctx, const ray_t *r, real tmin,
-                           real tmax)
+                           real tmax, const COBJECT *const skip[2])
 {
+    (void)skip;
     const scene_t *s = ctx;
     hit_t h;
     for (int i = 0; i < s->nobjects; i++)
@@ -128,8 +132,12 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
         tmax = ray_spawn_to(&sr, pp->cross_point, pp->p_error, pp->ng, ls.p,
                             ls.p_error, ls.n);
     }
+    /* the surfaces at its two ends cannot be met (accel.h) */
+    const COBJECT *skip[2] = {
+        pp->IntersectObj, ls.infinite || !l->emission ? NULL : l->emission->obj
+    };
     st->rays++;
-    if (it->tracer.occluded(it->tracer.ctx, &sr, 0, tmax))
+    if (it->tracer.occluded(it->tracer.ctx, &sr, 0, tmax, skip))
         return rad_grey(0);
     real w = 1;
     if (!ls.delta && mis) {
@@ -150,7 +158,8 @@ static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
     real u[2];
     draw2(u, g);
     st->rays++;
-    if (!it->tracer.intersect(it->tracer.ctx, r, 0, (real)INFINITY, &h, &obj))
+    if (!it->tracer.intersect(it->tracer.ctx, r, 0, (real)INFINITY, NULL, &h,
+                              &obj))
         return rad_grey(0);
     PATHPOINT pp;
     cobject_fill(obj, r, &h, &pp);
@@ -164,8 +173,10 @@ static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
     ray_t s;
     ray_spawn(&s, pp.cross_point, pp.p_error, pp.ng, w);
     real tmax = it->ao_distance > 0 ? it->ao_distance : (real)INFINITY;
+    const COBJECT *skip[2] = { obj, NULL }; /* the surface it leaves */
     st->rays++;
-    return rad_grey(it->tracer.occluded(it->tracer.ctx, &s, 0, tmax) ? 0 : 1);
+    return rad_grey(it->tracer.occluded(it->tracer.ctx, &s, 0, tmax, skip) ? 0
+                                                                           : 1);
 }
 
 RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
@@ -197,13 +208,15 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
     bool prev_two = false;
     PATHPOINT prev;
     memset(&prev, 0, sizeof prev);
+    /* the surface the ray leaves (none for the camera ray) */
+    const COBJECT *skip[2] = { NULL, NULL };
 
     for (int depth = 0;; depth++) {
         hit_t h;
         const COBJECT *obj = NULL;
         st->rays++;
         bool hit = it->tracer.intersect(it->tracer.ctx, &r, 0, (real)INFINITY,
-                                        &h, &obj);
+                                        skip, &h, &obj);
         /* Light found by this ray: counted in full from the camera and
          * after a delta bounce; after a sampled bounce weighted against
          * light sampling. */
@@ -271,6 +284,7 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
         prev_pdf = bs.pdf;
         prev_two = two;
         ray_spawn(&r, pp.cross_point, pp.p_error, pp.ng, wi);
+        skip[0] = obj;
 
         /* Russian roulette (ch. 4): continue with probability q, dividing
          * by q keeps the estimate unbiased; q follows the throughput so

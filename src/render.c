@@ -16,10 +16,11 @@
 
 /* The tracer over an acceleration structure (ch. 7). */
 static bool accel_trace(const void *ctx, const ray_t *r, real tmin, real tmax,
-                        hit_t *hit, const COBJECT **obj)
+                        const COBJECT *const skip[2], hit_t *hit,
+                        const COBJECT **obj)
 {
     accel_hit_t h;
-    if (!accel_intersect(ctx, r, tmin, tmax, &h))
+    if (!accel_intersect_skip(ctx, r, tmin, tmax, skip, &h))
         return false;
     *hit = h.hit;
     *obj = h.obj;
@@ -27,9 +28,9 @@ static bool accel_trace(const void *ctx, const ray_t *r, real tmin, real tmax,
 }
 
 static bool accel_shadow(const void *ctx, const ray_t *r, real tmin,
-                         real tmax)
+                         real tmax, const COBJECT *const skip[2])
 {
-    return accel_occluded(ctx, r, tmin, tmax);
+    return accel_occluded_skip(ctx, r, tmin, tmax, skip);
 }
 
 static void accel_release(void *a)

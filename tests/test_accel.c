@@ -736,6 +736,123 @@ START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
 }
 END_TEST
 
+/* One ray r over (0, tmax) of the skip test below: the skipped
+ * parallelograms' own tests find nothing, and the queries with and
+ * without skip agree to the last bit. */
+static void skip_agrees(const accel_t *a, const ray_t *r, real tmax,
+                        const COBJECT *const skip[2])
+{
+    for (int k = 0; k < 2; k++)
+        if (skip[k]) {
+            hit_t h;
+            ck_assert_msg(!skip[k]->ops->intersect(skip[k], 0, r, 0, tmax, &h),
+                          "a ray meets the surface it leaves or aims at, t "
+                          "%.9g of tmax %.9g: o (%a %a %a) d (%a %a %a)",
+                          (double)h.t, (double)tmax, (double)r->o[X],
+                          (double)r->o[Y], (double)r->o[Z], (double)r->d[X],
+                          (double)r->d[Y], (double)r->d[Z]);
+        }
+    accel_hit_t h0, h1;
+    bool f0 = accel_intersect(a, r, 0, tmax, &h0);
+    bool f1 = accel_intersect_skip(a, r, 0, tmax, skip, &h1);
+    ck_assert(f0 == f1);
+    if (f0)
+        ck_assert(h0.obj == h1.obj && h0.hit.prim == h1.hit.prim &&
+                  memcmp(&h0.hit.t, &h1.hit.t, sizeof h0.hit.t) == 0 &&
+                  memcmp(h0.hit.b, h1.hit.b, sizeof h0.hit.b) == 0);
+    ck_assert(accel_occluded(a, r, 0, tmax) ==
+              accel_occluded_skip(a, r, 0, tmax, skip));
+}
+
+/* Rays spawned as the integrator spawns them, from points where random
+ * rays (from [-3 scale, 3 scale]^3) hit a parallelogram of s (cobject_fill's point, error and normal):
+ * leaving it on either side (reflection, transmission, grazing), and
+ * shadow rays to a point sampled on another parallelogram (an area
+ * light). Returns the rays tried; s is freed. */
+static long skip_rays(scene_t_ *s, pcg32_t *g, int count, real scale)
+{
+    accel_t *a;
+    svet_error e;
+    ck_assert(accel_build(&a, s->objs, s->n, NULL, &e) == SVET_OK);
+    long rays = 0;
+    for (int i = 0; i < count; i++) {
+        ray_t r;
+        rand_point(r.o, g, -3 * scale, 3 * scale);
+        geomcheck_random_dir(r.d, g);
+        accel_hit_t h;
+        if (!accel_intersect(a, &r, 0, (real)INFINITY, &h) ||
+            strcmp(h.obj->ops->name, "parallelogram") != 0)
+            continue;
+        PATHPOINT pp;
+        cobject_fill(h.obj, &r, &h.hit, &pp);
+        VECTOR3 w;
+        geomcheck_random_dir(w, g);
+        if (i % 3 == 0) /* grazing */
+            vec_add_scaled(w, w, -SVECTOR3(w, pp.ng) * REAL_C(0.9999), pp.ng);
+        ray_t sr;
+        if (vec_length2(w) > 0) {
+            const COBJECT *skip[2] = { h.obj, NULL };
+            ray_spawn(&sr, pp.cross_point, pp.p_error, pp.ng, w);
+            skip_agrees(a, &sr, (real)INFINITY, skip);
+            rays++;
+        }
+        const COBJECT *l = s->objs[pcg32_bounded(g, (uint32_t)s->n)];
+        if (l == h.obj || strcmp(l->ops->name, "parallelogram") != 0)
+            continue;
+        real u[2] = { pcg32_real(g), pcg32_real(g) };
+        cobject_sample_t ls;
+        l->ops->sample(l, u, &ls);
+        real tmax = ray_spawn_to(&sr, pp.cross_point, pp.p_error, pp.ng, ls.p,
+                                 ls.p_error, ls.n);
+        if (vec_length2(sr.d) > 0) {
+            const COBJECT *skip[2] = { h.obj, l };
+            skip_agrees(a, &sr, tmax, skip);
+            rays++;
+        }
+    }
+    accel_free(a);
+    free_scene(s);
+    return rays;
+}
+
+START_TEST(skipping_the_planes_a_ray_leaves_or_aims_at_changes_no_answer)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 91, 3);
+    long rays = 0;
+    scene_t_ s = { 0 };
+    cornell_box(&s, false);
+    rays += skip_rays(&s, &g, 200000, REAL_C(0.33)); /* inside the box */
+    /* parallelograms of every orientation and size, at several scales */
+    for (int sc = 0; sc < 12; sc++) {
+        scene_t_ p = { 0 };
+        real scale = (real)ldexp(1, 6 * (sc % 4) - 9);
+        for (int i = 0; i < 2 + (int)pcg32_bounded(&g, 10); i++) {
+            VECTOR3 c0, c1, c3;
+            svet_error e;
+            rand_point(c0, &g, -2, 2);
+            rand_point(c1, &g, -2, 2);
+            rand_point(c3, &g, -2, 2);
+            vec_add(c1, c1, c0);
+            vec_add(c3, c3, c0);
+            vec_scale(c0, c0, scale);
+            vec_scale(c1, c1, scale);
+            vec_scale(c3, c3, scale);
+            COBJECT *o = parallelogram_new(c0, c1, c3, &e);
+            if (o)
+                add(&p, o);
+        }
+        if (p.n > 0)
+            rays += skip_rays(&p, &g, 20000, scale);
+        else
+            free_scene(&p);
+    }
+    ck_assert_msg(rays > 50000, "%ld rays", rays);
+    test_report_cases("skipping_the_planes_a_ray_leaves_or_aims_at_changes_"
+                      "no_answer (spawned rays)", rays);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("accel");
@@ -750,6 +867,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
     tcase_add_test(tc,
                    fast_brute_force_answers_bit_for_bit_what_primset_test_answers);
+    tcase_add_test(tc,
+                   skipping_the_planes_a_ray_leaves_or_aims_at_changes_no_answer);
     suite_add_tcase(s, tc);
     return s;
 }
