@@ -4,7 +4,8 @@
  * files (obj.h) and the procedural generators (meshgen.h) produce them.
  * Each triangle is the watertight triangle of triangle.h; the mesh adds
  * interpolated shading normals and texture coordinates, area sampling, and
- * a per-ray form of the watertight test for the grids' inner loop.
+ * a per-ray form of the watertight test for the grids' inner loop, with
+ * its sign test for several triangles at once (SSE2, include/simd.h).
  * Tests: tests/test_mesh.c
  */
 #ifndef SVET_MESH_H
@@ -14,6 +15,7 @@
 #include <stdint.h>
 #include "cobject.h"
 #include "error.h"
+#include "simd.h"
 #include "triangle.h"
 
 /* Largest mesh accepted: indices are int32, and the grids use 31 bits for
@@ -98,6 +100,10 @@ typedef struct {
     real sx, sy, sz; /* shear: x += sx z, y += sy z, z *= sz */
     bool fast;       /* false: d needed rescaling (or is zero or not
                         finite): use triangle_intersect_watertight */
+#ifdef SIMD_REAL
+    vreal vo[3];     /* o[kx], o[ky], o[kz] in every lane */
+    vreal vsx, vsy;  /* sx, sy in every lane (mesh_ray_reject) */
+#endif
 } mesh_ray_t;
 
 /* Prepare r for mesh_ray_intersect(). This function can't fail. */
@@ -123,6 +129,13 @@ static inline void mesh_ray_prepare(mesh_ray_t *mr, const ray_t *r)
     } else {
         mr->sx = mr->sy = mr->sz = 0;
     }
+#ifdef SIMD_REAL
+    mr->vo[0] = V_SET1(r->o[mr->kx]);
+    mr->vo[1] = V_SET1(r->o[mr->ky]);
+    mr->vo[2] = V_SET1(r->o[kz]);
+    mr->vsx = V_SET1(mr->sx);
+    mr->vsy = V_SET1(mr->sy);
+#endif
 }
 
 /* The corners of triangle i side by side in q: the layout that
@@ -214,6 +227,154 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
     b[1] = e1 / det;
     b[2] = e2 / det;
     return true;
+}
+
+/* --- several triangles at once ------------------------------------------- */
+
+/* Triangles mesh_ray_reject() takes at once. */
+#define MESH_BATCH 4
+
+/* The edge functions of mesh_ray_intersect() for lane j of a batch and
+ * whether its sign test rejects: exactly the scalar operations, in the
+ * scalar order (the translation, the shear, the three 2D cross products,
+ * the product of the three, the signs). */
+static inline bool mesh_lane_rejects(const real q[9], const mesh_ray_t *mr)
+{
+    const ray_t *r = mr->r;
+    const int kx = mr->kx, ky = mr->ky, kz = mr->kz;
+    const real sx = mr->sx, sy = mr->sy;
+    real a0x = q[kx] - r->o[kx], a0y = q[ky] - r->o[ky];
+    real a0z = q[kz] - r->o[kz];
+    real a1x = q[3 + kx] - r->o[kx], a1y = q[3 + ky] - r->o[ky];
+    real a1z = q[3 + kz] - r->o[kz];
+    real a2x = q[6 + kx] - r->o[kx], a2y = q[6 + ky] - r->o[ky];
+    real a2z = q[6 + kz] - r->o[kz];
+    real x0 = a0x + sx * a0z, y0 = a0y + sy * a0z;
+    real x1 = a1x + sx * a1z, y1 = a1y + sy * a1z;
+    real x2 = a2x + sx * a2z, y2 = a2y + sy * a2z;
+    real e0 = x1 * y2 - y1 * x2;
+    real e1 = x2 * y0 - y2 * x0;
+    real e2 = x0 * y1 - y0 * x1;
+    return !(e0 * e1 * e2 == 0) &&
+           (((e0 < 0) | (e1 < 0) | (e2 < 0)) &
+            ((e0 > 0) | (e1 > 0) | (e2 > 0)));
+}
+
+/* mesh_ray_reject() in plain C, lane by lane: kept for machines without
+ * SSE2, and as the reference the tests compare the vector code with. */
+static inline unsigned mesh_ray_reject_plain(const real *const q[MESH_BATCH],
+                                             const mesh_ray_t *mr)
+{
+    if (!mr->fast)
+        return 0;
+    unsigned m = 0;
+    for (int j = 0; j < MESH_BATCH; j++)
+        m |= (unsigned)mesh_lane_rejects(q[j], mr) << j;
+    return m;
+}
+
+#ifdef SIMD_REAL
+#ifdef SVET_DOUBLE
+#define MESH_V_NEQ _mm_cmpneq_pd
+#else
+#define MESH_V_NEQ _mm_cmpneq_ps
+#endif
+
+/* The 9 corner coordinates (x0 y0 z0 x1 ... z2) of the VLANES triangles
+ * q[0 ..) as 9 vectors, lane j from q[j]. */
+static inline void mesh_lanes_load(const real *const *q, vreal c[9])
+{
+#ifdef SVET_DOUBLE
+    for (int k = 0; k < 9; k++)
+        c[k] = _mm_loadh_pd(_mm_load_sd(q[0] + k), q[1] + k);
+#else
+    /* two unaligned loads per triangle (q[0..3], q[4..7]) and two 4 x 4
+     * transposes; q[8] lane by lane */
+    __m128 r0 = _mm_loadu_ps(q[0]), r1 = _mm_loadu_ps(q[1]);
+    __m128 r2 = _mm_loadu_ps(q[2]), r3 = _mm_loadu_ps(q[3]);
+    __m128 s0 = _mm_loadu_ps(q[0] + 4), s1 = _mm_loadu_ps(q[1] + 4);
+    __m128 s2 = _mm_loadu_ps(q[2] + 4), s3 = _mm_loadu_ps(q[3] + 4);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    _MM_TRANSPOSE4_PS(s0, s1, s2, s3);
+    __m128 u01 = _mm_unpacklo_ps(_mm_load_ss(q[0] + 8), _mm_load_ss(q[1] + 8));
+    __m128 u23 = _mm_unpacklo_ps(_mm_load_ss(q[2] + 8), _mm_load_ss(q[3] + 8));
+    c[0] = r0, c[1] = r1, c[2] = r2, c[3] = r3;
+    c[4] = s0, c[5] = s1, c[6] = s2, c[7] = s3;
+    c[8] = _mm_movelh_ps(u01, u23);
+#endif
+}
+
+/* The sign test of mesh_lanes_reject() on corners already permuted
+ * (p0 = (x, y, z) of corner 0 in the ray's kx, ky, kz order, ...). */
+static inline unsigned mesh_lanes_reject_perm(
+    vreal p0x, vreal p0y, vreal p0z, vreal p1x, vreal p1y, vreal p1z,
+    vreal p2x, vreal p2y, vreal p2z, const mesh_ray_t *mr)
+{
+    const vreal ox = mr->vo[0], oy = mr->vo[1], oz = mr->vo[2];
+    const vreal sx = mr->vsx, sy = mr->vsy;
+    vreal a0z = V_SUB(p0z, oz), a1z = V_SUB(p1z, oz), a2z = V_SUB(p2z, oz);
+    vreal x0 = V_ADD(V_SUB(p0x, ox), V_MUL(sx, a0z));
+    vreal y0 = V_ADD(V_SUB(p0y, oy), V_MUL(sy, a0z));
+    vreal x1 = V_ADD(V_SUB(p1x, ox), V_MUL(sx, a1z));
+    vreal y1 = V_ADD(V_SUB(p1y, oy), V_MUL(sy, a1z));
+    vreal x2 = V_ADD(V_SUB(p2x, ox), V_MUL(sx, a2z));
+    vreal y2 = V_ADD(V_SUB(p2y, oy), V_MUL(sy, a2z));
+    vreal e0 = V_SUB(V_MUL(x1, y2), V_MUL(y1, x2));
+    vreal e1 = V_SUB(V_MUL(x2, y0), V_MUL(y2, x0));
+    vreal e2 = V_SUB(V_MUL(x0, y1), V_MUL(y0, x1));
+    const vreal zero = V_SET1(0);
+    vreal nz = MESH_V_NEQ(V_MUL(V_MUL(e0, e1), e2), zero);
+    vreal neg = V_OR(V_OR(V_LT(e0, zero), V_LT(e1, zero)), V_LT(e2, zero));
+    vreal pos = V_OR(V_OR(V_GT(e0, zero), V_GT(e1, zero)), V_GT(e2, zero));
+    return (unsigned)V_MASK(V_AND(nz, V_AND(neg, pos)));
+}
+
+/* mesh_lane_rejects() for VLANES triangles at once, each V_ macro one
+ * IEEE operation of the scalar code (simd.h), in its order. The three
+ * permutations are spelled out so that the vectors stay in registers. */
+static inline unsigned mesh_lanes_reject(const real *const *q,
+                                         const mesh_ray_t *mr)
+{
+    vreal c[9];
+    mesh_lanes_load(q, c);
+    switch (mr->kz) {
+    case 0: /* kx = 1, ky = 2 */
+        return mesh_lanes_reject_perm(c[1], c[2], c[0], c[4], c[5], c[3],
+                                      c[7], c[8], c[6], mr);
+    case 1: /* kx = 2, ky = 0 */
+        return mesh_lanes_reject_perm(c[2], c[0], c[1], c[5], c[3], c[4],
+                                      c[8], c[6], c[7], mr);
+    default: /* kx = 0, ky = 1 */
+        return mesh_lanes_reject_perm(c[0], c[1], c[2], c[3], c[4], c[5],
+                                      c[6], c[7], c[8], mr);
+    }
+}
+#endif
+
+/* Which of the triangles q[0 .. MESH_BATCH) the ray surely misses: bit j
+ * is set only when mesh_ray_intersect(q[j], mr, ...) returns false at its
+ * sign test, whatever tmin and tmax (the edge functions differ in sign,
+ * none is zero); a lane left clear must still go through
+ * mesh_ray_intersect(), which decides. Every lane computes the scalar
+ * test's operations in the scalar order (SSE2 has no fused multiply-add,
+ * and the build has -ffp-contract=off), so the edge functions are the
+ * scalar ones bit for bit and so is the mask: with SSE2 4 floats or 2
+ * doubles at a time, else mesh_ray_reject_plain(). tests/test_mesh.c
+ * compares the two lane by lane. For a ray that is not fast, no lane is
+ * rejected. This function can't fail. */
+static inline unsigned mesh_ray_reject(const real *const q[MESH_BATCH],
+                                       const mesh_ray_t *mr)
+{
+#ifdef SIMD_REAL
+    if (!mr->fast)
+        return 0;
+    unsigned m = 0;
+    for (int j = 0; j < MESH_BATCH; j += VLANES)
+        m |= mesh_lanes_reject(q + j, mr) << j;
+    return m;
+#else
+    return mesh_ray_reject_plain(q, mr);
+#endif
 }
 
 #endif

@@ -115,6 +115,53 @@ static inline bool primset_before(const primset_t *ps, uint32_t a, uint32_t b)
     return ra.obj < rb.obj || (ra.obj == rb.obj && ra.prim < rb.prim);
 }
 
+/* Has `ref` been tested for this ray already? If not, marks it tested
+ * (the mailbox) and counts the test. This function can't fail. */
+static inline bool primset_seen(primset_query_t *q, uint32_t ref)
+{
+    uint32_t *mb = &q->mailbox[ref & (PRIMSET_MAILBOX - 1)];
+    if (*mb == ref)
+        return true;
+    *mb = ref;
+    q->tests++;
+    return false;
+}
+
+/* Keep a hit at t of primitive ref when it beats the best so far (the
+ * nearest-hit rule of primset_test()); the caller then fills q->hit's
+ * other fields when this returns true. This function can't fail. */
+static inline bool primset_keep(const primset_t *ps, primset_query_t *q,
+                                uint32_t ref, real t)
+{
+    if (q->found && !(t < q->tmax || primset_before(ps, ref, q->ref)))
+        return false;
+    q->found = true;
+    q->ref = ref;
+    q->tmax = t;
+    q->tmax_tie = real_next_up(t); /* nextafter(t, +inf), no libm call */
+    return true;
+}
+
+/* primset_test() of mesh triangle ref (ref < ps->ntri) without the
+ * mailbox: the caller has asked primset_seen(). This function can't
+ * fail. */
+static inline bool primset_test_tri(const primset_t *ps, primset_query_t *q,
+                                    uint32_t ref)
+{
+    real t, b[3];
+    if (!mesh_ray_intersect(ps->tri[ref], &q->mr, q->tmin, q->tmax_tie, &t,
+                            b))
+        return false;
+    if (primset_keep(ps, q, ref, t)) {
+        q->hit.t = t;
+        q->hit.prim = -1; /* set from refs by primset_query_finish() */
+        q->hit.b[0] = b[0];
+        q->hit.b[1] = b[1];
+        q->hit.b[2] = b[2];
+    }
+    return true;
+}
+
 /* Test primitive `ref`. Nearest-hit rule: a hit replaces the best one
  * when it is nearer, or at exactly the same t and earlier in the order of
  * the objects (then of their sub-primitives), so the answer does not
@@ -125,42 +172,19 @@ static inline bool primset_before(const primset_t *ps, uint32_t a, uint32_t b)
 static inline bool primset_test(const primset_t *ps, primset_query_t *q,
                                 uint32_t ref)
 {
-    uint32_t *mb = &q->mailbox[ref & (PRIMSET_MAILBOX - 1)];
-    if (*mb == ref)
+    if (primset_seen(q, ref))
         return false;
-    *mb = ref;
-    q->tests++;
-    real t;
-    if (ref < ps->ntri) {
-        real b[3];
-        if (!mesh_ray_intersect(ps->tri[ref], &q->mr, q->tmin, q->tmax_tie,
-                                &t, b))
-            return false;
-        if (q->found && !(t < q->tmax || primset_before(ps, ref, q->ref)))
-            return true;
-        q->hit.t = t;
-        q->hit.prim = -1; /* set from refs by primset_query_finish() */
-        q->hit.b[0] = b[0];
-        q->hit.b[1] = b[1];
-        q->hit.b[2] = b[2];
-    } else {
-        const primref_t pr = ps->refs[ref];
-        const COBJECT *o = ps->objs[pr.obj];
-        /* zeroed: a primitive may leave part of the scratch b unset, and
-         * every structure must return the same bytes */
-        hit_t h = { 0, 0, { 0, 0, 0 } };
-        if (!o->ops->intersect(o, (int)pr.prim, q->r, q->tmin, q->tmax_tie,
-                               &h))
-            return false;
-        t = h.t;
-        if (q->found && !(t < q->tmax || primset_before(ps, ref, q->ref)))
-            return true;
+    if (ref < ps->ntri)
+        return primset_test_tri(ps, q, ref);
+    const primref_t pr = ps->refs[ref];
+    const COBJECT *o = ps->objs[pr.obj];
+    /* zeroed: a primitive may leave part of the scratch b unset, and
+     * every structure must return the same bytes */
+    hit_t h = { 0, 0, { 0, 0, 0 } };
+    if (!o->ops->intersect(o, (int)pr.prim, q->r, q->tmin, q->tmax_tie, &h))
+        return false;
+    if (primset_keep(ps, q, ref, h.t))
         q->hit = h;
-    }
-    q->found = true;
-    q->ref = ref;
-    q->tmax = t;
-    q->tmax_tie = real_next_up(t); /* nextafter(t, +inf), no libm call */
     return true;
 }
 

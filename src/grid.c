@@ -1025,6 +1025,67 @@ static uint64_t skip_empty(const grid_t *g, const grid_node_t *nd,
     return mask;
 }
 
+static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
+                 primset_query_t *q, double t0, double t1, bool shadow);
+
+/* Test the nb (1 to MESH_BATCH) mesh triangles rb[] (corners qb[]), which
+ * the mailbox has passed: the sign test of all of them at once
+ * (mesh_ray_reject), then the full test of those it cannot reject. The
+ * same answers as primset_test() one by one: a lane is rejected only
+ * where mesh_ray_intersect() returns false at that very test, with the
+ * same bits (mesh.h), and the nearest-hit rule does not depend on the
+ * order. Returns true when a shadow query found a hit. */
+static bool test_batch(const primset_t *ps, primset_query_t *q,
+                       const real *qb[MESH_BATCH], const uint32_t *rb,
+                       int nb, bool shadow)
+{
+    for (int j = nb; j < MESH_BATCH; j++)
+        qb[j] = qb[0]; /* padding: its answer is not read */
+    unsigned left = ~mesh_ray_reject(qb, &q->mr) & ((1u << nb) - 1);
+    for (int j = 0; left; j++, left >>= 1)
+        if ((left & 1) && primset_test_tri(ps, q, rb[j]) && shadow)
+            return true;
+    return false;
+}
+
+/* Test the n items of a cell: mesh triangles MESH_BATCH at a time, other
+ * primitives one by one, child grids (listed last) walked. Returns true
+ * when a shadow query found a hit. */
+static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
+                      const uint32_t *items, uint32_t n, bool shadow)
+{
+    const primset_t *ps = g->ps;
+    const real *qb[MESH_BATCH];
+    uint32_t rb[MESH_BATCH];
+    int nb = 0;
+    for (uint32_t k = 0; k < n; k++) {
+        uint32_t it = items[k];
+        if (it & GRID_CHILD) {
+            if (nb && test_batch(ps, q, qb, rb, nb, shadow))
+                return true;
+            nb = 0;
+            const grid_node_t *ch = &g->nodes[it & ~GRID_CHILD];
+            double c0, c1;
+            if (slab(w, ch->min, ch->max, w->t0, w->t1, &c0, &c1) &&
+                walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow))
+                return true;
+        } else if (it < ps->ntri) {
+            if (primset_seen(q, it))
+                continue;
+            qb[nb] = ps->tri[it];
+            rb[nb++] = it;
+            if (nb == MESH_BATCH) {
+                if (test_batch(ps, q, qb, rb, nb, shadow))
+                    return true;
+                nb = 0;
+            }
+        } else if (primset_test(ps, q, it) && shadow) {
+            return true;
+        }
+    }
+    return nb && test_batch(ps, q, qb, rb, nb, shadow);
+}
+
 /* Walk node ni over [t0, t1] (inside its box). Returns true when a
  * shadow query found a hit.
  *
@@ -1062,7 +1123,6 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow)
 {
     const grid_node_t *nd = &g->nodes[ni];
-    const primset_t *ps = g->ps;
     const uint32_t *cstart = g->cstart, *items = g->items;
     const uint64_t *bmask = g->bmask + nd->bfirst;
     const uint32_t *bbase = g->bbase + nd->bfirst;
@@ -1115,23 +1175,11 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         for (;;) {
             if (mask >> bit & 1) {
                 uint32_t f = full_cell(bbase[s.blk], mask, bit);
-                for (uint32_t k = cstart[f], e = cstart[f + 1]; k < e; k++) {
-                    uint32_t it = items[k];
-                    if (it & GRID_CHILD) {
-                        const grid_node_t *ch = &g->nodes[it & ~GRID_CHILD];
-                        double c0, c1;
-                        if (slab(w, ch->min, ch->max, w->t0, w->t1, &c0,
-                                 &c1) &&
-                            walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow)) {
-                            s.steps = steps;
-                            hit = true;
-                            goto done;
-                        }
-                    } else if (primset_test(ps, q, it) && shadow) {
-                        s.steps = steps;
-                        hit = true;
-                        goto done;
-                    }
+                if (test_cell(g, w, q, items + cstart[f],
+                              cstart[f + 1] - cstart[f], shadow)) {
+                    s.steps = steps;
+                    hit = true;
+                    goto done;
                 }
                 tend = walk_end(w, q, t1);
             }

@@ -1,7 +1,8 @@
 /*
  * test_mesh.c - triangle meshes (ch. 7): the per-ray watertight test is
- * triangle.h's bit for bit; surface() interpolates normals and texture
- * coordinates and keeps n on ng's side; area and alias-table sampling;
+ * triangle.h's bit for bit, and the batch sign test's mask the plain
+ * lanes'; surface() interpolates normals and texture coordinates and
+ * keeps n on ng's side; area and alias-table sampling;
  * the geometric robustness harness on a closed mesh; input checks.
  */
 #include "testutil.h"
@@ -109,6 +110,114 @@ START_TEST(per_ray_test_matches_the_triangle_test_bit_for_bit)
     ck_assert(hits > 10000 && edge > 1000);
     test_report_cases("per_ray_test_matches_the_triangle_test_bit_for_bit",
                       cases);
+}
+END_TEST
+
+/* A corner for the batch test's adversarial cases: kind 0 random in
+ * [-1, 1]^3, 1 on a quarter grid (exact zeros in the edge functions),
+ * 2 huge, 3 tiny, 4 NaN or infinite in one coordinate. */
+static void batch_corner(real *p, pcg32_t *g, int kind)
+{
+    random_point(p, g, 1);
+    if (kind == 1)
+        for (int k = 0; k < 3; k++)
+            p[k] = (real)(int)(4 * p[k]) / 4;
+    else if (kind == 2)
+        vec_scale(p, p, REAL_C(1e30));
+    else if (kind == 3)
+        vec_scale(p, p, REAL_C(1e-30));
+    else if (kind == 4)
+        p[pcg32_bounded(g, 3)] = pcg32_bounded(g, 2) ? (real)NAN
+                                                      : (real)INFINITY;
+}
+
+/* The batch sign test (SSE2 where there is SSE2) gives the plain lane
+ * loop's mask bit for bit, and rejects a lane only where the watertight
+ * test misses it: random triangles, triangles on a quarter grid, edge-on
+ * ones (the ray lies in their plane), degenerate ones (a repeated corner,
+ * collinear corners), huge, tiny, NaN and infinite corners; rays aimed at
+ * a vertex, an edge midpoint or inside of lane 0's triangle, parallel to
+ * an axis, and with tiny or huge directions (not fast: nothing rejected). */
+START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 62, 3);
+    long cases = 0, rejected = 0, kept = 0, hits = 0;
+    for (int i = 0; i < 50000; i++) {
+        real q[MESH_BATCH][9];
+        for (int j = 0; j < MESH_BATCH; j++) {
+            int kind = (int)pcg32_bounded(&g, 10);
+            kind = kind < 5 ? 0 : kind - 4; /* half of them random */
+            for (int v = 0; v < 3; v++)
+                batch_corner(q[j] + 3 * v, &g, kind == 5 ? 0 : kind);
+            if (kind == 5) { /* degenerate: a repeated or collinear corner */
+                if (pcg32_bounded(&g, 2))
+                    vec_copy(q[j] + 6, q[j]);
+                else
+                    for (int k = 0; k < 3; k++)
+                        q[j][6 + k] = REAL_C(0.5) * (q[j][k] + q[j][3 + k]);
+            }
+        }
+        ray_t r;
+        random_point(r.o, &g, 3);
+        VECTOR3 target;
+        const real *q0 = q[0];
+        int mode = i % 5;
+        if (mode == 1) {
+            vec_copy(target, q0 + 3 * pcg32_bounded(&g, 3));
+        } else if (mode == 2) {
+            int v = (int)pcg32_bounded(&g, 3), w = (v + 1) % 3;
+            for (int k = 0; k < 3; k++)
+                target[k] = REAL_C(0.5) * (q0[3 * v + k] + q0[3 * w + k]);
+        } else {
+            real b0 = pcg32_real(&g), b1 = (1 - b0) * pcg32_real(&g);
+            for (int k = 0; k < 3; k++)
+                target[k] = b0 * q0[k] + b1 * q0[3 + k] +
+                            (1 - b0 - b1) * q0[6 + k];
+        }
+        vec_sub(r.d, target, r.o);
+        if (mode == 3) { /* lane 1 edge-on: its plane holds the ray */
+            real s = pcg32_real(&g), u = pcg32_real(&g);
+            for (int k = 0; k < 3; k++) {
+                q[1][k] = r.o[k] + s * r.d[k];
+                q[1][3 + k] = r.o[k] + (s + 1) * r.d[k];
+                q[1][6 + k] = q[1][k] + u * q[2][k];
+            }
+        }
+        if (mode == 4)
+            r.d[pcg32_bounded(&g, 3)] = 0;
+        if (i % 23 == 0)
+            vec_scale(r.d, r.d, REAL_C(1e-9));
+        if (i % 29 == 0)
+            vec_scale(r.d, r.d, REAL_C(1e9));
+        mesh_ray_t mr;
+        mesh_ray_prepare(&mr, &r);
+        const real *qp[MESH_BATCH];
+        for (int j = 0; j < MESH_BATCH; j++)
+            qp[j] = q[j];
+        unsigned m = mesh_ray_reject(qp, &mr);
+        unsigned mp = mesh_ray_reject_plain(qp, &mr);
+        ck_assert_msg(m == mp, "case %d: mask %x, plain lanes %x", i, m, mp);
+        for (int j = 0; j < MESH_BATCH; j++) {
+            real t, b[3];
+            bool h = triangle_intersect_watertight(
+                q[j], q[j] + 3, q[j] + 6, &r, -(real)INFINITY,
+                (real)INFINITY, &t, b);
+            if (m >> j & 1) {
+                ck_assert_msg(!h, "case %d lane %d: rejected, but hit at %g",
+                              i, j, (double)t);
+                rejected++;
+            } else {
+                kept++;
+                hits += h;
+            }
+            cases++;
+        }
+    }
+    ck_assert(rejected > 50000 && kept > 20000 && hits > 10000);
+    test_report_cases(
+        "batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit",
+        cases);
 }
 END_TEST
 
@@ -425,6 +534,8 @@ Suite *test_suite(void)
     TCase *tc = tcase_create("mesh");
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, per_ray_test_matches_the_triangle_test_bit_for_bit);
+    tcase_add_test(
+        tc, batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit);
     tcase_add_test(tc, surface_interpolates_normals_and_texture_coordinates);
     tcase_add_test(tc, shading_normal_is_turned_to_the_side_of_ng);
     tcase_add_test(tc, missing_normals_and_st_fall_back_per_triangle);
