@@ -287,6 +287,9 @@ typedef struct {
      * space. cull is false for other primitives and extreme transforms. */
     bool cull;
     xform_sphere_t sphere;
+    /* world_point()'s constants, each the very product it would compute:
+     * |m_ij|, gamma(4) |m_i3| and gamma(4) |inv_ij| */
+    real abs_m[3][3], g_m3[3], g_inv[3][4];
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -355,19 +358,49 @@ static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
  * axis j, and sum_j |m_ij| times that in the world. Offsetting by the
  * whole bound keeps the spawned origin on its side of the surface after
  * the round trip. */
+/* Row i of point_with_error()'s bound, from the shape's constants (the
+ * same operations in the same order, so the same bits). */
+static inline real point_error_row(const xf_shape *sh, int i, const VECTOR3 p,
+                                   const VECTOR3 e)
+{
+    const real g = ray_gamma(4);
+    real a = fabs(sh->x.m[i][0] * p[X]), b = fabs(sh->x.m[i][1] * p[Y]),
+         c = fabs(sh->x.m[i][2] * p[Z]);
+    real prop = sh->abs_m[i][0] * e[X] + sh->abs_m[i][1] * e[Y] +
+                sh->abs_m[i][2] * e[Z];
+    return (1 + g) * prop + g * a + g * b + g * c + sh->g_m3[i];
+}
+
+/* Row j of world_point()'s bound on the error of mapping back. */
+static inline real back_row(const xf_shape *sh, int j, const VECTOR3 w)
+{
+    return sh->g_inv[j][3] + sh->g_inv[j][0] * w[0] + sh->g_inv[j][1] * w[1] +
+           sh->g_inv[j][2] * w[2];
+}
+
+static inline real widen_row(const xf_shape *sh, int i, real e,
+                             const VECTOR3 back)
+{
+    return e + sh->abs_m[i][0] * back[0] + sh->abs_m[i][1] * back[1] +
+           sh->abs_m[i][2] * back[2];
+}
+
+/* The world point of object point p (error e) and its bound: what
+ * point_with_error() gives, widened by the error of the inverse map
+ * (|M| times the bound back of M^-1's rounding), with the constants
+ * taken from the shape and the rows written out (every hit on a
+ * transformed object completes one). */
 static void world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
                         VECTOR3 out, VECTOR3 out_e)
 {
-    point_with_error(MAT(sh->x.m), p, e, out, out_e);
-    real g = ray_gamma(4), back[3];
-    for (int j = 0; j < 3; j++) {
-        back[j] = g * fabs(sh->x.inv[j][3]);
-        for (int l = 0; l < 3; l++)
-            back[j] += g * fabs(sh->x.inv[j][l]) * (fabs(out[l]) + out_e[l]);
-    }
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            out_e[i] += fabs(sh->x.m[i][j]) * back[j];
+    apply(MAT(sh->x.m), out, p, true);
+    real e0 = point_error_row(sh, 0, p, e), e1 = point_error_row(sh, 1, p, e),
+         e2 = point_error_row(sh, 2, p, e);
+    VECTOR3 w = { fabs(out[X]) + e0, fabs(out[Y]) + e1, fabs(out[Z]) + e2 };
+    VECTOR3 back = { back_row(sh, 0, w), back_row(sh, 1, w),
+                     back_row(sh, 2, w) };
+    vec_set(out_e, widen_row(sh, 0, e0, back), widen_row(sh, 1, e1, back),
+            widen_row(sh, 2, e2, back));
 }
 
 /* unit M^-T n, with a fallback that cannot happen for a valid transform */
@@ -756,6 +789,13 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     sh->x = x;
     bool regular;
     sh->absdet = (real)fabsl(det3(MAT(x.m), &regular));
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            sh->abs_m[i][j] = fabs(x.m[i][j]);
+        sh->g_m3[i] = ray_gamma(4) * fabs(x.m[i][3]);
+        for (int j = 0; j < 4; j++)
+            sh->g_inv[i][j] = ray_gamma(4) * fabs(x.inv[i][j]);
+    }
     sh->area = transformed_area(sh);
     set_culling(sh);
     obj->nprims = inner->nprims;
