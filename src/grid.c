@@ -1039,6 +1039,8 @@ static bool test_batch(const primset_t *ps, primset_query_t *q,
                        const real *qb[MESH_BATCH], const uint32_t *rb,
                        int nb, bool shadow)
 {
+    if (nb == 1)
+        return primset_test_tri(ps, q, rb[0]) && shadow;
     for (int j = nb; j < MESH_BATCH; j++)
         qb[j] = qb[0]; /* padding: its answer is not read */
     unsigned left = ~mesh_ray_reject(qb, &q->mr) & ((1u << nb) - 1);
