@@ -206,8 +206,10 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
     bool prev_delta = true; /* the camera ray counts emission in full */
     real prev_pdf = 0;
     bool prev_two = false;
-    PATHPOINT prev;
-    memset(&prev, 0, sizeof prev);
+    /* the vertices in two buffers that swap at each bounce (no copy);
+     * *prev is read only when prev_delta is false, i.e. after it is set */
+    PATHPOINT buf[2];
+    PATHPOINT *cur = &buf[0], *prev = &buf[1];
     /* the surface the ray leaves (none for the camera ray) */
     const COBJECT *skip[2] = { NULL, NULL };
 
@@ -228,7 +230,7 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
                 real w = 1;
                 if (!prev_delta && nee && env >= 0) {
                     real pl = lightset_pmf(it->lights, env) *
-                              light_pdf(&it->lights->lights[env], &prev,
+                              light_pdf(&it->lights->lights[env], prev,
                                         prev_two, d, d, d);
                     w = integrator_mis_weight(prev_pdf, pl);
                 }
@@ -237,18 +239,18 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
             }
             break;
         }
-        PATHPOINT pp;
-        cobject_fill(obj, &r, &h, &pp);
+        PATHPOINT *pp = cur;
+        cobject_fill(obj, &r, &h, pp);
 
         if (obj->light && count) {
-            RADIANCE Le = light_emitted(obj->light, &pp);
+            RADIANCE Le = light_emitted(obj->light, pp);
             if (!rad_is_black(Le)) {
                 real w = 1;
                 if (!prev_delta && nee) {
                     int li = lightset_find_area(it->lights, obj);
                     real pl = lightset_pmf(it->lights, li) *
-                              light_pdf(&it->lights->lights[li], &prev,
-                                        prev_two, r.d, pp.cross_point, pp.ng);
+                              light_pdf(&it->lights->lights[li], prev,
+                                        prev_two, r.d, pp->cross_point, pp->ng);
                     w = integrator_mis_weight(prev_pdf, pl);
                 }
                 L = rad_add(L, rad_scale(rad_mul(beta, Le), w));
@@ -260,9 +262,9 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
         const material_t *m = obj->material;
         const bool two = transmits(m);
         VECTOR3 wo;
-        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
+        frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
         if (nee && !material_is_specular(m)) {
-            RADIANCE Ld = direct_light(it, &pp, m, two, wo, bsdf_hits, g,
+            RADIANCE Ld = direct_light(it, pp, m, two, wo, bsdf_hits, g,
                                        st);
             /* with bsdf_hits false the light sample's weight is 1 */
             L = rad_add(L, rad_mul(beta, Ld));
@@ -278,12 +280,13 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
             break;
         beta = rad_mul(beta, bs.weight);
         VECTOR3 wi;
-        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
+        frame_to_world(wi, bs.wi, pp->u, pp->v, pp->n);
+        cur = prev; /* the next vertex overwrites the one before this */
         prev = pp;
         prev_delta = bs.delta;
         prev_pdf = bs.pdf;
         prev_two = two;
-        ray_spawn(&r, pp.cross_point, pp.p_error, pp.ng, wi);
+        ray_spawn(&r, pp->cross_point, pp->p_error, pp->ng, wi);
         skip[0] = obj;
 
         /* Russian roulette (ch. 4): continue with probability q, dividing
