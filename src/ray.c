@@ -5,27 +5,32 @@
  */
 #include "ray.h"
 
+/* One coordinate: p + offset, rounded one more ulp away from the surface
+ * (the sum was rounded; the extra ulp makes the offset at least what was
+ * asked). */
+static inline real offset_coord(real p, real offset)
+{
+    real q = p + offset;
+    if (offset > 0)
+        return real_next_up(q);
+    if (offset < 0)
+        return real_next_down(q);
+    return q;
+}
+
 void ray_offset_origin(VECTOR3 po, const VECTOR3 p, const VECTOR3 p_error,
                        const VECTOR3 n, const VECTOR3 w)
 {
     /* The smallest offset along n that leaves the box of possible true
-     * points: the support of that box in direction n. */
+     * points: the support of that box in direction n, toward w's side
+     * (n (-d) is -(n d) bit for bit: rounding is symmetric). */
     real d = fabs(n[X]) * p_error[X] + fabs(n[Y]) * p_error[Y] +
              fabs(n[Z]) * p_error[Z];
-    VECTOR3 offset;
-    vec_scale(offset, n, d);
     if (SVECTOR3(w, n) < 0)
-        vec_neg(offset, offset);
-    for (int i = 0; i < 3; i++) {
-        real q = p[i] + offset[i];
-        /* The sum was rounded; one more ulp away from the surface makes the
-         * offset at least what was asked. */
-        if (offset[i] > 0)
-            q = real_next_up(q);
-        else if (offset[i] < 0)
-            q = real_next_down(q);
-        po[i] = q;
-    }
+        d = -d;
+    real x = offset_coord(p[X], n[X] * d), y = offset_coord(p[Y], n[Y] * d),
+         z = offset_coord(p[Z], n[Z] * d);
+    vec_set(po, x, y, z);
 }
 
 void ray_spawn(ray_t *r, const VECTOR3 p, const VECTOR3 p_error,
