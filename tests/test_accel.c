@@ -689,6 +689,24 @@ static long compare_on(scene_t_ *s, pcg32_t *g, int n1, int n2, long *hits)
     return b.rays;
 }
 
+/* A parallelogram with c0 in [-spread, spread]^3, its edges in
+ * [-2, 2]^3, all scaled by scale (1 leaves them as drawn); NULL when
+ * degenerate. */
+static COBJECT *random_parallelogram(pcg32_t *g, real spread, real scale)
+{
+    VECTOR3 c0, c1, c3;
+    svet_error e;
+    rand_point(c0, g, -spread, spread);
+    rand_point(c1, g, -2, 2);
+    rand_point(c3, g, -2, 2);
+    vec_add(c1, c1, c0);
+    vec_add(c3, c3, c0);
+    vec_scale(c0, c0, scale);
+    vec_scale(c1, c1, scale);
+    vec_scale(c3, c3, scale);
+    return parallelogram_new(c0, c1, c3, &e);
+}
+
 START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
 {
     pcg32_t g;
@@ -719,14 +737,7 @@ START_TEST(fast_brute_force_answers_bit_for_bit_what_primset_test_answers)
      * intersect() */
     scene_t_ s = { 0 };
     for (int i = 0; i < PARALLELOGRAM_BATCH_MAX + 9; i++) {
-        VECTOR3 c0, c1, c3;
-        svet_error e;
-        rand_point(c0, &g, -5, 5);
-        rand_point(c1, &g, -2, 2);
-        rand_point(c3, &g, -2, 2);
-        vec_add(c1, c1, c0);
-        vec_add(c3, c3, c0);
-        COBJECT *o = parallelogram_new(c0, c1, c3, &e);
+        COBJECT *o = random_parallelogram(&g, 5, 1);
         if (o)
             add(&s, o);
     }
@@ -828,17 +839,7 @@ START_TEST(skipping_the_planes_a_ray_leaves_or_aims_at_changes_no_answer)
         scene_t_ p = { 0 };
         real scale = (real)ldexp(1, 6 * (sc % 4) - 9);
         for (int i = 0; i < 2 + (int)pcg32_bounded(&g, 10); i++) {
-            VECTOR3 c0, c1, c3;
-            svet_error e;
-            rand_point(c0, &g, -2, 2);
-            rand_point(c1, &g, -2, 2);
-            rand_point(c3, &g, -2, 2);
-            vec_add(c1, c1, c0);
-            vec_add(c3, c3, c0);
-            vec_scale(c0, c0, scale);
-            vec_scale(c1, c1, scale);
-            vec_scale(c3, c3, scale);
-            COBJECT *o = parallelogram_new(c0, c1, c3, &e);
+            COBJECT *o = random_parallelogram(&g, 2, scale);
             if (o)
                 add(&p, o);
         }
