@@ -151,6 +151,34 @@ static inline real mesh_max3(real a, real b, real c)
     return m > c ? m : c;
 }
 
+/* The first steps of mesh_ray_intersect() for a fast ray (Woop et al.
+ * sec. 3): the corners translated to the ray's origin and sheared (x, y,
+ * and az, z before the scaling by sz), and the edge functions e. Shared
+ * by the batch's plain lanes (mesh_lane_rejects). */
+typedef struct {
+    real x[3], y[3], az[3], e[3];
+} mesh_edges_t;
+
+static inline void mesh_edges(const real q[9], const mesh_ray_t *mr,
+                              mesh_edges_t *v)
+{
+    const ray_t *r = mr->r;
+    const int kx = mr->kx, ky = mr->ky, kz = mr->kz;
+    const real sx = mr->sx, sy = mr->sy;
+    real a0x = q[kx] - r->o[kx], a0y = q[ky] - r->o[ky];
+    real a1x = q[3 + kx] - r->o[kx], a1y = q[3 + ky] - r->o[ky];
+    real a2x = q[6 + kx] - r->o[kx], a2y = q[6 + ky] - r->o[ky];
+    v->az[0] = q[kz] - r->o[kz];
+    v->az[1] = q[3 + kz] - r->o[kz];
+    v->az[2] = q[6 + kz] - r->o[kz];
+    v->x[0] = a0x + sx * v->az[0], v->y[0] = a0y + sy * v->az[0];
+    v->x[1] = a1x + sx * v->az[1], v->y[1] = a1y + sy * v->az[1];
+    v->x[2] = a2x + sx * v->az[2], v->y[2] = a2y + sy * v->az[2];
+    v->e[0] = v->x[1] * v->y[2] - v->y[1] * v->x[2];
+    v->e[1] = v->x[2] * v->y[0] - v->y[2] * v->x[0];
+    v->e[2] = v->x[0] * v->y[1] - v->y[0] * v->x[1];
+}
+
 /* Exactly triangle_intersect_watertight(q[0..2], q[3..5], q[6..8], r, ...)
  * (the same operations in the same order, so the same bits), for a
  * triangle that is not degenerate: the caller guarantees that, which saves
@@ -165,26 +193,18 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
     if (!mr->fast)
         return triangle_intersect_watertight(q, q + 3, q + 6, r, tmin, tmax,
                                              t, b);
-    const int kx = mr->kx, ky = mr->ky, kz = mr->kz;
-    const real sx = mr->sx, sy = mr->sy;
-    /* Translate to the origin and shear (Woop et al. sec. 3). */
-    real a0x = q[kx] - r->o[kx], a0y = q[ky] - r->o[ky];
-    real a0z = q[kz] - r->o[kz];
-    real a1x = q[3 + kx] - r->o[kx], a1y = q[3 + ky] - r->o[ky];
-    real a1z = q[3 + kz] - r->o[kz];
-    real a2x = q[6 + kx] - r->o[kx], a2y = q[6 + ky] - r->o[ky];
-    real a2z = q[6 + kz] - r->o[kz];
-    real x0 = a0x + sx * a0z, y0 = a0y + sy * a0z;
-    real x1 = a1x + sx * a1z, y1 = a1y + sy * a1z;
-    real x2 = a2x + sx * a2z, y2 = a2y + sy * a2z;
-    /* Edge functions. A zero may be rounding, and the exact recomputation
+    /* Translate to the origin and shear (Woop et al. sec. 3), then the
+     * edge functions. A zero may be rounding, and the exact recomputation
      * of all three may change any sign: the full test does it. The
      * product is zero when one of them is (one test, not three), and
      * also when it underflows: then the full test gives the same answer,
      * only slower. */
-    real e0 = x1 * y2 - y1 * x2;
-    real e1 = x2 * y0 - y2 * x0;
-    real e2 = x0 * y1 - y0 * x1;
+    mesh_edges_t v;
+    mesh_edges(q, mr, &v);
+    const real x0 = v.x[0], x1 = v.x[1], x2 = v.x[2];
+    const real y0 = v.y[0], y1 = v.y[1], y2 = v.y[2];
+    const real a0z = v.az[0], a1z = v.az[1], a2z = v.az[2];
+    const real e0 = v.e[0], e1 = v.e[1], e2 = v.e[2];
     if (e0 * e1 * e2 == 0)
         return triangle_intersect_watertight(q, q + 3, q + 6, r, tmin, tmax,
                                              t, b);
@@ -240,21 +260,9 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
  * the product of the three, the signs). */
 static inline bool mesh_lane_rejects(const real q[9], const mesh_ray_t *mr)
 {
-    const ray_t *r = mr->r;
-    const int kx = mr->kx, ky = mr->ky, kz = mr->kz;
-    const real sx = mr->sx, sy = mr->sy;
-    real a0x = q[kx] - r->o[kx], a0y = q[ky] - r->o[ky];
-    real a0z = q[kz] - r->o[kz];
-    real a1x = q[3 + kx] - r->o[kx], a1y = q[3 + ky] - r->o[ky];
-    real a1z = q[3 + kz] - r->o[kz];
-    real a2x = q[6 + kx] - r->o[kx], a2y = q[6 + ky] - r->o[ky];
-    real a2z = q[6 + kz] - r->o[kz];
-    real x0 = a0x + sx * a0z, y0 = a0y + sy * a0z;
-    real x1 = a1x + sx * a1z, y1 = a1y + sy * a1z;
-    real x2 = a2x + sx * a2z, y2 = a2y + sy * a2z;
-    real e0 = x1 * y2 - y1 * x2;
-    real e1 = x2 * y0 - y2 * x0;
-    real e2 = x0 * y1 - y0 * x1;
+    mesh_edges_t v;
+    mesh_edges(q, mr, &v);
+    const real e0 = v.e[0], e1 = v.e[1], e2 = v.e[2];
     return !(e0 * e1 * e2 == 0) &&
            (((e0 < 0) | (e1 < 0) | (e2 < 0)) &
             ((e0 > 0) | (e1 > 0) | (e2 > 0)));
