@@ -11,7 +11,9 @@
  *          primitives gets a child grid over the part of the cell its
  *          primitives occupy, recursively, bounded by depth and size;
  *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
- *          an empty block in one step (macro-regions, Devillers 1989).
+ *          an empty block in one step (macro-regions, Devillers 1989);
+ *          a cell's mesh triangles through the sign test four at a time
+ *          (mesh_ray_reject), the survivors through the full test.
  * Tests: tests/test_grid.c, tests/test_accel.c
  *
  * Why the answers are exactly brute force's. A walk may stop in a cell
