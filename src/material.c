@@ -331,6 +331,8 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
 
 bool material_is_specular(const material_t *m)
 {
+    if (m->lambert) /* one Lambert lobe, not a delta */
+        return false;
     for (int k = 0; k < m->ncomp; k++)
         if (!brdf_is_delta(&m->comp[k]))
             return false;
