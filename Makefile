@@ -189,7 +189,7 @@ fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     scenefile shape sphere triangle vec xform
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
-    rng shape triangle vec
+    rng shape triangle vec parallelogram xform
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 
 $(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(wildcard src/*.c include/*.h)

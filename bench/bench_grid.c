@@ -171,6 +171,7 @@ static void bench_one(const char *name, COBJECT **objs, int n, long tris,
         p = *over;
     else
         accel_params_default(&p);
+    p.structures = grid_accels;
     p.kind = kind;
     accel_t *a;
     svet_error e;
@@ -367,6 +368,7 @@ static void tune(void)
         for (int i = 0; i < 6; i++) {
             accel_params_t p;
             accel_params_default(&p);
+            p.structures = grid_accels;
             p.kind = ACCEL_GRID;
             p.grid_k = ks[i];
             tune_row(&s, &p, cam, 256 * 256, inc, 1L << 16);
@@ -378,6 +380,7 @@ static void tune(void)
                 for (int l = 0; l < 2; l++) {
                     accel_params_t p;
                     accel_params_default(&p);
+                    p.structures = grid_accels;
                     p.kind = ACCEL_HGRID;
                     p.hgrid_k = hk[i];
                     p.hgrid_child_k = ck[j];

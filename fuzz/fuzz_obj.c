@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "accel.h"
+#include "grid.h"
 #include "mesh.h"
 #include "obj.h"
 #include "rng.h"
@@ -41,6 +42,7 @@ static void use_mesh(const obj_t *o)
     for (int k = 0; k < 3; k++) {
         accel_params_t p;
         accel_params_default(&p);
+        p.structures = grid_accels;
         p.kind = (accel_kind)(ACCEL_BRUTE + k);
         svet_error e;
         if (accel_build(&a[k], objs, 1, &p, &e) != SVET_OK)

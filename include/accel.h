@@ -1,9 +1,11 @@
 /*
  * accel.h - what the renderer calls to find where a ray meets the scene
- * (ch. 7): one interface over brute force, the uniform grid and the
- * hierarchical grid (grid.h), chosen by the scene or automatically from
- * it. Queries are thread-safe (any number of threads on one accel_t) and
- * every kind gives the same answer, bit for bit.
+ * (ch. 7): one interface over brute force and the structures a program
+ * links and offers through accel_params_t.structures (the uniform and the
+ * hierarchical grid: grid.h's grid_accels), chosen by the scene or
+ * automatically from it. Brute force is always there, so a program of
+ * ch. 5 links no grid. Queries are thread-safe (any number of threads on
+ * one accel_t) and every kind gives the same answer, bit for bit.
  * Tests: tests/test_accel.c; benchmark: bench/bench_grid.c
  */
 #ifndef SVET_ACCEL_H
@@ -13,6 +15,7 @@
 #include <stddef.h>
 #include "cobject.h"
 #include "error.h"
+#include "primset.h"
 
 /* The values of scene.h's scene_accel, so one casts to the other. */
 typedef enum {
@@ -22,8 +25,14 @@ typedef enum {
     ACCEL_HGRID = 3  /* hierarchical grid */
 } accel_kind;
 
+typedef struct accel_ops accel_ops_t;
+
 typedef struct {
     accel_kind kind;
+    const accel_ops_t *const *structures; /* what the program offers
+                           besides brute force, NULL-terminated (grid.h's
+                           grid_accels, or allparts.h's list); NULL or
+                           empty: brute force only */
     double grid_k;      /* uniform grid: k of k N^(1/3) cells per axis;
                            0 = GRID_K_DEFAULT */
     double hgrid_k;     /* hierarchical grid: top level's k; 0 =
@@ -40,9 +49,10 @@ typedef struct {
 } accel_params_t;
 
 /* AUTO's rule (measured by bench/bench_grid.c; chapters/ch07/README.md):
- *  - at most ACCEL_BRUTE_MAX primitives: brute force (a grid's walk costs
- *    more than testing them all);
- *  - else a uniform grid is built, and when more than ACCEL_AUTO_CROWDED
+ *  - at most ACCEL_BRUTE_MAX primitives, or no structure offered: brute
+ *    force (a grid's walk costs more than testing them all);
+ *  - else a uniform grid is built (when offered; else the hierarchical
+ *    one), and when more than ACCEL_AUTO_CROWDED
  *    of its primitive references sit in cells holding more than
  *    ACCEL_AUTO_CELL of them (the distribution is far from uniform: a
  *    dense mesh in a few cells of a large scene), it is replaced by the
@@ -53,7 +63,55 @@ typedef struct {
 #define ACCEL_AUTO_CELL 64
 #define ACCEL_AUTO_CROWDED 0.05
 
-/* Defaults: AUTO and every number 0 (= its default). */
+/* An acceleration structure a program may link and offer (accel_params_t
+ * .structures). It indexes the primset accel_build() makes; accel.c tests
+ * the unbounded primitives itself and asks the structure for the rest.
+ * Part II's structures (a kd-tree, say) slot in as one more table. */
+struct accel_stats;
+struct accel_ops {
+    accel_kind kind;     /* what it is (the scene's `accel` word) */
+    /* Build over ps (its bounds still there; ps outlives it) with the
+     * numbers of p. Fails with SVET_ERR_NOMEM, or SVET_ERR_UNSUPPORTED
+     * when it cannot index this scene (accel_build then falls back to
+     * brute force and says so). */
+    svet_status (*build)(void **out, const primset_t *ps,
+                         const accel_params_t *p, svet_error *err);
+    /* Nearest hit (q->found) and any hit over the bounded primitives,
+     * as grid_intersect() and grid_occluded() of grid.h. */
+    bool (*intersect)(const void *s, primset_query_t *q);
+    bool (*occluded)(const void *s, primset_query_t *q);
+    void (*free)(void *s); /* NULL is allowed */
+    /* Fill the structure's part of accel_stats_t: bytes (its own),
+     * nodes, cells, items, empty_cells, max_cell, depth, res, box. */
+    void (*stats)(const void *s, struct accel_stats *st);
+    /* AUTO's measure (NULL when it has none): the fraction of its
+     * primitive references in cells of more than `crowd` of them. */
+    double (*crowded)(const void *s, long crowd);
+};
+
+/* The structure of kind k in list (NULL-terminated; may be NULL), or NULL
+ * when the program offers none. Inline, so that the scene file's checks
+ * link nothing. This function can't fail. */
+static inline const accel_ops_t *accel_offered(const accel_ops_t *const *list,
+                                               accel_kind k)
+{
+    for (int i = 0; list && list[i]; i++)
+        if (list[i]->kind == k)
+            return list[i];
+    return NULL;
+}
+
+/* What to link for kind k, for messages: "the grids of ch. 7 (grid.c)";
+ * "" for AUTO and brute force, which are always there. This function
+ * can't fail. */
+static inline const char *accel_kind_needs(accel_kind k)
+{
+    return k == ACCEL_GRID || k == ACCEL_HGRID ? "the grids of ch. 7 (grid.c)"
+                                               : "";
+}
+
+/* Defaults: AUTO, no structures (brute force only) and every number 0
+ * (= its default). */
 void accel_params_default(accel_params_t *p);
 
 typedef struct accel accel_t;
@@ -62,6 +120,8 @@ typedef struct accel accel_t;
  * it; NULL entries are skipped; nobjs may be 0, an empty scene). Objects
  * whose bounds are not finite are tested for every ray. Fails with
  * SVET_ERR_RANGE (more than 2^31 - 1 primitives, a bad parameter),
+ * SVET_ERR_UNSUPPORTED (p asks for a kind p->structures does not offer:
+ * "this program was built without the grids of ch. 7 (grid.c)"),
  * SVET_ERR_NOMEM. A grid that cannot be built over a scene whose extent
  * overflows a double falls back to brute force, and says so in
  * accel_describe(). */
@@ -117,7 +177,7 @@ typedef struct {
 bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
                              real tmax, accel_hit_t *h, accel_counters_t *c);
 
-typedef struct {
+typedef struct accel_stats {
     accel_kind kind;      /* what was built (never AUTO) */
     double build_seconds; /* wall-clock time of accel_build */
     size_t bytes;         /* memory of the structure (not the objects) */

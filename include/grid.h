@@ -5,7 +5,7 @@
  * grid of Jevans & Wyvill ("Adaptive voxel subdivision for ray tracing",
  * Graphics Interface 1989), in which a cell holding too many primitives
  * holds a grid of its own. Both index a primset_t; the renderer reaches
- * them through accel.h.
+ * them through accel.h, in the programs that offer them (grid_accels).
  * Tests: tests/test_grid.c (agreement with brute force: tests/test_accel.c)
  */
 #ifndef SVET_GRID_H
@@ -14,6 +14,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "error.h"
+#include "accel.h"
 #include "primset.h"
 
 /* Cells per axis = about k N^(1/3) over the box's aspect (N primitives):
@@ -139,5 +140,16 @@ size_t grid_bytes(const grid_t *g);
 
 /* NULL is allowed. */
 void grid_free(grid_t *g);
+
+/* --- the grids as acceleration structures (accel.h) ---------------------- */
+
+/* The uniform grid (ACCEL_GRID) and the hierarchical grid (ACCEL_HGRID)
+ * as accel.h's tables: accel_params_t's grid_k, hgrid_* numbers over the
+ * defaults above. A program that offers the grids passes grid_accels (or
+ * allparts.h's list, which holds it) as accel_params_t.structures. */
+extern const accel_ops_t grid_uniform_accel;
+extern const accel_ops_t grid_hierarchical_accel;
+/* Both, NULL-terminated. */
+extern const accel_ops_t *const grid_accels[];
 
 #endif

@@ -1,11 +1,13 @@
 /*
- * accel.c - the acceleration interface of ch. 7: brute force, the grids of
- * grid.c, and the automatic choice between them (the rule in accel.h).
+ * accel.c - the acceleration interface of ch. 7: brute force, the
+ * structures a program offers through accel_params_t (the grids of grid.c
+ * in the svet command and ch. 7; none in ch. 5), and the automatic choice
+ * between them (the rule in accel.h). It names no structure's functions:
+ * only their tables (accel_ops_t).
  * Tests: tests/test_accel.c
  */
 #define _POSIX_C_SOURCE 200809L
 #include "accel.h"
-#include "grid.h"
 #include "parallelogram.h"
 #include "primset.h"
 #include "xform.h"
@@ -46,7 +48,8 @@ typedef struct {
 struct accel {
     accel_kind kind;
     primset_t ps;
-    grid_t *grid; /* NULL for brute force */
+    const accel_ops_t *ops; /* the structure built; NULL for brute force */
+    void *s;                /* and its data */
     brute_t *brute; /* the fast brute force, or NULL (accel.c) */
     double build_seconds;
     char describe[256];
@@ -88,22 +91,61 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* The fraction of a uniform grid's references that sit in cells of more
- * than `crowd` primitives. */
-static double crowded_fraction(const grid_t *g, long crowd)
+/* Build the structure ops over a->ps: a->ops, a->s on success. */
+static svet_status build_with(accel_t *a, const accel_ops_t *ops,
+                              const accel_params_t *p, svet_error *err)
 {
-    const grid_node_t *top = &g->nodes[0];
-    long nc = (long)top->res[0] * top->res[1] * top->res[2];
-    double crowded = 0, all = 0;
-    for (long c = 0; c < nc; c++) {
-        uint32_t begin, end;
-        grid_cell_items(g, 0, c, &begin, &end);
-        double n = end - begin;
-        all += n;
-        if (n > crowd)
-            crowded += n;
+    svet_status st = ops->build(&a->s, &a->ps, p, err);
+    if (st == SVET_OK)
+        a->ops = ops;
+    return st;
+}
+
+/* Free what build_with() built. */
+static void drop_structure(accel_t *a)
+{
+    if (a->ops && a->ops->free)
+        a->ops->free(a->s);
+    a->ops = NULL;
+    a->s = NULL;
+}
+
+/* AUTO's choice (accel.h) over a->ps's n bounded primitives: brute force,
+ * or a structure of p->structures, built; why says why. */
+static svet_status choose(accel_t *a, const accel_params_t *p, long n,
+                          accel_kind *kind, char *why, size_t nwhy,
+                          svet_error *err)
+{
+    long brute_max = p->brute_max > 0 ? p->brute_max : ACCEL_BRUTE_MAX;
+    const accel_ops_t *grid = accel_offered(p->structures, ACCEL_GRID);
+    const accel_ops_t *hgrid = accel_offered(p->structures, ACCEL_HGRID);
+    if (n <= brute_max || (!grid && !hgrid)) {
+        *kind = ACCEL_BRUTE;
+        if (n <= brute_max)
+            snprintf(why, nwhy, " (auto: %ld primitives, at most %ld)", n,
+                     brute_max);
+        else
+            snprintf(why, nwhy, " (auto: %ld primitives; this program "
+                     "offers no grid)", n);
+        return SVET_OK;
     }
-    return all > 0 ? crowded / all : 0;
+    if (!grid) {
+        *kind = ACCEL_HGRID; /* built by the caller */
+        snprintf(why, nwhy, " (auto: %ld primitives; no uniform grid "
+                 "offered)", n);
+        return SVET_OK;
+    }
+    /* On failure *kind stays AUTO: "fell back from auto". */
+    svet_status st = build_with(a, grid, p, err);
+    if (st != SVET_OK)
+        return st;
+    double f = grid->crowded ? grid->crowded(a->s, ACCEL_AUTO_CELL) : 0;
+    *kind = f > ACCEL_AUTO_CROWDED && hgrid ? ACCEL_HGRID : ACCEL_GRID;
+    snprintf(why, nwhy, " (auto: %.3g%% of the references in cells of "
+             "more than %d; %ld primitives)", 100 * f, ACCEL_AUTO_CELL, n);
+    if (*kind == ACCEL_HGRID)
+        drop_structure(a);
+    return SVET_OK;
 }
 
 static void brute_free(brute_t *b)
@@ -181,6 +223,11 @@ svet_status accel_build(accel_t **out, COBJECT *const *objs, int nobjs,
         !isfinite(p->hgrid_k) || !isfinite(p->hgrid_child_k))
         return svet_error_set(err, SVET_ERR_RANGE,
                               "accel: invalid parameters");
+    if (p->kind > ACCEL_BRUTE && !accel_offered(p->structures, p->kind))
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "accel %s: this program was built without %s",
+                              accel_kind_name(p->kind),
+                              accel_kind_needs(p->kind));
     double t0 = now();
     accel_t *a = calloc(1, sizeof *a);
     if (!a)
@@ -190,47 +237,13 @@ svet_status accel_build(accel_t **out, COBJECT *const *objs, int nobjs,
         free(a);
         return st;
     }
-    grid_params_t gu, gh;
-    grid_params_uniform(&gu);
-    grid_params_hierarchical(&gh);
-    if (p->grid_k > 0)
-        gu.k = p->grid_k;
-    if (p->hgrid_k > 0)
-        gh.k = p->hgrid_k;
-    if (p->hgrid_leaf > 0)
-        gh.leaf_max = gu.leaf_max = p->hgrid_leaf;
-    if (p->hgrid_depth > 0)
-        gh.max_depth = p->hgrid_depth;
-    if (p->hgrid_child_k > 0)
-        gh.child_k = p->hgrid_child_k;
-    long brute_max = p->brute_max > 0 ? p->brute_max : ACCEL_BRUTE_MAX;
-    long n = (long)a->ps.nbounded;
     char why[160] = "";
     accel_kind kind = p->kind;
-    if (kind == ACCEL_AUTO) {
-        if (n <= brute_max) {
-            kind = ACCEL_BRUTE;
-            snprintf(why, sizeof why, " (auto: %ld primitives, at most %ld)",
-                     n, brute_max);
-        } else {
-            st = grid_build(&a->grid, &a->ps, &gu, err);
-            if (st == SVET_OK) {
-                double f = crowded_fraction(a->grid, ACCEL_AUTO_CELL);
-                kind = f > ACCEL_AUTO_CROWDED ? ACCEL_HGRID : ACCEL_GRID;
-                snprintf(why, sizeof why, " (auto: %.3g%% of the references "
-                         "in cells of more than %d; %ld primitives)",
-                         100 * f, ACCEL_AUTO_CELL, n);
-                if (kind == ACCEL_HGRID) {
-                    grid_free(a->grid);
-                    a->grid = NULL;
-                }
-            }
-        }
-    }
-    if (st == SVET_OK && kind == ACCEL_GRID && !a->grid)
-        st = grid_build(&a->grid, &a->ps, &gu, err);
-    else if (st == SVET_OK && kind == ACCEL_HGRID && !a->grid)
-        st = grid_build(&a->grid, &a->ps, &gh, err);
+    if (kind == ACCEL_AUTO)
+        st = choose(a, p, (long)a->ps.nbounded, &kind, why, sizeof why, err);
+    if (st == SVET_OK && kind != ACCEL_BRUTE && kind != ACCEL_AUTO &&
+        !a->ops)
+        st = build_with(a, accel_offered(p->structures, kind), p, err);
     if (st == SVET_ERR_UNSUPPORTED) {
         snprintf(why, sizeof why, " (fell back from %s: %.96s)",
                  accel_kind_name(kind), err ? err->msg : "unsupported");
@@ -258,7 +271,7 @@ void accel_free(accel_t *a)
 {
     if (!a)
         return;
-    grid_free(a->grid);
+    drop_structure(a);
     brute_free(a->brute);
     primset_free(&a->ps);
     free(a);
@@ -271,7 +284,8 @@ static bool ray_ok(const ray_t *r, real tmin, real tmax)
            !isnan(tmin) && !isnan(tmax) && tmin < tmax;
 }
 
-/* Brute force, and the unbounded primitives of a grid: refs [from, to). */
+/* Brute force, and the unbounded primitives of a structure: refs
+ * [from, to). */
 static bool test_range(const primset_t *ps, primset_query_t *q, uint32_t from,
                        uint32_t to, bool shadow)
 {
@@ -283,11 +297,11 @@ static bool test_range(const primset_t *ps, primset_query_t *q, uint32_t from,
 
 static bool run(const accel_t *a, primset_query_t *q, bool shadow)
 {
-    if (!a->grid)
+    if (!a->ops)
         return test_range(&a->ps, q, 0, a->ps.nrefs, shadow);
     if (test_range(&a->ps, q, a->ps.nbounded, a->ps.nrefs, shadow) && shadow)
         return true;
-    return shadow ? grid_occluded(a->grid, q) : grid_intersect(a->grid, q);
+    return shadow ? a->ops->occluded(a->s, q) : a->ops->intersect(a->s, q);
 }
 
 /* The search of the fast brute force: the primitives' nearest-hit rule
@@ -481,29 +495,17 @@ void accel_get_stats(const accel_t *a, accel_stats_t *s)
     memset(s, 0, sizeof *s);
     if (!a)
         return;
+    if (a->ops)
+        a->ops->stats(a->s, s);
     s->kind = a->kind;
     s->build_seconds = a->build_seconds;
-    s->bytes = sizeof *a + primset_bytes(&a->ps) + grid_bytes(a->grid);
+    s->bytes += sizeof *a + primset_bytes(&a->ps);
     if (a->brute)
         s->bytes += sizeof *a->brute + (size_t)a->brute->n *
                     (sizeof *a->brute->items + sizeof *a->brute->others +
                      sizeof *a->brute->spheres);
     s->prims = (long)a->ps.nrefs;
     s->unbounded = (long)(a->ps.nrefs - a->ps.nbounded);
-    if (a->grid) {
-        const grid_t *g = a->grid;
-        s->nodes = (long)g->nnodes;
-        s->cells = (long)g->ncells;
-        s->items = (long)g->nitems;
-        s->empty_cells = (long)g->empty_cells;
-        s->max_cell = (long)g->max_items;
-        s->depth = g->depth;
-        for (int k = 0; k < 3; k++) {
-            s->res[k] = g->nodes[0].res[k];
-            s->box_min[k] = g->nodes[0].min[k];
-            s->box_max[k] = g->nodes[0].max[k];
-        }
-    }
 }
 
 const char *accel_describe(const accel_t *a)

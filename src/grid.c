@@ -13,7 +13,9 @@
  *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
  *          an empty block in one step (macro-regions, Devillers 1989);
  *          a cell's mesh triangles through the sign test four at a time
- *          (mesh_ray_reject), the survivors through the full test.
+ *          (mesh_ray_reject), the survivors through the full test;
+ *   tables: both grids as accel.h's accel_ops_t (grid_accels, at the
+ *          end), which accel.c calls without naming this file.
  * Tests: tests/test_grid.c, tests/test_accel.c
  *
  * Why the answers are exactly brute force's. A walk may stop in a cell
@@ -1279,3 +1281,108 @@ bool grid_occluded(const grid_t *g, primset_query_t *q)
 {
     return query(g, q, true);
 }
+
+/* --- the grids as acceleration structures (accel.h) ---------------------- */
+
+/* accel_params_t's numbers over the defaults: the uniform grid's when
+ * hierarchical is false, else the hierarchical grid's. */
+static void params_of(const accel_params_t *p, bool hierarchical,
+                      grid_params_t *g)
+{
+    if (hierarchical)
+        grid_params_hierarchical(g);
+    else
+        grid_params_uniform(g);
+    if (!hierarchical && p->grid_k > 0)
+        g->k = p->grid_k;
+    if (hierarchical && p->hgrid_k > 0)
+        g->k = p->hgrid_k;
+    if (p->hgrid_leaf > 0)
+        g->leaf_max = p->hgrid_leaf;
+    if (hierarchical && p->hgrid_depth > 0)
+        g->max_depth = p->hgrid_depth;
+    if (hierarchical && p->hgrid_child_k > 0)
+        g->child_k = p->hgrid_child_k;
+}
+
+static svet_status build_uniform(void **out, const primset_t *ps,
+                                 const accel_params_t *p, svet_error *err)
+{
+    grid_params_t g;
+    params_of(p, false, &g);
+    return grid_build((grid_t **)out, ps, &g, err);
+}
+
+static svet_status build_hierarchical(void **out, const primset_t *ps,
+                                      const accel_params_t *p,
+                                      svet_error *err)
+{
+    grid_params_t g;
+    params_of(p, true, &g);
+    return grid_build((grid_t **)out, ps, &g, err);
+}
+
+static bool ops_intersect(const void *g, primset_query_t *q)
+{
+    return grid_intersect(g, q);
+}
+
+static bool ops_occluded(const void *g, primset_query_t *q)
+{
+    return grid_occluded(g, q);
+}
+
+static void ops_free(void *g)
+{
+    grid_free(g);
+}
+
+static void ops_stats(const void *v, accel_stats_t *s)
+{
+    const grid_t *g = v;
+    s->bytes = grid_bytes(g);
+    s->nodes = (long)g->nnodes;
+    s->cells = (long)g->ncells;
+    s->items = (long)g->nitems;
+    s->empty_cells = (long)g->empty_cells;
+    s->max_cell = (long)g->max_items;
+    s->depth = g->depth;
+    for (int k = 0; k < 3; k++) {
+        s->res[k] = g->nodes[0].res[k];
+        s->box_min[k] = g->nodes[0].min[k];
+        s->box_max[k] = g->nodes[0].max[k];
+    }
+}
+
+/* AUTO's measure (accel.h): the fraction of the top level's references
+ * that sit in cells of more than `crowd` primitives. */
+static double ops_crowded(const void *v, long crowd)
+{
+    const grid_t *g = v;
+    const grid_node_t *top = &g->nodes[0];
+    long nc = (long)top->res[0] * top->res[1] * top->res[2];
+    double crowded = 0, all = 0;
+    for (long c = 0; c < nc; c++) {
+        uint32_t begin, end;
+        grid_cell_items(g, 0, c, &begin, &end);
+        double n = end - begin;
+        all += n;
+        if (n > crowd)
+            crowded += n;
+    }
+    return all > 0 ? crowded / all : 0;
+}
+
+const accel_ops_t grid_uniform_accel = {
+    ACCEL_GRID, build_uniform, ops_intersect, ops_occluded, ops_free,
+    ops_stats, ops_crowded
+};
+
+const accel_ops_t grid_hierarchical_accel = {
+    ACCEL_HGRID, build_hierarchical, ops_intersect, ops_occluded, ops_free,
+    ops_stats, ops_crowded
+};
+
+const accel_ops_t *const grid_accels[] = {
+    &grid_uniform_accel, &grid_hierarchical_accel, NULL
+};

@@ -5,6 +5,7 @@
 #include "render.h"
 
 #include "accel.h"
+#include "grid.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,6 +63,7 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
     accel_params_t ap;
     accel_params_default(&ap);
     ap.kind = (accel_kind)s->render.accel;
+    ap.structures = grid_accels;
     accel_t *a = NULL;
     st = accel_build(&a, s->objects, s->nobjects, &ap, err);
     if (st != SVET_OK) {

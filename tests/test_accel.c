@@ -13,6 +13,7 @@
  */
 #include "testutil.h"
 #include "accel.h"
+#include "grid.h"
 #include "box.h"
 #include "cone.h"
 #include "cylinder.h"
@@ -39,6 +40,7 @@
 static void kind_params(int k, accel_params_t *p)
 {
     accel_params_default(p);
+    p->structures = grid_accels;
     switch (k) {
     case 0: p->kind = ACCEL_BRUTE; p->brute_generic = true; break;
     case 6: p->kind = ACCEL_BRUTE; break;
@@ -533,6 +535,7 @@ START_TEST(queries_from_two_threads_match_one)
     accel_t *a;
     accel_params_t p;
     accel_params_default(&p);
+    p.structures = grid_accels;
     p.kind = ACCEL_HGRID;
     ck_assert(accel_build(&a, s.objs, s.nobjs, &p, &e) == SVET_OK);
     enum { N = 20000 };
@@ -566,6 +569,10 @@ START_TEST(auto_picks_from_the_scene_and_says_why)
     svet_error e;
     accel_t *a;
     accel_stats_t st;
+    /* the grids offered, as the svet command offers them */
+    accel_params_t grids;
+    accel_params_default(&grids);
+    grids.structures = grid_accels;
     /* a handful of objects: brute force */
     scene_t_ few = { 0 };
     VECTOR3 c = { 0, 0, 0 };
@@ -580,7 +587,7 @@ START_TEST(auto_picks_from_the_scene_and_says_why)
     /* spheres spread evenly: the uniform grid */
     meshgen_scene_t s;
     ck_assert(meshgen_sphere_grid(&s, 5, 20000, &e) == SVET_OK);
-    ck_assert(accel_build(&a, s.objs, s.nobjs, NULL, &e) == SVET_OK);
+    ck_assert(accel_build(&a, s.objs, s.nobjs, &grids, &e) == SVET_OK);
     accel_get_stats(a, &st);
     ck_assert_msg(st.kind == ACCEL_GRID, "%s", accel_describe(a));
     ck_assert(strncmp(accel_describe(a), "grid (auto: ", 12) == 0);
@@ -588,7 +595,7 @@ START_TEST(auto_picks_from_the_scene_and_says_why)
     meshgen_free_objects(&s);
     /* the teapot in a stadium: the hierarchical grid */
     ck_assert(meshgen_teapot_stadium(&s, 20000, &e) == SVET_OK);
-    ck_assert(accel_build(&a, s.objs, s.nobjs, NULL, &e) == SVET_OK);
+    ck_assert(accel_build(&a, s.objs, s.nobjs, &grids, &e) == SVET_OK);
     accel_get_stats(a, &st);
     ck_assert_msg(st.kind == ACCEL_HGRID, "%s", accel_describe(a));
     ck_assert(st.bytes > 0 && st.build_seconds >= 0);
@@ -602,8 +609,76 @@ START_TEST(auto_picks_from_the_scene_and_says_why)
                             "(expected auto, brute, grid or hgrid)");
     accel_params_t p;
     accel_params_default(&p);
+    p.structures = grid_accels;
     p.grid_k = -1;
     ck_assert(accel_build(&a, NULL, 0, &p, &e) == SVET_ERR_RANGE);
+}
+END_TEST
+
+/* A program of ch. 5 offers no structure: AUTO is brute force whatever
+ * the scene, with the same answers as the grid's, and a grid asked for is
+ * refused with what to link. */
+START_TEST(no_structures_means_brute_force_and_refused_grids)
+{
+    svet_error e;
+    meshgen_scene_t s;
+    ck_assert(meshgen_sphere_grid(&s, 3, 2000, &e) == SVET_OK);
+    accel_t *brute, *grid;
+    ck_assert(accel_build(&brute, s.objs, s.nobjs, NULL, &e) == SVET_OK);
+    accel_stats_t st;
+    accel_get_stats(brute, &st);
+    ck_assert_int_eq(st.kind, ACCEL_BRUTE);
+    ck_assert_int_eq(st.cells, 0);
+    ck_assert_msg(strstr(accel_describe(brute), "brute (auto: ") ==
+                      accel_describe(brute) &&
+                      strstr(accel_describe(brute), "offers no grid"),
+                  "%s", accel_describe(brute));
+    accel_params_t p;
+    accel_params_default(&p);
+    ck_assert(p.structures == NULL);
+    const accel_kind refused[2] = { ACCEL_GRID, ACCEL_HGRID };
+    for (int i = 0; i < 2; i++) {
+        p.kind = refused[i];
+        accel_t *a = NULL;
+        ck_assert_int_eq(accel_build(&a, s.objs, s.nobjs, &p, &e),
+                         SVET_ERR_UNSUPPORTED);
+        ck_assert(a == NULL);
+        ck_assert_msg(strstr(e.msg, "this program was built without the "
+                                    "grids of ch. 7 (grid.c)"),
+                      "%s", e.msg);
+    }
+    /* an empty list is no list */
+    const accel_ops_t *none[1] = { NULL };
+    p.structures = none;
+    p.kind = ACCEL_GRID;
+    accel_t *a = NULL;
+    ck_assert_int_eq(accel_build(&a, s.objs, s.nobjs, &p, &e),
+                     SVET_ERR_UNSUPPORTED);
+    /* the same answers as the grid the svet command would build */
+    p.structures = grid_accels;
+    ck_assert(accel_build(&grid, s.objs, s.nobjs, &p, &e) == SVET_OK);
+    pcg32_t g;
+    pcg32_seed(&g, 41, 7);
+    long n = 0;
+    for (int i = 0; i < 2000; i++) {
+        ray_t r;
+        rand_point(r.o, &g, -3, 9); /* the spheres' centres: 0, 3, 6 */
+        rand_point(r.d, &g, -1, 1);
+        accel_hit_t hb, hg;
+        bool b = accel_intersect(brute, &r, 0, (real)INFINITY, &hb);
+        bool gr = accel_intersect(grid, &r, 0, (real)INFINITY, &hg);
+        ck_assert(b == gr);
+        ck_assert(accel_occluded(brute, &r, 0, (real)INFINITY) == b);
+        if (b) {
+            ck_assert(hb.obj == hg.obj && hb.hit.prim == hg.hit.prim);
+            ck_assert(memcmp(&hb.hit.t, &hg.hit.t, sizeof hb.hit.t) == 0);
+        }
+        n++;
+    }
+    test_report_cases("no_structures_means_brute_force", n);
+    accel_free(brute);
+    accel_free(grid);
+    meshgen_free_objects(&s);
 }
 END_TEST
 
@@ -866,6 +941,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, bad_rays_are_misses);
     tcase_add_test(tc, queries_from_two_threads_match_one);
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
+    tcase_add_test(tc, no_structures_means_brute_force_and_refused_grids);
     tcase_add_test(tc,
                    fast_brute_force_answers_bit_for_bit_what_primset_test_answers);
     tcase_add_test(tc,

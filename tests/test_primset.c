@@ -95,6 +95,7 @@ START_TEST(ties_go_to_the_first_object_and_primitive)
     for (int k = ACCEL_BRUTE; k <= ACCEL_HGRID; k++) {
         accel_params_t p;
         accel_params_default(&p);
+        p.structures = grid_accels;
         p.kind = (accel_kind)k;
         accel_t *a;
         ck_assert(accel_build(&a, objs + 1, 2, &p, &e) == SVET_OK);
@@ -139,6 +140,7 @@ START_TEST(a_primitive_is_tested_once_per_ray)
     }
     accel_params_t p;
     accel_params_default(&p);
+    p.structures = grid_accels;
     p.kind = ACCEL_GRID;
     p.grid_k = 4;
     accel_t *a;

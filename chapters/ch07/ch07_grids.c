@@ -11,6 +11,7 @@
  * Benchmark tables: bench/bench_grid.c, chapters/ch07/README.md.
  */
 #include "accel.h"
+#include "grid.h"
 #include "camera.h"
 #include "image.h"
 #include "meshgen.h"
@@ -105,6 +106,7 @@ static int run_scene(const char *dir, scene_t_ *sc)
     for (int k = 0; k < 2; k++) {
         accel_params_t p;
         accel_params_default(&p);
+        p.structures = grid_accels;
         p.kind = k == 0 ? ACCEL_GRID : ACCEL_HGRID;
         accel_t *a;
         if (accel_build(&a, sc->s.objs, sc->s.nobjs, &p, &err) != SVET_OK ||
