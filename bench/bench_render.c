@@ -21,6 +21,7 @@
 #include "exrio.h"
 #include "imgcompare.h"
 #include "render.h"
+#include "allparts.h"
 #include "scenefile.h"
 
 static void die(const char *what, const svet_error *e)
@@ -70,7 +71,7 @@ int main(int argc, char **argv)
     svet_error e;
     scene_t s;
     scene_init(&s);
-    if (scenefile_read(&s, path, &e) != SVET_OK)
+    if (scenefile_read_with(&s, path, scene_features_all(), &e) != SVET_OK)
         die(path, &e);
     char cpu[256];
     bench_cpu_model(cpu, sizeof cpu);

@@ -15,6 +15,7 @@
 #include <time.h>
 
 #include "cmd.h"
+#include "allparts.h"
 #include "scenefile.h"
 
 double cmd_now(void)
@@ -133,7 +134,7 @@ int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
     svet_error err;
     svet_error_clear(&err);
     scene_init(s);
-    if (scenefile_read(s, path, &err) != SVET_OK)
+    if (scenefile_read_with(s, path, scene_features_all(), &err) != SVET_OK)
         return cmd_error(cmd, SVET_EXIT_INPUT, "%s", err.msg);
     for (int i = 0; i < o->nsets; i++)
         if (scenefile_override(s, o->sets[i], &err) != SVET_OK)

@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "allparts.h"
 #include "scenefile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -22,8 +23,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     svet_error err;
     /* Mesh files resolve against tests/data/scene, where the corpus's
      * small OBJ files live (run from the top directory). */
-    if (scenefile_parse(&s, text, len, "fuzz.scn", "tests/data/scene",
-                        &err) == SVET_OK && nul) {
+    if (scenefile_parse_with(&s, text, len, "fuzz.scn", "tests/data/scene",
+                             scene_features_all(), &err) == SVET_OK &&
+        nul) {
         const char *p = nul + 1, *end = text + size;
         char setting[256];
         while (p < end) {

@@ -30,7 +30,8 @@ typedef struct {
     lightset_t lights;      /* empty (nothing allocated) without lights */
     tracer_t tracer;
     void *accel;            /* the acceleration structure (accel.h): brute
-                               force, uniform or hierarchical grid */
+                               force, or one of those the scene's
+                               features offer (the grids of ch. 7) */
     void (*accel_free)(void *);
     char accel_choice[160]; /* what was chosen for tracing, and why */
     integrator_t integrator;
@@ -42,8 +43,11 @@ typedef struct {
 } render_t;
 
 /* Prepare to render scene s: the camera, the lights (only if the scene has
- * some), the tracer, the accumulation images. s must outlive r. Returns
- * SVET_ERR_RANGE for an unusable camera, SVET_ERR_NOMEM. */
+ * some), the tracer over the acceleration structure the scene asks for
+ * among those s->features offers (scene.h; NULL: brute force), the
+ * accumulation images. s must outlive r. Returns SVET_ERR_RANGE for an
+ * unusable camera, SVET_ERR_UNSUPPORTED for an accel the features do not
+ * offer, SVET_ERR_NOMEM. */
 svet_status render_init(render_t *r, const scene_t *s, svet_error *err);
 
 /* Add samples [spp_done, spp_end) to every pixel with `threads` threads

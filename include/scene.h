@@ -16,6 +16,7 @@
 #include "error.h"
 #include "radiance.h"
 #include "vec.h"
+#include "xform.h"
 
 /* --- limits (documented in scenes/README.md) ----------------------------- */
 #define SCENE_MAX_RESOLUTION 16384    /* pixels on either side of the image */
@@ -154,10 +155,60 @@ typedef struct {
     struct material *material; /* material_t of material.h */
 } scene_material_t;
 
+/* --- the optional parts a program links (ch. 7 on) ----------------------- */
+
+/* "Model only what the scene requires" holds for programs too: the grids
+ * and the OBJ meshes of ch. 7 (and Part II's photon maps, media, ...) are
+ * linked only by the programs that offer them, which say so by handing a
+ * scene_features_t to the scene file reader (scenefile_read_with), which
+ * keeps it in scene_t.features for the renderer. The svet command, the
+ * fuzzers and the tests pass allparts.h's scene_features_all(); ch. 5
+ * passes nothing and links neither (ch. 7's program hands grid.h's
+ * grid_accels to accel.h directly). */
+
+/* One object a mesh loader made, and the material its faces asked for
+ * (the OBJ file's usemtl name; NULL for faces before any usemtl). */
+typedef struct {
+    COBJECT *obj;
+    char *material;
+} scene_mesh_part_t;
+
+/* Read the mesh file at path for the scene file's `mesh` statement: its
+ * triangles moved by x (NULL: as in the file), one object per group of
+ * faces of one usemtl name that has faces, in the file's order of the
+ * names (faces before any usemtl first); a mesh of one group is one
+ * object. On success *parts (malloc'ed; *nparts > 0) and its objects and
+ * names (malloc'ed) are the caller's, to free with
+ * scene_mesh_parts_free(). Fails with the file's own file:line:col in
+ * err: SVET_ERR_IO, SVET_ERR_PARSE, SVET_ERR_RANGE, SVET_ERR_NOMEM. */
+typedef svet_status (*scene_mesh_loader)(const char *path,
+                                         const xform_t *x,
+                                         scene_mesh_part_t **parts,
+                                         int *nparts, svet_error *err);
+
+/* Free n parts (objects not yet handed on are NULL or freed here). NULL
+ * is allowed. */
+void scene_mesh_parts_free(scene_mesh_part_t *parts, int n);
+
+struct accel_ops;
+
+typedef struct scene_features {
+    /* The acceleration structures offered besides brute force (accel.h's
+     * accel_ops_t), NULL-terminated; NULL: brute force only. */
+    const struct accel_ops *const *accels;
+    /* The `mesh` statement's loader; NULL: the statement is refused. */
+    scene_mesh_loader mesh;
+    /* -- Part II adds its parts here: photon maps (ch. 8), media (ch. 11),
+     *    ... and allparts.c one line each. -- */
+} scene_features_t;
+
 /* --- the scene ----------------------------------------------------------- */
 
 typedef struct {
     char *path;                 /* the file it was read from, or NULL. Owned */
+    const scene_features_t *features; /* what the program that read it
+                                   offers (the renderer builds from these),
+                                   or NULL: the core only. Borrowed */
     scene_camera_t camera;
     scene_render_t render;
 

@@ -5,7 +5,6 @@
 #include "render.h"
 
 #include "accel.h"
-#include "grid.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,12 +57,14 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
         if (st != SVET_OK)
             return st;
     }
-    /* The scene's choice of acceleration structure; AUTO picks brute force
-     * for a few primitives and a grid only when there are many (accel.h) */
+    /* The scene's choice of acceleration structure among those the
+     * program offers (s->features: the grids in the svet command, none in
+     * ch. 5); AUTO picks brute force for a few primitives and a grid only
+     * when there are many (accel.h) */
     accel_params_t ap;
     accel_params_default(&ap);
     ap.kind = (accel_kind)s->render.accel;
-    ap.structures = grid_accels;
+    ap.structures = s->features ? s->features->accels : NULL;
     accel_t *a = NULL;
     st = accel_build(&a, s->objects, s->nobjects, &ap, err);
     if (st != SVET_OK) {

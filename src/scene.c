@@ -72,6 +72,15 @@ void scene_free(scene_t *s)
     scene_init(s);
 }
 
+void scene_mesh_parts_free(scene_mesh_part_t *parts, int n)
+{
+    for (int i = 0; parts && i < n; i++) {
+        cobject_free(parts[i].obj);
+        free(parts[i].material);
+    }
+    free(parts);
+}
+
 /* Make room for one more element of size `size` in *arr (count n, capacity
  * *cap), doubling. Returns false when memory runs out or the count would
  * overflow an int. */

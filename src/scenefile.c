@@ -16,14 +16,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "accel.h"
 #include "box.h"
 #include "colour.h"
 #include "cone.h"
 #include "cylinder.h"
 #include "disk.h"
 #include "material.h"
-#include "mesh.h"
-#include "obj.h"
 #include "parallelogram.h"
 #include "plane.h"
 #include "shape.h"
@@ -103,6 +102,7 @@ typedef struct {
     const char *name;      /* what messages call the file */
     const char *dir;       /* directory for relative mesh paths, or NULL */
     const char *override;  /* the key=value being applied, or NULL */
+    const scene_features_t *features; /* what the program offers, or NULL */
     svet_error *err;
     int line;              /* current line, 1-based */
     int eol_col;           /* column just past the last token */
@@ -920,8 +920,15 @@ static svet_status st_render(ctx_t *c)
         r->passes = (int)v[R_PASSES].i;
     if (v[R_CHECKPOINT].set)
         r->checkpoint = v[R_CHECKPOINT].on;
-    if (v[R_ACCEL].set)
-        r->accel = (scene_accel)v[R_ACCEL].i;
+    if (v[R_ACCEL].set) {
+        accel_kind k = (accel_kind)v[R_ACCEL].i;
+        if (k > ACCEL_BRUTE &&
+            !accel_offered(c->features ? c->features->accels : NULL, k))
+            return fail(c, v[R_ACCEL].col, SVET_ERR_UNSUPPORTED,
+                        "'accel %s': this program was built without %s",
+                        accels[k], accel_kind_needs(k));
+        r->accel = (scene_accel)k;
+    }
     return SVET_OK;
 }
 
@@ -1378,19 +1385,6 @@ static svet_status xform_of_list(ctx_t *c, xform_t *x)
     return SVET_OK;
 }
 
-/* Does x mirror (det M < 0)? */
-static bool xform_mirrors(const xform_t *x)
-{
-    const real (*m)[4] = x->m;
-    double det = (double)m[0][0] * ((double)m[1][1] * (double)m[2][2] -
-                                    (double)m[1][2] * (double)m[2][1]) -
-                 (double)m[0][1] * ((double)m[1][0] * (double)m[2][2] -
-                                    (double)m[1][2] * (double)m[2][0]) +
-                 (double)m[0][2] * ((double)m[1][0] * (double)m[2][1] -
-                                    (double)m[1][1] * (double)m[2][0]);
-    return det < 0;
-}
-
 /* --- objects ------------------------------------------------------------- */
 
 /* Keys every object takes, after its own. */
@@ -1602,54 +1596,9 @@ static svet_status st_shape(ctx_t *c)
 
 /* --- meshes -------------------------------------------------------------- */
 
-/* A copy of the mesh src moved by x: positions by x, normals by its
- * inverse transpose; a mirroring transform (det < 0) also reverses each
- * triangle's winding, so that ng, which follows the winding, keeps
- * pointing out of a closed mesh. */
-static svet_status mesh_transformed(COBJECT **out, const COBJECT *src,
-                                    const xform_t *x, svet_error *err)
-{
-    const mesh_t *s = mesh_get(src);
-    mesh_t m;
-    memset(&m, 0, sizeof m);
-    m.nverts = s->nverts;
-    m.ntris = s->ntris;
-    size_t nv = (size_t)s->nverts, nt = (size_t)s->ntris;
-    m.p = malloc(nv * sizeof *m.p);
-    m.tri = malloc(nt * sizeof *m.tri);
-    if (s->n)
-        m.n = malloc(nv * sizeof *m.n);
-    if (s->st)
-        m.st = malloc(nv * sizeof *m.st);
-    if (s->slot)
-        m.slot = malloc(nt * sizeof *m.slot);
-    if (!m.p || !m.tri || (s->n && !m.n) || (s->st && !m.st) ||
-        (s->slot && !m.slot)) {
-        free(m.p); free(m.tri); free(m.n); free(m.st); free(m.slot);
-        return svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
-    }
-    bool mirror = xform_mirrors(x);
-    for (size_t i = 0; i < nv; i++) {
-        xform_point(x, m.p[i], s->p[i]);
-        if (m.n) {
-            /* A zero normal means "none here" (mesh.h) and stays zero. */
-            xform_normal(x, m.n[i], s->n[i]);
-            vec_normalize(m.n[i], m.n[i]);
-        }
-        if (m.st) {
-            m.st[i][0] = s->st[i][0];
-            m.st[i][1] = s->st[i][1];
-        }
-    }
-    for (size_t i = 0; i < nt; i++) {
-        m.tri[i][0] = s->tri[i][0];
-        m.tri[i][1] = s->tri[i][mirror ? 2 : 1];
-        m.tri[i][2] = s->tri[i][mirror ? 1 : 2];
-        if (m.slot)
-            m.slot[i] = s->slot[i];
-    }
-    return mesh_new(out, &m, err);
-}
+/* The mesh files are read by the loader the program offers
+ * (scene_features_t.mesh, scene.h: objmesh.h's for OBJ files); this file
+ * names no mesh or OBJ function, so ch. 5 links neither. */
 
 enum { MESH_FILE, MESH_STRICT, MESH_NGEO };
 static const spec_t mesh_geo[MESH_NGEO] = {
@@ -1657,81 +1606,57 @@ static const spec_t mesh_geo[MESH_NGEO] = {
     [MESH_STRICT] = { "strict", V_FLAG, 0, 0, 0, NULL },
 };
 
-/* Split the OBJ's mesh by usemtl slot into one object per slot, each with
- * the scene material of that name, or the default (dflt, may be NULL) for
- * faces before any usemtl and, unless strict, for names the scene does
- * not define. */
-static svet_status add_mesh_parts(ctx_t *c, const obj_t *o, COBJECT *mesh,
-                                  const material_t *dflt, const val_t *v,
-                                  const val_t *common)
+/* Give each part of the mesh file the scene material of its usemtl name,
+ * or the default (dflt, may be NULL) for faces before any usemtl and,
+ * unless strict, for names the scene does not define; the parts taken by
+ * the scene are set to NULL in parts. */
+static svet_status add_mesh_parts(ctx_t *c, scene_mesh_part_t *parts,
+                                  int nparts, const material_t *dflt,
+                                  const val_t *v, const val_t *common)
 {
-    const mesh_t *mm = mesh_get(mesh);
     char show[64];
     tok_t file = v[MESH_FILE].word;
-    int nslots = o->nmaterials + 1; /* slot -1 is index 0 */
-    char *used = calloc((size_t)nslots, 1);
-    if (!used)
-        return fail(c, c->stmt_col, SVET_ERR_NOMEM, "out of memory");
-    int nused = 0;
-    if (!mm->slot)
-        used[0] = 1;
-    else
-        for (int i = 0; i < mm->ntris; i++)
-            used[mm->slot[i] + 1] = 1;
-    for (int k = 0; k < nslots; k++)
-        nused += used[k];
-    svet_status st = SVET_OK;
-    for (int k = 0; k < nslots && !st; k++) {
-        if (!used[k])
-            continue;
-        const char *name = k ? o->materials[k - 1] : NULL;
+    for (int k = 0; k < nparts; k++) {
+        const char *name = parts[k].material;
         const material_t *m = name ? scene_find_material(c->scene, name)
                                    : NULL;
         if (!m && name && v[MESH_STRICT].on) {
             const char *near = scene_suggest_material(c->scene, name);
-            st = fail(c, file.col, SVET_ERR_PARSE,
-                      "%s: usemtl '%.64s' is not a material of the "
-                      "scene%s%s%s",
-                      show_tok(&file, show, sizeof show), name,
-                      near ? " (did you mean '" : "", near ? near : "",
-                      near ? "'?)" : "");
-            break;
+            return fail(c, file.col, SVET_ERR_PARSE,
+                        "%s: usemtl '%.64s' is not a material of the "
+                        "scene%s%s%s",
+                        show_tok(&file, show, sizeof show), name,
+                        near ? " (did you mean '" : "", near ? near : "",
+                        near ? "'?)" : "");
         }
         if (!m)
             m = dflt;
-        if (!m && name) {
-            st = fail(c, c->stmt_col, SVET_ERR_PARSE,
-                      "%s: usemtl '%.64s' is not a material of the scene: "
-                      "give the mesh a default 'material'",
-                      show_tok(&file, show, sizeof show), name);
-            break;
-        }
-        if (!m) {
-            st = fail(c, c->stmt_col, SVET_ERR_PARSE,
-                      "%s: faces without usemtl need a default 'material'",
-                      show_tok(&file, show, sizeof show));
-            break;
-        }
-        COBJECT *part = NULL;
-        svet_error e;
-        if (nused == 1) {
-            st = add_object(c, mesh, m, common);
-            mesh = NULL; /* the scene has it now */
-            break;
-        }
-        st = mesh_new_subset(&part, mesh, (int32_t)(k - 1), &e);
+        if (!m && name)
+            return fail(c, c->stmt_col, SVET_ERR_PARSE,
+                        "%s: usemtl '%.64s' is not a material of the "
+                        "scene: give the mesh a default 'material'",
+                        show_tok(&file, show, sizeof show), name);
+        if (!m)
+            return fail(c, c->stmt_col, SVET_ERR_PARSE,
+                        "%s: faces without usemtl need a default "
+                        "'material'",
+                        show_tok(&file, show, sizeof show));
+        COBJECT *obj = parts[k].obj;
+        parts[k].obj = NULL; /* the scene has it now */
+        svet_status st = add_object(c, obj, m, common);
         if (st)
-            st = fail(c, c->stmt_col, st, "%s", e.msg);
-        else
-            st = add_object(c, part, m, common);
+            return st;
     }
-    free(used);
-    cobject_free(mesh);
-    return st;
+    return SVET_OK;
 }
 
 static svet_status st_mesh(ctx_t *c)
 {
+    if (!c->features || !c->features->mesh)
+        return fail(c, c->stmt_col, SVET_ERR_UNSUPPORTED,
+                    "'mesh': this program was built without the OBJ "
+                    "meshes of ch. 7 (objmesh.c, offered through "
+                    "scenefile_read_with)");
     spec_t spec[MESH_NGEO + K_COMMON];
     memcpy(spec, mesh_geo, sizeof mesh_geo);
     memcpy(spec + MESH_NGEO, common_spec, sizeof common_spec);
@@ -1760,7 +1685,7 @@ static svet_status st_mesh(ctx_t *c)
     free(rel);
     if (!path)
         return fail(c, c->stmt_col, SVET_ERR_NOMEM, "out of memory");
-    /* obj_read opens the file itself; refuse what is not a regular file
+    /* The loader opens the file itself; refuse what is not a regular file
      * first, so that /dev/zero or a FIFO cannot hang the reader. */
     struct stat sb;
     int col = v[MESH_FILE].word.col;
@@ -1770,27 +1695,16 @@ static svet_status st_mesh(ctx_t *c)
     } else if (!S_ISREG(sb.st_mode)) {
         st = fail(c, col, SVET_ERR_IO, "%s: not a regular file", path);
     } else {
-        obj_t o;
+        scene_mesh_part_t *parts = NULL;
+        int nparts = 0;
         svet_error e;
-        st = obj_read(path, NULL, &o, &e);
-        if (st) {
-            /* The OBJ reader's own file:line:col follows the scene's. */
+        st = c->features->mesh(path, c->nxf > 0 ? &x : NULL, &parts,
+                               &nparts, &e);
+        if (st) /* the loader's own file:line:col follows the scene's */
             st = fail(c, col, st, "%s", e.msg);
-        } else {
-            COBJECT *mesh = o.mesh;
-            o.mesh = NULL;
-            if (c->nxf > 0) {
-                COBJECT *moved = NULL;
-                st = mesh_transformed(&moved, mesh, &x, &e);
-                cobject_free(mesh);
-                mesh = moved;
-                if (st)
-                    st = fail(c, c->xf[0].col, st, "%s: %s", path, e.msg);
-            }
-            if (!st)
-                st = add_mesh_parts(c, &o, mesh, dflt, v, common);
-            obj_free(&o);
-        }
+        else
+            st = add_mesh_parts(c, parts, nparts, dflt, v, common);
+        scene_mesh_parts_free(parts, nparts);
     }
     free(path);
     return st;
@@ -1865,14 +1779,17 @@ static void ctx_free(ctx_t *c)
     c->cap = c->ntok = 0;
 }
 
-svet_status scenefile_parse(scene_t *s, const char *text, size_t len,
-                            const char *name, const char *dir,
-                            svet_error *err)
+svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
+                                 const char *name, const char *dir,
+                                 const scene_features_t *features,
+                                 svet_error *err)
 {
     scene_init(s);
+    s->features = features;
     ctx_t c;
     memset(&c, 0, sizeof c);
     c.scene = s;
+    c.features = features;
     c.name = name ? name : "<string>";
     c.dir = dir;
     c.err = err;
@@ -1917,7 +1834,16 @@ svet_status scenefile_parse(scene_t *s, const char *text, size_t len,
     return st;
 }
 
-svet_status scenefile_read(scene_t *s, const char *path, svet_error *err)
+svet_status scenefile_parse(scene_t *s, const char *text, size_t len,
+                            const char *name, const char *dir,
+                            svet_error *err)
+{
+    return scenefile_parse_with(s, text, len, name, dir, NULL, err);
+}
+
+svet_status scenefile_read_with(scene_t *s, const char *path,
+                                const scene_features_t *features,
+                                svet_error *err)
 {
     scene_init(s);
     char *text = NULL;
@@ -1932,10 +1858,15 @@ svet_status scenefile_read(scene_t *s, const char *path, svet_error *err)
         free(text);
         return svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
     }
-    st = scenefile_parse(s, text, len, path, dir, err);
+    st = scenefile_parse_with(s, text, len, path, dir, features, err);
     free(dir);
     free(text);
     return st;
+}
+
+svet_status scenefile_read(scene_t *s, const char *path, svet_error *err)
+{
+    return scenefile_read_with(s, path, NULL, err);
 }
 
 /* --- overrides ----------------------------------------------------------- */
@@ -1979,6 +1910,7 @@ svet_status scenefile_override(scene_t *s, const char *setting,
     ctx_t c;
     memset(&c, 0, sizeof c);
     c.scene = s;
+    c.features = s->features;
     c.err = err;
     c.override = setting;
     c.name = "override";

@@ -2,9 +2,12 @@
  * test_render.c - the image loop: bit-identical images for any thread count
  * and pass split (the numbers of a sample depend only on seed, pixel and
  * sample index), two half renders merging into the full one, and the
- * variance image against the spread of the samples.
+ * variance image against the spread of the samples; a program that
+ * offers no grid (ch. 5) renders with brute force the image the grid
+ * gives.
  */
 #include "testutil.h"
+#include "allparts.h"
 #include "disk.h"
 #include "imgcompare.h"
 #include "material.h"
@@ -59,6 +62,56 @@ START_TEST(image_is_identical_for_any_threads_and_passes)
     ck_assert(image_accum_samples(&a.acc) == 8 * n);
     render_free(&a);
     render_free(&b);
+    scene_free(&s);
+}
+END_TEST
+
+/* small_scene() and a row of 30 small spheres: more primitives than AUTO
+ * tests by brute force when a grid is offered (ACCEL_BRUTE_MAX). */
+static void crowded_scene(scene_t *s)
+{
+    small_scene(s);
+    for (int i = 0; i < 30; i++) {
+        VECTOR3 c = { -3 + (real)i / 5, REAL_C(0.4) * (real)(i % 3), 1 };
+        ck_assert_int_eq(scene_add_object(s, sphere_new(c, REAL_C(0.1), NULL),
+                                          s->anon_materials[0], NULL),
+                         SVET_OK);
+    }
+}
+
+START_TEST(without_grids_auto_renders_with_brute_force_the_same_image)
+{
+    scene_t s;
+    crowded_scene(&s);
+    ck_assert(s.features == NULL); /* a program of ch. 5 */
+    render_t brute, grid;
+    ck_assert_int_eq(render_init(&brute, &s, NULL), SVET_OK);
+    ck_assert_str_eq(brute.accel_choice, "brute (auto: 33 primitives; this "
+                                         "program offers no grid)");
+    /* asking for a grid there fails, and says what to link */
+    s.render.accel = SCENE_ACCEL_GRID;
+    render_t r;
+    svet_error err;
+    ck_assert_int_eq(render_init(&r, &s, &err), SVET_ERR_UNSUPPORTED);
+    ck_assert_str_eq(err.msg, "accel grid: this program was built without "
+                              "the grids of ch. 7 (grid.c)");
+    /* the svet command's parts: AUTO picks the grid; the same image */
+    s.render.accel = SCENE_ACCEL_AUTO;
+    s.features = scene_features_all();
+    ck_assert_int_eq(render_init(&grid, &s, NULL), SVET_OK);
+    ck_assert_msg(strncmp(grid.accel_choice, "grid (auto: ", 12) == 0, "%s",
+                  grid.accel_choice);
+    render_pass(&brute, 4, 2, NULL, NULL);
+    render_pass(&grid, 4, 2, NULL, NULL);
+    size_t n = (size_t)s.camera.width * (size_t)s.camera.height;
+    ck_assert(memcmp(brute.acc.sum, grid.acc.sum, 3 * n * sizeof(double)) ==
+              0);
+    ck_assert(memcmp(brute.sum2, grid.sum2, 3 * n * sizeof(double)) == 0);
+    ck_assert(brute.stats.rays == grid.stats.rays && grid.stats.rays > 0);
+    test_report_cases("without_grids_auto_renders_with_brute_force",
+                      (long)(4 * n));
+    render_free(&brute);
+    render_free(&grid);
     scene_free(&s);
 }
 END_TEST
@@ -188,6 +241,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, two_half_renders_merge_into_the_full_one);
     tcase_add_test(tc, variance_image_matches_the_spread_of_the_samples);
     tcase_add_test(tc, rmse_falls_as_one_over_sqrt_spp);
+    tcase_add_test(tc,
+                   without_grids_auto_renders_with_brute_force_the_same_image);
     suite_add_tcase(s, tc);
     return s;
 }

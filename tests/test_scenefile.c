@@ -4,6 +4,9 @@
  * parses, every kind of error gives its exact file:line:col message and
  * status, the inputs the fuzzer found (tests/data/scene/regress-*.scn)
  * are handled, and command-line overrides are checked like the file.
+ * The scenes are read with every optional part (allparts.h), as the svet
+ * command reads them; a program without them (ch. 5) refuses `mesh` and
+ * `accel grid` with what to link.
  * Runs from the top directory (it reads scenes/ and tests/data/scene/).
  */
 #include "testutil.h"
@@ -13,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "allparts.h"
 #include "colour.h"
 #include "material.h"
 #include "mesh.h"
@@ -23,7 +27,14 @@
 /* Parse text (a C string) as the file "t.scn" with meshes in DATA. */
 static svet_status parse(scene_t *s, const char *text, svet_error *err)
 {
-    return scenefile_parse(s, text, strlen(text), "t.scn", DATA, err);
+    return scenefile_parse_with(s, text, strlen(text), "t.scn", DATA,
+                                scene_features_all(), err);
+}
+
+/* Read the file at path as the svet command does. */
+static svet_status read_scene(scene_t *s, const char *path, svet_error *err)
+{
+    return scenefile_read_with(s, path, scene_features_all(), err);
 }
 
 /* Parse text that must succeed. */
@@ -403,7 +414,7 @@ START_TEST(cornell_box_boxes_land_where_the_issue_puts_them)
 {
     scene_t s;
     svet_error err;
-    ck_assert_msg(scenefile_read(&s, "scenes/cbox.scn", &err) == SVET_OK,
+    ck_assert_msg(read_scene(&s, "scenes/cbox.scn", &err) == SVET_OK,
                   "%s", err.msg);
     ck_assert_int_eq(s.nobjects, 8);
     /* The small box: [-1,1]^3 x 0.3, rotated -17 degrees about y, moved
@@ -430,7 +441,7 @@ START_TEST(cornell_box_matches_the_reference_numbers)
 {
     scene_t s;
     svet_error err;
-    ck_assert_msg(scenefile_read(&s, "scenes/cbox.scn", &err) == SVET_OK,
+    ck_assert_msg(read_scene(&s, "scenes/cbox.scn", &err) == SVET_OK,
                   "%s", err.msg);
     ck_assert_near(s.camera.position[Z], REAL_C(3.9), 0);
     ck_assert_near(s.camera.fov, REAL_C(39.3077), 0);
@@ -914,9 +925,7 @@ START_TEST(a_null_error_pointer_is_allowed)
     int n = (int)(sizeof errors / sizeof *errors);
     for (int i = 0; i < n; i++) {
         scene_t s;
-        ck_assert_int_eq(scenefile_parse(&s, errors[i].text,
-                                         strlen(errors[i].text), "t.scn",
-                                         DATA, NULL),
+        ck_assert_int_eq(parse(&s, errors[i].text, NULL),
                          errors[i].status);
         scene_free(&s);
     }
@@ -924,7 +933,7 @@ START_TEST(a_null_error_pointer_is_allowed)
     parse_ok(&s, M "light point position 0 0 0 intensity 1\n");
     ck_assert_int_eq(scenefile_override(&s, "spp=0", NULL), SVET_ERR_RANGE);
     scene_free(&s);
-    ck_assert_int_eq(scenefile_read(&s, "nope.scn", NULL), SVET_ERR_IO);
+    ck_assert_int_eq(read_scene(&s, "nope.scn", NULL), SVET_ERR_IO);
     scene_free(&s);
 }
 END_TEST
@@ -935,14 +944,14 @@ START_TEST(read_reports_missing_and_irregular_files)
 {
     scene_t s;
     svet_error err;
-    ck_assert_int_eq(scenefile_read(&s, "tests/data/scene/nope.scn", &err),
+    ck_assert_int_eq(read_scene(&s, "tests/data/scene/nope.scn", &err),
                      SVET_ERR_IO);
     ck_assert_str_eq(err.msg, "tests/data/scene/nope.scn: cannot open: No "
                               "such file or directory");
-    ck_assert_int_eq(scenefile_read(&s, "tests/data/scene", &err),
+    ck_assert_int_eq(read_scene(&s, "tests/data/scene", &err),
                      SVET_ERR_IO);
     ck_assert_str_eq(err.msg, "tests/data/scene: not a regular file");
-    ck_assert_int_eq(scenefile_read(&s, "/dev/zero", &err), SVET_ERR_IO);
+    ck_assert_int_eq(read_scene(&s, "/dev/zero", &err), SVET_ERR_IO);
     ck_assert_str_eq(err.msg, "/dev/zero: not a regular file");
     scene_free(&s);
 }
@@ -952,7 +961,7 @@ START_TEST(read_finds_meshes_beside_the_scene_and_keeps_its_path)
 {
     scene_t s;
     svet_error err;
-    ck_assert_msg(scenefile_read(&s, "tests/data/scene/mesh.scn", &err) ==
+    ck_assert_msg(read_scene(&s, "tests/data/scene/mesh.scn", &err) ==
                       SVET_OK,
                   "%s", err.msg);
     ck_assert_str_eq(s.path, "tests/data/scene/mesh.scn");
@@ -980,7 +989,7 @@ static int read_all(const char *dir, const char *prefix, bool must_parse)
         scene_t s;
         svet_error err;
         svet_error_clear(&err);
-        svet_status st = scenefile_read(&s, path, &err);
+        svet_status st = read_scene(&s, path, &err);
         if (must_parse)
             ck_assert_msg(st == SVET_OK, "%s", err.msg);
         else
@@ -1121,6 +1130,77 @@ START_TEST(bad_overrides_are_refused_and_change_nothing)
 }
 END_TEST
 
+/* --- a program without the optional parts (ch. 5) ----------------------- */
+
+/* scenefile_parse() offers nothing beyond the core, as ch. 5 does. */
+static void parse_plain_err(const char *text, const char *msg)
+{
+    scene_t s;
+    svet_error err;
+    svet_error_clear(&err);
+    ck_assert_int_eq(scenefile_parse(&s, text, strlen(text), "t.scn", DATA,
+                                     &err),
+                     SVET_ERR_UNSUPPORTED);
+    ck_assert_str_eq(err.msg, msg);
+    ck_assert_int_eq(s.nobjects + s.nmaterials, 0);
+    ck_assert(s.features == NULL);
+    scene_free(&s);
+}
+
+START_TEST(without_the_optional_parts_mesh_and_grids_are_refused)
+{
+    parse_plain_err(M "mesh file tri.obj material m\n",
+                    "t.scn:2:1: 'mesh': this program was built without the "
+                    "OBJ meshes of ch. 7 (objmesh.c, offered through "
+                    "scenefile_read_with)");
+    parse_plain_err("render spp 4 accel grid\n",
+                    "t.scn:1:14: 'accel grid': this program was built "
+                    "without the grids of ch. 7 (grid.c)");
+    parse_plain_err("render accel hgrid\n",
+                    "t.scn:1:8: 'accel hgrid': this program was built "
+                    "without the grids of ch. 7 (grid.c)");
+    /* a file, too */
+    scene_t s;
+    svet_error err;
+    ck_assert_int_eq(scenefile_read(&s, "tests/data/scene/mesh.scn", &err),
+                     SVET_ERR_UNSUPPORTED);
+    ck_assert_str_eq(err.msg, "tests/data/scene/mesh.scn:5:1: 'mesh': this "
+                              "program was built without the OBJ meshes of "
+                              "ch. 7 (objmesh.c, offered through "
+                              "scenefile_read_with)");
+    /* brute force and AUTO are always there; AUTO then means brute force
+     * (tests/test_render.c renders such a scene) */
+    const char *const fine[] = { "render accel auto\n",
+                                 "render accel brute\n" };
+    for (int i = 0; i < 2; i++) {
+        ck_assert_int_eq(scenefile_parse(&s, fine[i], strlen(fine[i]),
+                                         "t.scn", DATA, &err),
+                         SVET_OK);
+        ck_assert(s.features == NULL);
+        scene_free(&s);
+    }
+    /* an override asks the scene's features */
+    ck_assert_int_eq(scenefile_parse(&s, M, strlen(M), "t.scn", DATA, &err),
+                     SVET_OK);
+    ck_assert_int_eq(scenefile_override(&s, "accel=grid", &err),
+                     SVET_ERR_UNSUPPORTED);
+    ck_assert_str_eq(err.msg, "override 'accel=grid': 'accel grid': this "
+                              "program was built without the grids of "
+                              "ch. 7 (grid.c)");
+    ck_assert_int_eq(s.render.accel, SCENE_ACCEL_AUTO);
+    ck_assert_int_eq(scenefile_override(&s, "accel=brute", &err), SVET_OK);
+    ck_assert_int_eq(s.render.accel, SCENE_ACCEL_BRUTE);
+    scene_free(&s);
+    /* the same text with every part offered */
+    parse_ok(&s, M "render accel hgrid\nmesh file tri.obj material m\n");
+    ck_assert(s.features == scene_features_all());
+    ck_assert_int_eq(s.render.accel, SCENE_ACCEL_HGRID);
+    ck_assert_int_eq(s.nobjects, 2);
+    ck_assert_int_eq(scenefile_override(&s, "accel=grid", &err), SVET_OK);
+    scene_free(&s);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("scenefile");
@@ -1157,6 +1237,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, fuzzer_findings_are_handled);
     tcase_add_test(tc, overrides_set_one_value_each);
     tcase_add_test(tc, bad_overrides_are_refused_and_change_nothing);
+    tcase_add_test(tc, without_the_optional_parts_mesh_and_grids_are_refused);
     suite_add_tcase(s, tc);
     return s;
 }
