@@ -53,6 +53,24 @@ static inline double bench_loadavg(void)
     return l;
 }
 
+/* What the load average says of the timings: "load average L: a quiet
+ * machine" when it is below half the core count (no other job competed for
+ * a core), else "load average L: the machine was shared with other jobs,
+ * so the rates are low and noisy". Written into buf; returns buf. */
+static inline const char *bench_load_words(char *buf, size_t n)
+{
+    double l = bench_loadavg();
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    if (l < 0)
+        snprintf(buf, n, "load average unknown");
+    else if (cores > 0 && l < 0.5 * (double)cores)
+        snprintf(buf, n, "load average %.2f: a quiet machine", l);
+    else
+        snprintf(buf, n, "load average %.2f: the machine was shared with "
+                 "other jobs, so the rates are low and noisy", l);
+    return buf;
+}
+
 /* "Machine: <cpu>, <n> cores; compiler <version>" */
 static inline void bench_print_machine(FILE *f)
 {

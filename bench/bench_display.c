@@ -215,23 +215,16 @@ int main(int argc, char **argv)
     remove(j.path);
     rmdir(dir);
 
-    char cpu[256], table[8192], load[64] = "unknown";
+    char cpu[256], table[8192], load[160];
     bench_cpu_model(cpu, sizeof cpu);
-    FILE *lf = fopen("/proc/loadavg", "r");
-    if (lf) {
-        if (fgets(load, sizeof load, lf))
-            load[strcspn(load, " ")] = '\0'; /* the 1-minute figure */
-        fclose(lf);
-    }
+    bench_load_words(load, sizeof load);
     int len = snprintf(
         table, sizeof table,
         "# bench-display: tone mapping and image files\n\n"
         "Machine: %ld cores, %s; compiler: %s; real = %s.\n"
         "Command: `make bench-display` (%s, image %d x %d = %.2f MP).\n\n"
-        "The machine was shared with other jobs when this was measured "
-        "(load average %s at the end): the figures are the best of several "
-        "runs of at least 0.2 s each, and still noisy: with a load above "
-        "the core count, an idle machine may give up to twice these. "
+        "Measured at %s (at the end of the run); the figures are the best "
+        "of several runs of at least 0.2 s each. "
         "Writes include the temporary file, fsync and rename (fileio.h); "
         "one thread throughout.\n\n"
         "| what | MP/s | runs |\n|---|---:|---:|\n",

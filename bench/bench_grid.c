@@ -250,18 +250,11 @@ static void bench_scene(const char *name, COBJECT **objs, int n, long tris,
 
 static void machine(int argc, char **argv)
 {
-    double load = -1;
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (f) {
-        if (fscanf(f, "%lf", &load) != 1)
-            load = -1;
-        fclose(f);
-    }
+    char load[160];
     printf("# Grid benchmark (ch. 7)\n\n- ");
     bench_print_machine(stdout);
-    printf(", real = %s\n- load average %.2f at the start: the machine is "
-           "shared with other work, so every timing is noisy\n",
-           REAL_NAME, load);
+    printf(", real = %s\n- at the start, %s\n", REAL_NAME,
+           bench_load_words(load, sizeof load));
     printf("- command:");
     for (int i = 0; i < argc; i++)
         printf(" %s", argv[i]);

@@ -177,9 +177,10 @@ int main(int argc, char **argv)
     bench_print_machine(out);
     fprintf(out, "; `real` = %s; command: `make bench-materials%s`.\n\n",
             REAL_NAME, sizeof(real) == sizeof(double) ? " REAL=double" : "");
-    fprintf(out, "The machine was shared with other jobs while this ran, so "
-                 "the rates are noisy (best of 3 runs of >= 0.2 s each); the "
-                 "variances do not depend on the machine (fixed seeds).\n\n");
+    char lw[160];
+    fprintf(out, "Measured at %s; rates are the best of 3 runs of >= 0.2 s "
+                 "each; the variances do not depend on the machine (fixed "
+                 "seeds).\n\n", bench_load_words(lw, sizeof lw));
 
     /* 1. throughput */
     entry_t gal[16];
