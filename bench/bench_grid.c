@@ -312,6 +312,16 @@ static COBJECT **sphere_scene(long n, meshgen_scene_t *s)
     return s->objs;
 }
 
+/* The defaults with both grids offered, asking for one kind. */
+static accel_params_t grid_params(accel_kind kind)
+{
+    accel_params_t p;
+    accel_params_default(&p);
+    p.structures = grid_accels;
+    p.kind = kind;
+    return p;
+}
+
 /* One row of the sweep: build with p, trace at one thread. */
 static void tune_row(const meshgen_scene_t *s, const accel_params_t *p,
                      const ray_t *cam, long ncam, const ray_t *inc, long ninc)
@@ -359,10 +369,7 @@ static void tune(void)
         ray_t *inc = random_rays(&b, 1L << 16, 7);
         double ks[] = { 1, 1.5, 2, 2.5, 3, 4 };
         for (int i = 0; i < 6; i++) {
-            accel_params_t p;
-            accel_params_default(&p);
-            p.structures = grid_accels;
-            p.kind = ACCEL_GRID;
+            accel_params_t p = grid_params(ACCEL_GRID);
             p.grid_k = ks[i];
             tune_row(&s, &p, cam, 256 * 256, inc, 1L << 16);
         }
@@ -371,10 +378,7 @@ static void tune(void)
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 2; j++)
                 for (int l = 0; l < 2; l++) {
-                    accel_params_t p;
-                    accel_params_default(&p);
-                    p.structures = grid_accels;
-                    p.kind = ACCEL_HGRID;
+                    accel_params_t p = grid_params(ACCEL_HGRID);
                     p.hgrid_k = hk[i];
                     p.hgrid_child_k = ck[j];
                     p.hgrid_leaf = leaf[l];
