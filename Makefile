@@ -210,12 +210,17 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs
+.PHONY: reference tradeoffs count-render
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
 	sh tools/reference.sh build/float/svet
 	build/float/tests/test_reference
+
+# `make count-render`: instructions per camera sample (callgrind), the
+# load-independent figure of bench/results/render.md.
+count-render: $(BUILD)/svet
+	sh tools/count-render.sh $(BUILD)/svet
 
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet

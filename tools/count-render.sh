@@ -1,0 +1,19 @@
+#!/bin/sh
+# count-render.sh - `make count-render`: instructions per camera sample of
+# the Cornell box (bench/results/render.md's table), counted by valgrind's
+# callgrind over render_pass only, so the count does not depend on the
+# machine's load. Needs valgrind (apt-get install valgrind).
+# usage: tools/count-render.sh SVET_BINARY [SCENE]
+set -eu
+svet=$1
+scene=${2:-scenes/cbox.scn}
+command -v valgrind >/dev/null || { echo "count-render: valgrind is not installed" >&2; exit 1; }
+mkdir -p out
+out=out/callgrind.render
+valgrind --tool=callgrind --callgrind-out-file="$out" \
+    --toggle-collect=render_pass "$svet" render "$scene" --spp 1 \
+    --threads 1 -o out/count-render.exr >/dev/null 2>&1
+total=$(callgrind_annotate "$out" | awk '/PROGRAM TOTALS/ { gsub(",", "", $1); print $1 }')
+# the image size from the camera line's width and height
+size=$(awk '$1 == "camera" { for (i = 2; i < NF; i++) { if ($i == "width") w = $(i + 1); if ($i == "height") h = $(i + 1) } } END { print w * h }' "$scene")
+echo "$scene: $total instructions in render_pass, $size camera samples (1 spp): $((total / size)) per sample"
