@@ -7,6 +7,12 @@
 REAL     ?= float
 CC       ?= cc
 OPT      ?= -O2
+# The instruction set of the machine that builds: AVX2 here, which the
+# vector code (include/simd.h) and gcc's own loops use. The bits do not
+# change with it (-ffp-contract=off keeps gcc from fusing a multiply and an
+# add, and no reassociation is allowed); `make ARCH=` builds a binary for
+# any x86-64 (SSE2 only) to copy to another machine.
+ARCH     ?= -march=native
 BUILD    ?= build/$(REAL)
 PREFIX   ?= /usr/local
 PKG_CONFIG ?= pkg-config
@@ -23,7 +29,7 @@ endif
 # are the same on every x86-64 compiler that honours it (docs: determinism).
 WARN     := -Wall -Wextra -Wpedantic -Wdouble-promotion -Wshadow \
             -Wstrict-prototypes -Wmissing-prototypes -Wformat=2
-CFLAGS   ?= $(OPT) -g
+CFLAGS   ?= $(OPT) $(ARCH) -g
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off $(WARN) \
              $(REALDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
 
