@@ -102,11 +102,8 @@ typedef struct {
     uint32_t nfull;       /* non-empty cells */
     uint32_t *items;      /* primitive numbers, child markers last */
     uint32_t nitems;
-    uint32_t ncells;      /* cells of every node, empty or not */
-    uint32_t *cells;      /* the top level's cells only, x fastest: cell c
-                             holds cells[c + 1] - cells[c] items (prefix
-                             sums, for callers that count; the walk does
-                             not read it, see grid_cell_items()) */
+    uint32_t ncells;      /* cells of every node, empty or not (a cell's
+                             items: grid_cell_items()) */
     double diag;          /* diagonal of the top level */
     /* statistics of the build */
     int depth;            /* deepest level */

@@ -643,18 +643,13 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
                               "grid: %llu cells, %llu items: too many",
                               (unsigned long long)cells,
                               (unsigned long long)items);
-    long ntop = node_cells(&B->nodes[0].node);
     g->nodes = malloc(B->nnodes * sizeof *g->nodes);
     g->bmask = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bmask);
     g->bbase = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bbase);
     g->cstart = malloc((size_t)(full + 1) * sizeof *g->cstart);
     g->items = malloc((size_t)(items ? items : 1) * sizeof *g->items);
-    g->cells = malloc((size_t)(ntop + 1) * sizeof *g->cells);
-    if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items ||
-        !g->cells)
+    if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
-    /* the top level's counts, x fastest */
-    memcpy(g->cells, B->nodes[0].start, (size_t)(ntop + 1) * sizeof *g->cells);
     uint32_t c0 = 0, i0 = 0, b0 = 0, s0 = 0;
     g->depth = 0;
     g->max_items = 0;
@@ -801,13 +796,10 @@ size_t grid_bytes(const grid_t *g)
 {
     if (!g || !g->nodes)
         return g ? sizeof *g : 0;
-    const grid_node_t *top = &g->nodes[0];
-    long ntop = (long)top->res[0] * top->res[1] * top->res[2];
     return sizeof *g + g->nnodes * sizeof *g->nodes +
            (size_t)g->nblocks * (sizeof *g->bmask + sizeof *g->bbase) +
            ((size_t)g->nfull + 1) * sizeof *g->cstart +
-           (size_t)g->nitems * sizeof *g->items +
-           ((size_t)ntop + 1) * sizeof *g->cells;
+           (size_t)g->nitems * sizeof *g->items;
 }
 
 void grid_free(grid_t *g)
@@ -815,7 +807,6 @@ void grid_free(grid_t *g)
     if (!g)
         return;
     free(g->nodes);
-    free(g->cells);
     free(g->items);
     free(g->bmask);
     free(g->bbase);
