@@ -88,8 +88,34 @@ typedef struct {
  * Two arrays, so that the walk's words (8 bytes a block) share the cache
  * with nothing it reads less often. */
 
+/* Where the vectors hold MESH_BATCH reals (float with SSE2), every
+ * non-empty cell also keeps its mesh triangles' corners, MESH_BATCH
+ * triangles side by side as mesh_lanes_reject_soa() reads them: the walk
+ * tests a cell's triangles without gathering their corners from the
+ * primset (one cache line each, scattered) or transposing them. */
+#if defined(SIMD_REAL) && VLANES == MESH_BATCH
+#define GRID_QUADS 1
+#else
+#define GRID_QUADS 0
+#endif
+
+/* A lane of a grid_quad_t holding no triangle (the last quad of a cell
+ * is padded with copies of its first lane). */
+#define GRID_QUAD_PAD UINT32_MAX
+/* Set in qstart[s] when cell s holds items other than mesh triangles
+ * (other primitives, a child grid): the walk then reads its items too. */
+#define GRID_MORE ((uint32_t)1 << 31)
+
+/* MESH_BATCH mesh triangles of one cell: coordinate k (x0 y0 z0 x1 ... z2)
+ * of lane j is c[k MESH_BATCH + j]. 160 bytes in float. */
+typedef struct {
+    real c[9 * MESH_BATCH];
+    uint32_t ref[MESH_BATCH]; /* primitive numbers, or GRID_QUAD_PAD */
+} grid_quad_t;
+
 /* The grid: flat arrays. An empty cell costs a bit, an empty block 12
- * bytes (3/16 byte a cell); a non-empty cell 4 bytes plus 4 per item. */
+ * bytes (3/16 byte a cell); a non-empty cell 4 bytes plus 4 per item,
+ * and where GRID_QUADS 4 more and 160 per quad of its triangles. */
 typedef struct {
     const primset_t *ps;  /* the primitives (borrowed) */
     grid_node_t *nodes;   /* nodes[0] is the top level */
@@ -102,6 +128,11 @@ typedef struct {
     uint32_t nfull;       /* non-empty cells */
     uint32_t *items;      /* primitive numbers, child markers last */
     uint32_t nitems;
+    grid_quad_t *quads;   /* where GRID_QUADS: non-empty cell s's mesh
+                             triangles are quads[qstart[s] & ~GRID_MORE ..
+                             qstart[s + 1] & ~GRID_MORE); else NULL */
+    uint32_t *qstart;
+    uint32_t nquads;
     uint32_t ncells;      /* cells of every node, empty or not (a cell's
                              items: grid_cell_items()) */
     double diag;          /* diagonal of the top level */

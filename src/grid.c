@@ -625,6 +625,64 @@ static inline uint32_t full_cell(uint32_t base, uint64_t mask, int bit)
     return base + (uint32_t)bits_set(mask & ((UINT64_C(1) << bit) - 1));
 }
 
+/* The cells' mesh triangles as quads (grid.h, GRID_QUADS): each
+ * non-empty cell's triangles in the order of its items, MESH_BATCH a
+ * quad, the last quad padded with its first lane (GRID_QUAD_PAD). */
+static svet_status make_quads(grid_t *g, svet_error *err)
+{
+    const primset_t *ps = g->ps;
+    uint64_t nq = 0;
+    for (uint32_t f = 0; f < g->nfull; f++) {
+        uint32_t nt = 0;
+        for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++)
+            nt += g->items[k] < ps->ntri;
+        nq += (nt + MESH_BATCH - 1) / MESH_BATCH;
+    }
+    if (nq >= GRID_MORE)
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "grid: %llu quads: too many",
+                              (unsigned long long)nq);
+    /* 64-byte aligned: a quad's vectors never straddle more lines than
+     * they must */
+    size_t bytes = ((size_t)(nq ? nq : 1) * sizeof *g->quads + 63) / 64 * 64;
+    g->quads = aligned_alloc(64, bytes);
+    g->qstart = malloc(((size_t)g->nfull + 1) * sizeof *g->qstart);
+    if (!g->quads || !g->qstart)
+        return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    uint32_t q = 0;
+    for (uint32_t f = 0; f < g->nfull; f++) {
+        bool more = false;
+        int lane = MESH_BATCH;
+        g->qstart[f] = q;
+        for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++) {
+            uint32_t it = g->items[k];
+            if (it >= ps->ntri) {
+                more = true;
+                continue;
+            }
+            if (lane == MESH_BATCH) {
+                lane = 0;
+                q++;
+            }
+            grid_quad_t *qd = &g->quads[q - 1];
+            for (int c = 0; c < 9; c++)
+                qd->c[c * MESH_BATCH + lane] = ps->tri[it][c];
+            qd->ref[lane++] = it;
+        }
+        for (; q > g->qstart[f] && lane < MESH_BATCH; lane++) {
+            grid_quad_t *qd = &g->quads[q - 1];
+            for (int c = 0; c < 9; c++)
+                qd->c[c * MESH_BATCH + lane] = qd->c[c * MESH_BATCH];
+            qd->ref[lane] = GRID_QUAD_PAD;
+        }
+        if (more)
+            g->qstart[f] |= GRID_MORE;
+    }
+    g->qstart[g->nfull] = q;
+    g->nquads = q;
+    return SVET_OK;
+}
+
 static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
 {
     uint64_t cells = 0, items = 0, blocks = 0, full = 0;
@@ -701,7 +759,7 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
     g->nitems = i0;
     g->nblocks = b0;
     g->nfull = s0;
-    return SVET_OK;
+    return GRID_QUADS ? make_quads(g, err) : SVET_OK;
 }
 
 void grid_cell_items(const grid_t *g, uint32_t n, long c, uint32_t *begin,
@@ -799,7 +857,10 @@ size_t grid_bytes(const grid_t *g)
     return sizeof *g + g->nnodes * sizeof *g->nodes +
            (size_t)g->nblocks * (sizeof *g->bmask + sizeof *g->bbase) +
            ((size_t)g->nfull + 1) * sizeof *g->cstart +
-           (size_t)g->nitems * sizeof *g->items;
+           (size_t)g->nitems * sizeof *g->items +
+           (g->quads ? (size_t)g->nquads * sizeof *g->quads +
+                           ((size_t)g->nfull + 1) * sizeof *g->qstart
+                     : 0);
 }
 
 void grid_free(grid_t *g)
@@ -811,6 +872,8 @@ void grid_free(grid_t *g)
     free(g->bmask);
     free(g->bbase);
     free(g->cstart);
+    free(g->quads);
+    free(g->qstart);
     free(g);
 }
 
@@ -1023,74 +1086,82 @@ static uint64_t skip_empty(const grid_t *g, const grid_node_t *nd,
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
 
-/* Test the nb (1 to MESH_BATCH) mesh triangles rb[] (corners qb[]), which
- * the mailbox has passed: the sign test of all of them at once
- * (mesh_ray_reject), then the full test of those it cannot reject. The
- * same answers as primset_test() one by one: a lane is rejected only
- * where mesh_ray_intersect() returns false at that very test, with the
- * same bits (mesh.h), and the nearest-hit rule does not depend on the
- * order. Returns true when a shadow query found a hit. */
-static bool test_batch(const primset_t *ps, primset_query_t *q,
-                       const real *qb[MESH_BATCH], const uint32_t *rb,
-                       int nb, bool shadow)
+/* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
+ * quad's triangles at once (mesh_lanes_reject_soa), then, for each lane it
+ * cannot reject, the mailbox and the full test. The same answers as
+ * primset_test() on each triangle: a lane is rejected only where
+ * mesh_ray_intersect() returns false at that very test, with the same
+ * bits (mesh.h), the mailbox only keeps a triangle from being tested
+ * twice, and the nearest-hit rule does not depend on the order. A
+ * triangle the sign test rejects is not entered in the mailbox (nor
+ * counted in q->tests): in the next cell it is rejected again, as
+ * cheaply. Returns true when a shadow query found a hit. */
+static bool test_quads(const primset_t *ps, primset_query_t *q,
+                       const grid_quad_t *qd, uint32_t nq, bool shadow)
 {
-    if (nb == 1)
-        return primset_test_tri(ps, q, rb[0]) && shadow;
-    for (int j = nb; j < MESH_BATCH; j++)
-        qb[j] = qb[0]; /* padding: its answer is not read */
-    unsigned left = ~mesh_ray_reject(qb, &q->mr) & ((1u << nb) - 1);
-    for (int j = 0; left; j++, left >>= 1)
-        if ((left & 1) && primset_test_tri(ps, q, rb[j]) && shadow)
-            return true;
+#if GRID_QUADS
+    for (uint32_t i = 0; i < nq; i++) {
+        unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q->mr) &
+                        ((1u << MESH_BATCH) - 1);
+        for (int j = 0; left; j++, left >>= 1) {
+            uint32_t ref = qd[i].ref[j];
+            if (!(left & 1))
+                continue;
+            if (ref == GRID_QUAD_PAD) /* padding is last */
+                break;
+            if (!primset_seen(q, ref) && primset_test_tri(ps, q, ref) &&
+                shadow)
+                return true;
+        }
+    }
+#else
+    (void)ps;
+    (void)q;
+    (void)qd;
+    (void)nq;
+    (void)shadow;
+#endif
     return false;
 }
 
-/* Batches pay with 4 lanes a vector (float with SSE2): with 2 (double)
- * camera rays ran 5% slower than one triangle at a time, measured on the
- * 1e6 spheres, and the plain lanes could only add work to the scalar
- * test. Elsewhere every triangle goes through primset_test(). */
-#if defined(SIMD_REAL) && VLANES >= 4
-#define GRID_BATCHES 1
-#else
-#define GRID_BATCHES 0
-#endif
-
-/* Test the n items of a cell: mesh triangles MESH_BATCH at a time (where
- * GRID_BATCHES), other primitives one by one, child grids (listed last)
+/* Test the n items of a cell: primitives one by one (where GRID_QUADS,
+ * mesh triangles are left to test_quads()), child grids (listed last)
  * walked. Returns true when a shadow query found a hit. */
 static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
                       const uint32_t *items, uint32_t n, bool shadow)
 {
     const primset_t *ps = g->ps;
-    const real *qb[MESH_BATCH];
-    uint32_t rb[MESH_BATCH];
-    int nb = 0;
     for (uint32_t k = 0; k < n; k++) {
         uint32_t it = items[k];
         if (it & GRID_CHILD) {
-            if (nb && test_batch(ps, q, qb, rb, nb, shadow))
-                return true;
-            nb = 0;
             const grid_node_t *ch = &g->nodes[it & ~GRID_CHILD];
             double c0, c1;
             if (slab(w, ch->min, ch->max, w->t0, w->t1, &c0, &c1) &&
                 walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow))
                 return true;
-        } else if (GRID_BATCHES && it < ps->ntri) {
-            if (primset_seen(q, it))
-                continue;
-            qb[nb] = ps->tri[it];
-            rb[nb++] = it;
-            if (nb == MESH_BATCH) {
-                if (test_batch(ps, q, qb, rb, nb, shadow))
-                    return true;
-                nb = 0;
-            }
+        } else if (GRID_QUADS && it < ps->ntri) {
+            continue;
         } else if (primset_test(ps, q, it) && shadow) {
             return true;
         }
     }
-    return nb && test_batch(ps, q, qb, rb, nb, shadow);
+    return false;
+}
+
+/* Test non-empty cell f: its quads, then its other items. */
+static bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
+                      uint32_t f, bool shadow)
+{
+    if (GRID_QUADS) {
+        uint32_t a = g->qstart[f], b = g->qstart[f + 1] & ~GRID_MORE;
+        if (test_quads(g->ps, q, g->quads + (a & ~GRID_MORE),
+                       b - (a & ~GRID_MORE), shadow))
+            return true;
+        if (!(a & GRID_MORE))
+            return false;
+    }
+    return test_cell(g, w, q, g->items + g->cstart[f],
+                     g->cstart[f + 1] - g->cstart[f], shadow);
 }
 
 /* Walk node ni over [t0, t1] (inside its box). Returns true when a
@@ -1130,7 +1201,6 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow)
 {
     const grid_node_t *nd = &g->nodes[ni];
-    const uint32_t *cstart = g->cstart, *items = g->items;
     const uint64_t *bmask = g->bmask + nd->bfirst;
     const uint32_t *bbase = g->bbase + nd->bfirst;
     const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
@@ -1182,8 +1252,7 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         for (;;) {
             if (mask >> bit & 1) {
                 uint32_t f = full_cell(bbase[s.blk], mask, bit);
-                if (test_cell(g, w, q, items + cstart[f],
-                              cstart[f + 1] - cstart[f], shadow)) {
+                if (test_full(g, w, q, f, shadow)) {
                     s.steps = steps;
                     hit = true;
                     goto done;
