@@ -953,14 +953,16 @@ static double plane_t(const grid_node_t *nd, const walk_t *w, int a, long p)
 
 /* The state of a walk through one node (see walk()): per axis, t the t
  * of the next cell plane crossed, dt the t between two cell planes, lc
- * the cells left ahead in the current block, lb the blocks left ahead in
- * the grid, sg the direction (+1, -1, or 0 for an axis the ray does not
- * move along: d = 0, or 1/d not finite), ix the cell of an axis with sg 0;
- * blk and bit the current block and the cell's bit in its word; steps
- * the cells and empty blocks visited. */
+ * the cells left ahead in the current block; tb the t of the next plane
+ * between blocks, db = GRID_BLOCK dt, lb the blocks left ahead in the
+ * grid; sg the direction (+1, -1, or 0 for an axis the ray does not move
+ * along: d = 0, or 1/d not finite), ix the cell of an axis with sg 0;
+ * blk and bit the current block and the cell's bit in its word, dblk and
+ * dbit their steps; steps the cells and empty blocks visited. */
 typedef struct {
-    double t[3], dt[3];
-    int lc[3], lb[3], sg[3], ix[3];
+    double t[3], dt[3], tb[3], db[3];
+    int lc[3], lb[3], sg[3], ix[3], dbit[3];
+    long dblk[3];
     long blk;
     int bit;
     long steps;
@@ -968,13 +970,23 @@ typedef struct {
 
 static const int bit_stride[3] = { 1, GRID_BLOCK, GRID_BLOCK * GRID_BLOCK };
 
-/* The last cell on axis a of the block whose first is lo: the grid's
- * last blocks may reach past res, and the walk never steps into a cell
- * that is not there. */
-static long block_last(const grid_node_t *nd, int a, long lo)
+/* The cells ahead on axis a (lc) in the block the walk has just entered
+ * on that axis: all but one, except in the grid's last block going up,
+ * which may reach past res (the walk never steps into a cell that is not
+ * there). */
+static inline int entry_lc(const grid_node_t *nd, const dda_t *s, int a)
 {
-    long last = lo + GRID_BLOCK - 1;
-    return last < nd->res[a] - 1 ? last : nd->res[a] - 1;
+    return s->sg[a] > 0 && s->lb[a] == 0
+               ? nd->res[a] - 1 - GRID_BLOCK * (nd->nb[a] - 1)
+               : GRID_BLOCK - 1;
+}
+
+/* The cell's coordinate within its block on axis a. */
+static inline int local_cell(const grid_node_t *nd, const dda_t *s, int a)
+{
+    return s->sg[a] > 0   ? entry_lc(nd, s, a) - s->lc[a]
+           : s->sg[a] < 0 ? s->lc[a]
+                          : s->ix[a] % GRID_BLOCK;
 }
 
 /* The axis of the nearest of the crossings tx, ty, tz (ties to the
@@ -997,88 +1009,83 @@ static inline int nearest_axis(double tx, double ty, double tz, double *t)
 /* Cross empty blocks (the current one is empty) until one holds
  * something, and set the walk on the cell of that block it enters first;
  * returns that block's word, or 0 when the walk is over (past tend, or out
- * of the grid). tb is the t of the next plane between blocks on each axis,
- * from plane_t() and then by steps of GRID_BLOCK dt, as the cells' t
- * (GRID_BLOCK dt is exact: a power of two times dt). Here the axis is
- * picked by branches, as in walk(). See walk() for why the cell entered is right. */
-static uint64_t skip_empty(const grid_t *g, const grid_node_t *nd,
-                           const walk_t *w, dda_t *s, double tend)
+ * of the grid). The block DDA runs on tb, kept by walk() along with the
+ * cells' t (no set-up here); the axis is picked by branches, as in walk().
+ * See walk() for why the cell entered is right. */
+static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
+                           const uint64_t *bmask, dda_t *s, double tend)
 {
-    const uint64_t *bmask = g->bmask + nd->bfirst;
-    double tb[3], db[3];
-    long dblk[3];
-    const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
-    for (int a = 0; a < 3; a++) {
-        long pb = s->sg[a] > 0 ? (long)GRID_BLOCK * (nd->nb[a] - s->lb[a])
-                               : (long)GRID_BLOCK * s->lb[a];
-        tb[a] = s->sg[a] ? plane_t(nd, w, a, pb) : (double)INFINITY;
-        db[a] = GRID_BLOCK * s->dt[a];
-        dblk[a] = s->sg[a] * bstride[a];
-    }
-    double tx = tb[0], ty = tb[1], tz = tb[2];
+    double tx = s->tb[0], ty = s->tb[1], tz = s->tb[2];
+    const double dx = s->db[0], dy = s->db[1], dz = s->db[2];
+    const long bx = s->dblk[0], by = s->dblk[1], bz = s->dblk[2];
     int lx = s->lb[0], ly = s->lb[1], lz = s->lb[2];
-    int mx = 0, my = 0, mz = 0; /* the axes stepped on */
-    int ent = 0; /* the axis of the last step */
-    long blk = s->blk, steps = s->steps;
-    double tin;
-    uint64_t mask;
-    do {
-        int a = nearest_axis(tx, ty, tz, &tin);
-        ent = a;
-        int l = a == 0 ? lx : a == 1 ? ly : lz;
-        if (!(tin <= tend) || l == 0) {
-            s->steps = steps;
-            return 0;
-        }
-        steps++;
-        blk += dblk[a];
-        if (a == 0) {
+    int a = 0;      /* the axis of the last step */
+    double tin = 0; /* and its t */
+    long blk = s->blk;
+    uint64_t mask = 0; /* the current block's: empty */
+    /* every branch does its axis's whole step, with its own registers:
+     * no array indexed by the axis in the loop */
+    for (;;) {
+        if (tx < ty && tx < tz) {
+            if (!(tx <= tend) || lx == 0)
+                break;
+            a = 0;
+            tin = tx;
             lx--;
-            mx = 1;
-            tx += db[0];
-        } else if (a == 1) {
+            tx += dx;
+            blk += bx;
+        } else if (ty < tz) {
+            if (!(ty <= tend) || ly == 0)
+                break;
+            a = 1;
+            tin = ty;
             ly--;
-            my = 1;
-            ty += db[1];
+            ty += dy;
+            blk += by;
         } else {
+            if (!(tz <= tend) || lz == 0)
+                break;
+            a = 2;
+            tin = tz;
             lz--;
-            mz = 1;
-            tz += db[2];
+            tz += dz;
+            blk += bz;
         }
-        mask = bmask[blk];
-    } while (mask == 0);
-    s->steps = steps;
+        if ((mask = bmask[blk]) != 0)
+            break;
+    }
+    /* one step per block crossed */
+    int moved = (lx != s->lb[0]) | (ly != s->lb[1]) << 1 |
+                (lz != s->lb[2]) << 2;
+    s->steps += (s->lb[0] - lx) + (s->lb[1] - ly) + (s->lb[2] - lz);
+    if (mask == 0) /* past tend, or out of the grid */
+        return 0;
     s->blk = blk;
     s->lb[0] = lx;
     s->lb[1] = ly;
     s->lb[2] = lz;
-    const int moved[3] = { mx, my, mz };
-    const int a = ent;
-    /* Enter the block at tin through its face on axis a. */
+    s->tb[0] = tx;
+    s->tb[1] = ty;
+    s->tb[2] = tz;
+    /* Enter the block at tin through its face on axis a: on a and on the
+     * other axes whose block changed, the block's first cell, t from
+     * plane_t(); then, on every axis but a, on past the cell planes the
+     * ray crossed before tin, as the cell DDA would have. */
     s->bit = 0;
     for (int b = 0; b < 3; b++) {
         int sg = s->sg[b];
-        long lo = GRID_BLOCK * (sg > 0   ? nd->nb[b] - 1 - s->lb[b]
-                                : sg < 0 ? s->lb[b]
-                                         : s->ix[b] / GRID_BLOCK);
-        long last = block_last(nd, b, lo);
-        if (moved[b]) /* a new block on this axis: all of it ahead */
-            s->lc[b] = (int)(last - lo);
-        if (b != a && sg != 0) {
-            /* the cell of the entry point, clamped into the block (floor
-             * by truncation, as in cell_of()), then no earlier than lc */
-            double u = (w->o[b] + tin * w->d[b] - nd->min[b]) * nd->inv_w[b];
-            long c = !(u >= (double)lo)    ? lo
-                     : u >= (double)last ? last
-                                         : (long)u;
-            int left = (int)(sg > 0 ? last - c : c - lo);
-            if (left < s->lc[b])
-                s->lc[b] = left;
+        if (sg != 0 && (b == a || (moved >> b & 1))) {
+            long bc = sg > 0 ? nd->nb[b] - 1 - s->lb[b] : s->lb[b];
+            s->lc[b] = entry_lc(nd, s, b);
+            s->t[b] = plane_t(nd, w, b,
+                              GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
         }
-        long c = sg > 0 ? last - s->lc[b] : sg < 0 ? lo + s->lc[b] : s->ix[b];
-        s->bit += (int)(c - lo) * bit_stride[b];
-        if (sg)
-            s->t[b] = plane_t(nd, w, b, sg > 0 ? c + 1 : c);
+        if (b != a)
+            while (s->lc[b] > 0 && s->t[b] < tin) {
+                s->t[b] += s->dt[b];
+                s->lc[b]--;
+            }
+        s->bit += local_cell(nd, s, b) * bit_stride[b];
     }
     return mask;
 }
@@ -1208,7 +1215,6 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     s.blk = 0;
     s.bit = 0;
     s.steps = 1;
-    int dbit[3];
     for (int a = 0; a < 3; a++) {
         int ix = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
         int sg = !isfinite(w->inv_d[a]) ? 0 : w->d[a] > 0 ? 1
@@ -1217,30 +1223,34 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         s.ix[a] = ix;
         s.sg[a] = sg;
         if (sg > 0) {
-            s.lc[a] = (int)(block_last(nd, a, (long)bl * GRID_BLOCK) - ix);
             s.lb[a] = nd->nb[a] - 1 - bl;
+            s.lc[a] = entry_lc(nd, &s, a) - loc;
             s.t[a] = plane_t(nd, w, a, ix + 1);
             s.dt[a] = nd->w[a] * w->inv_d[a];
+            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * (bl + 1));
         } else if (sg < 0) {
             s.lc[a] = loc;
             s.lb[a] = bl;
             s.t[a] = plane_t(nd, w, a, ix);
             s.dt[a] = -nd->w[a] * w->inv_d[a];
+            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * bl);
         } else {
             s.lc[a] = s.lb[a] = 0;
-            s.t[a] = (double)INFINITY;
+            s.t[a] = s.tb[a] = (double)INFINITY;
             s.dt[a] = 0;
         }
-        dbit[a] = sg * bit_stride[a];
+        s.db[a] = GRID_BLOCK * s.dt[a];
+        s.dbit[a] = sg * bit_stride[a];
+        s.dblk[a] = sg * bstride[a];
         s.blk += bl * bstride[a];
         s.bit += loc * bit_stride[a];
     }
     const double dtx = s.dt[0], dty = s.dt[1], dtz = s.dt[2];
-    const int dbx = dbit[0], dby = dbit[1], dbz = dbit[2];
+    const int dbx = s.dbit[0], dby = s.dbit[1], dbz = s.dbit[2];
     double tend = walk_end(w, q, t1);
     bool hit = false;
     uint64_t mask = bmask[s.blk];
-    if (mask == 0 && !(mask = skip_empty(g, nd, w, &s, tend)))
+    if (mask == 0 && !(mask = skip_empty(nd, w, bmask, &s, tend)))
         goto done;
     for (;;) {
         /* the hot state in scalars, which the compiler keeps in registers */
@@ -1300,16 +1310,14 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
             goto done;
         s.steps++;
         s.lb[a]--;
-        /* the first cell of the next block: lo below */
-        long lo = (s.sg[a] > 0 ? (long)nd->nb[a] - 1 - s.lb[a] : s.lb[a]) *
-                  GRID_BLOCK;
-        s.lc[a] = s.sg[a] > 0 ? (int)(block_last(nd, a, lo) - lo)
-                              : GRID_BLOCK - 1;
-        s.bit = bit - (GRID_BLOCK - 1) * dbit[a];
-        s.blk += s.sg[a] * bstride[a];
+        /* the first cell of the next block */
+        s.lc[a] = entry_lc(nd, &s, a);
+        s.bit = bit - (GRID_BLOCK - 1) * s.dbit[a];
+        s.blk += s.dblk[a];
         s.t[a] += s.dt[a];
+        s.tb[a] += s.db[a];
         mask = bmask[s.blk];
-        if (mask == 0 && !(mask = skip_empty(g, nd, w, &s, tend)))
+        if (mask == 0 && !(mask = skip_empty(nd, w, bmask, &s, tend)))
             goto done;
     }
 done:
