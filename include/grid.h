@@ -99,11 +99,15 @@ typedef struct {
 #define GRID_QUADS 0
 #endif
 
+/* A triangle in more cells than this stays out of the quads (grid.c). */
+#define GRID_QUAD_SPAN 8
+
 /* A lane of a grid_quad_t holding no triangle (the last quad of a cell
  * is padded with copies of its first lane). */
 #define GRID_QUAD_PAD UINT32_MAX
-/* Set in qstart[s] when cell s holds items other than mesh triangles
- * (other primitives, a child grid): the walk then reads its items too. */
+/* Set in qstart[s] when cell s holds items other than its quads' mesh
+ * triangles (large triangles, other primitives, a child grid): the walk
+ * then reads its items too. */
 #define GRID_MORE ((uint32_t)1 << 31)
 
 /* MESH_BATCH mesh triangles of one cell: coordinate k (x0 y0 z0 x1 ... z2)
@@ -133,6 +137,9 @@ typedef struct {
                              qstart[s + 1] & ~GRID_MORE); else NULL */
     uint32_t *qstart;
     uint32_t nquads;
+    uint64_t *qout;       /* bit t % 64 of word t / 64: mesh triangle t is
+                             in more than GRID_QUAD_SPAN cells and in no
+                             quad (tested from the items) */
     uint32_t ncells;      /* cells of every node, empty or not (a cell's
                              items: grid_cell_items()) */
     double diag;          /* diagonal of the top level */

@@ -625,17 +625,40 @@ static inline uint32_t full_cell(uint32_t base, uint64_t mask, int bit)
     return base + (uint32_t)bits_set(mask & ((UINT64_C(1) << bit) - 1));
 }
 
+/* Is item it a mesh triangle kept in the quads (GRID_QUADS)? */
+static inline bool in_quads(const grid_t *g, uint32_t it)
+{
+    return it < g->ps->ntri && !(g->qout[it / 64] >> (it % 64) & 1);
+}
+
 /* The cells' mesh triangles as quads (grid.h, GRID_QUADS): each
  * non-empty cell's triangles in the order of its items, MESH_BATCH a
- * quad, the last quad padded with its first lane (GRID_QUAD_PAD). */
+ * quad, the last quad padded with its first lane (GRID_QUAD_PAD). A
+ * triangle listed in more than GRID_QUAD_SPAN cells (a stadium's ground)
+ * stays out of the quads: copying its corners into every cell would cost
+ * far more memory than its one shared copy, which stays in cache; the walk
+ * tests it from the items (g->qout marks it). */
 static svet_status make_quads(grid_t *g, svet_error *err)
 {
     const primset_t *ps = g->ps;
+    uint8_t *span = calloc((size_t)ps->ntri + 1, 1);
+    g->qout = calloc((size_t)ps->ntri / 64 + 1, sizeof *g->qout);
+    if (!span || !g->qout) {
+        free(span);
+        return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    }
+    for (uint32_t k = 0; k < g->nitems; k++)
+        if (g->items[k] < ps->ntri && span[g->items[k]] <= GRID_QUAD_SPAN)
+            span[g->items[k]]++;
+    for (uint32_t t = 0; t < ps->ntri; t++)
+        if (span[t] > GRID_QUAD_SPAN)
+            g->qout[t / 64] |= UINT64_C(1) << (t % 64);
+    free(span);
     uint64_t nq = 0;
     for (uint32_t f = 0; f < g->nfull; f++) {
         uint32_t nt = 0;
         for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++)
-            nt += g->items[k] < ps->ntri;
+            nt += in_quads(g, g->items[k]);
         nq += (nt + MESH_BATCH - 1) / MESH_BATCH;
     }
     if (nq >= GRID_MORE)
@@ -656,7 +679,7 @@ static svet_status make_quads(grid_t *g, svet_error *err)
         g->qstart[f] = q;
         for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++) {
             uint32_t it = g->items[k];
-            if (it >= ps->ntri) {
+            if (!in_quads(g, it)) {
                 more = true;
                 continue;
             }
@@ -859,7 +882,8 @@ size_t grid_bytes(const grid_t *g)
            ((size_t)g->nfull + 1) * sizeof *g->cstart +
            (size_t)g->nitems * sizeof *g->items +
            (g->quads ? (size_t)g->nquads * sizeof *g->quads +
-                           ((size_t)g->nfull + 1) * sizeof *g->qstart
+                           ((size_t)g->nfull + 1) * sizeof *g->qstart +
+                           ((size_t)g->ps->ntri / 64 + 1) * sizeof *g->qout
                      : 0);
 }
 
@@ -874,6 +898,7 @@ void grid_free(grid_t *g)
     free(g->cstart);
     free(g->quads);
     free(g->qstart);
+    free(g->qout);
     free(g);
 }
 
@@ -1132,7 +1157,7 @@ static bool test_quads(const primset_t *ps, primset_query_t *q,
 }
 
 /* Test the n items of a cell: primitives one by one (where GRID_QUADS,
- * mesh triangles are left to test_quads()), child grids (listed last)
+ * the mesh triangles in quads are left to test_quads()), child grids (listed last)
  * walked. Returns true when a shadow query found a hit. */
 static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
                       const uint32_t *items, uint32_t n, bool shadow)
@@ -1146,7 +1171,7 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
             if (slab(w, ch->min, ch->max, w->t0, w->t1, &c0, &c1) &&
                 walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow))
                 return true;
-        } else if (GRID_QUADS && it < ps->ntri) {
+        } else if (GRID_QUADS && in_quads(g, it)) {
             continue;
         } else if (primset_test(ps, q, it) && shadow) {
             return true;
