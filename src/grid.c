@@ -7,13 +7,16 @@
  *          (cell, primitive) pairs, a counting sort lays them out; then
  *          flat arrays: blocks of 4^3 cells with a 64-bit word of which
  *          cells hold something, and only the non-empty cells numbered;
+ *          where the vectors have 4 lanes, each non-empty cell's mesh
+ *          triangles copied four side by side (quads, grid.h);
  *   hierarchy (Jevans & Wyvill 1989): a cell with more than leaf_max
  *          primitives gets a child grid over the part of the cell its
  *          primitives occupy, recursively, bounded by depth and size;
  *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
  *          an empty block in one step (macro-regions, Devillers 1989);
- *          a cell's mesh triangles through the sign test four at a time
- *          (mesh_ray_reject), the survivors through the full test;
+ *          a cell's quads through the sign test four triangles at a
+ *          time (mesh_lanes_reject_soa), the survivors through the full
+ *          test; elsewhere (double, no SSE2) one triangle at a time;
  *   tables: both grids as accel.h's accel_ops_t (grid_accels, at the
  *          end), which accel.c calls without naming this file.
  * Tests: tests/test_grid.c, tests/test_accel.c
@@ -1210,25 +1213,35 @@ static bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
  * the scene). The step picks its axis with plain branches: selects
  * without branches (and Amanatides & Woo's table) ran slower, measured
  * on this machine; the patterns of a ray's steps are regular enough for
- * the branch predictor. Stepping out of the last cell of a block loads the next block's word;
- * when it is 0, skip_empty() goes block by block (the same DDA over the
- * planes between blocks) until a block holds something.
+ * the branch predictor. Stepping out of the last cell of a block loads
+ * the next block's word; when it is 0, skip_empty() goes block by block
+ * (the same DDA over the planes between blocks, whose t, tb, the walk
+ * keeps all along: no set-up per empty run) until a block holds
+ * something.
  *
  * Why skipping never jumps past a cell it should visit. The planes between
- * blocks are cell planes, and every crossing t comes from plane_t(), so
- * the block DDA enters a block at the t the cell DDA would (to a few ulps).
- * The cell entered is, on the axis crossed, the block's first; on each
- * other axis the cell of the entry point o + t d, found by floor and then
- * clamped into the block and to no earlier than the cell the walk was in
- * on that axis: by exact arithmetic the point lies there (the axis crossed
- * was the nearest crossing, and t only grows), so the clamp moves it only
- * when rounding put it across a boundary, by a few ulps. A primitive hit
- * there lies within its padding (2^-20 of the scene, grid.c's top) of the
- * cells on both sides, so it is in a cell the walk visits. The clamps also
- * make every step advance on one axis and never go back on another: the
- * walk ends after at most res_x + res_y + res_z steps, whatever rounding
- * does. An axis the ray does not move along has lc = lb = 0 and t = inf:
- * it is never chosen before another, and choosing it ends the walk. */
+ * blocks are cell planes; their t (tb) comes from plane_t() and then grows
+ * by GRID_BLOCK dt (exact: a power of two times dt), as the cells' t grow
+ * by dt, so the block DDA crosses a block plane at the t the cell DDA
+ * would (to a few ulps), and so enters the blocks the cell DDA would
+ * enter, save where two crossings lie within a few ulps of each other:
+ * there the ray passes within a few ulps of a block edge or corner, and
+ * a primitive it hits there lies within its padding (2^-20 of the scene,
+ * grid.c's top) of the blocks on both sides, so it is in a cell the walk
+ * visits. The cell entered, at the entry t tin through the face on axis
+ * a: on a, the block's first; on an axis whose block changed during the
+ * skip, the block's first, with t from plane_t(); then, on every axis but
+ * a, the walk moves on past the cell planes whose t lies before tin (at
+ * most GRID_BLOCK - 1, never out of the block) -- the cell DDA's own rule
+ * on its own t, so the cell is the one the cell DDA would be in at tin, to
+ * the same few ulps. Every step moves one axis forward and none back (a
+ * cell or block step on its axis; the catching up on the others only
+ * forward, within the block): counting 4 per block left and 1 per cell
+ * left in the block on every axis, each step lowers the count, so the
+ * walk ends after at most about res_x + res_y + res_z steps, whatever
+ * rounding does. An axis the ray does not move along has lc = lb = 0 and
+ * t = tb = inf: it is never chosen before another, and choosing it ends
+ * the walk. */
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow)
 {
