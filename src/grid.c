@@ -610,15 +610,20 @@ static long node_blocks(const grid_node_t *nd)
     return (long)nd->nb[0] * nd->nb[1] * nd->nb[2];
 }
 
-/* The number of bits set in x (a portable popcount: the build targets
- * plain x86-64, which has no such instruction). */
+/* The number of bits set in x: the POPCNT instruction where the compiler
+ * targets it (-march=native on this machine), else a portable popcount
+ * (plain x86-64 has no such instruction). */
 static inline int bits_set(uint64_t x)
 {
+#if defined(__POPCNT__) && (defined(__GNUC__) || defined(__clang__))
+    return __builtin_popcountll(x);
+#else
     x = x - ((x >> 1) & UINT64_C(0x5555555555555555));
     x = (x & UINT64_C(0x3333333333333333)) +
         ((x >> 2) & UINT64_C(0x3333333333333333));
     x = (x + (x >> 4)) & UINT64_C(0x0f0f0f0f0f0f0f0f);
     return (int)((x * UINT64_C(0x0101010101010101)) >> 56);
+#endif
 }
 
 /* The non-empty cell of bit `bit` (set) of a block: base its bbase, mask
