@@ -269,7 +269,12 @@ static void machine(int argc, char **argv)
     printf("- Mrays/s by wall clock at 1 and 2 threads (OpenMP); \"per "
            "CPU-s\" divides by the process's CPU time instead, which a "
            "busy machine disturbs less; a measurement stops after %g s "
-           "and counts the rays traced by then\n\n", TRACE_BUDGET);
+           "and counts the rays traced by then\n", TRACE_BUDGET);
+    printf("- tests/ray counts the primitives tested in full once the "
+           "mailbox let them through; %s\n\n",
+           GRID_QUADS ? "the grids' mesh triangles only where the four-lane "
+                        "sign test (quads, grid.h) has not rejected them"
+                      : "every mesh triangle the mailbox lets through");
 }
 
 /* How a cost grows with N: the exponent of a power law through the
