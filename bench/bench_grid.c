@@ -270,11 +270,12 @@ static void machine(int argc, char **argv)
            "CPU-s\" divides by the process's CPU time instead, which a "
            "busy machine disturbs less; a measurement stops after %g s "
            "and counts the rays traced by then\n", TRACE_BUDGET);
-    printf("- tests/ray counts the primitives tested in full once the "
-           "mailbox let them through; %s\n\n",
-           GRID_QUADS ? "the grids' mesh triangles only where the four-lane "
-                        "sign test (quads, grid.h) has not rejected them"
-                      : "every mesh triangle the mailbox lets through");
+    printf("- tests/ray counts the primitives the mailbox let through; "
+           "%s\n\n",
+           GRID_QUADS ? "where a grid has quads (grid.h: from "
+                        "GRID_QUAD_MIN_DEFAULT mesh triangles on), only the "
+                        "triangles their four-lane sign test kept"
+                      : "this build has no quads");
 }
 
 /* How a cost grows with N: the exponent of a power law through the

@@ -45,8 +45,20 @@
 #define GRID_SPAN_MAX(n) \
     ((double)(n) * 32 > 0x1p27 ? 0x1p27 : fmax(0x1p22, (double)(n) * 32))
 
+/* Quads (below) only for scenes of at least this many mesh triangles.
+ * They copy every triangle's corners into each of its cells (about 4.7
+ * times the corners' memory): where the corners come from main memory
+ * anyway that costs little and saves the gathers (1e6 triangles: camera
+ * rays +9%, incoherent +8%, measured per CPU-second at load 2), but where
+ * the corners and the grid fit the caches and the quads do not, the
+ * incoherent rays wait on memory instead (1e5 triangles, 10 MB against
+ * 33 MB: incoherent -22%, camera +10%; 1e4: incoherent -8%). Between the
+ * two sizes it is not measured; 500,000 splits them. */
+#define GRID_QUAD_MIN_DEFAULT 500000
+
 typedef struct {
     double k;       /* top level: cells per axis = k N^(1/3) */
+    long quad_min;  /* quads where at least this many mesh triangles */
     int max_depth;  /* 0: uniform grid; > 0: levels of child grids */
     int leaf_max;   /* a cell with more primitives gets a child grid */
     double child_k; /* child grid: cells per axis = child_k n^(1/3) */
@@ -88,11 +100,14 @@ typedef struct {
  * Two arrays, so that the walk's words (8 bytes a block) share the cache
  * with nothing it reads less often. */
 
-/* Where the vectors hold MESH_BATCH reals (float with SSE2), every
+/* Where the vectors hold MESH_BATCH reals (float with SSE2), and the
+ * scene has at least grid_params_t.quad_min mesh triangles, every
  * non-empty cell also keeps its mesh triangles' corners, MESH_BATCH
  * triangles side by side as mesh_lanes_reject_soa() reads them: the walk
  * tests a cell's triangles without gathering their corners from the
- * primset (one cache line each, scattered) or transposing them. */
+ * primset (one cache line each, scattered) or transposing them. Without
+ * quads it gathers MESH_BATCH triangles the mailbox lets through and
+ * tests them with mesh_ray_reject(). */
 #if defined(SIMD_REAL) && VLANES == MESH_BATCH
 #define GRID_QUADS 1
 #else
@@ -132,7 +147,7 @@ typedef struct {
     uint32_t nfull;       /* non-empty cells */
     uint32_t *items;      /* primitive numbers, child markers last */
     uint32_t nitems;
-    grid_quad_t *quads;   /* where GRID_QUADS: non-empty cell s's mesh
+    grid_quad_t *quads;   /* with quads: non-empty cell s's mesh
                              triangles are quads[qstart[s] & ~GRID_MORE ..
                              qstart[s + 1] & ~GRID_MORE); else NULL */
     uint32_t *qstart;

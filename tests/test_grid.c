@@ -14,6 +14,7 @@
 #include "rng.h"
 #include "sphere.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -362,10 +363,14 @@ START_TEST(skipping_empty_blocks_never_misses_a_cell)
     primset_t ps;
     ck_assert(primset_build(&ps, &o, 1, &e) == SVET_OK);
     long cases = 0;
-    for (int depth = 0; depth <= 2; depth += 2) {
+    for (int variant = 0; variant < 4; variant++) {
+        /* uniform and hierarchical, with quads (where the build has
+         * them) and without */
+        int depth = 2 * (variant & 1);
         grid_params_t p;
         grid_params_uniform(&p);
         p.k = 32 / cbrt((double)ps.nbounded); /* 32 cells per axis */
+        p.quad_min = variant >> 1 ? LONG_MAX : 0;
         p.max_depth = depth;
         p.leaf_max = 1; /* the hierarchy refines every shared cell */
         grid_t *g;
@@ -511,9 +516,10 @@ START_TEST(huge_primitives_coarsen_the_grid_instead_of_exploding)
 END_TEST
 
 /* Cells that hold mesh triangles, other primitives and child grids
- * together: where GRID_QUADS, a cell's triangles are its quads (checked
- * here against its items and the primset's corners, padding last) and the
- * rest its items; both grids answer as brute force, nearest and any hit.
+ * together: with quads (GRID_QUADS), a cell's triangles are its quads
+ * (checked here against its items and the primset's corners, padding
+ * last) and the rest its items; both grids, with quads and without,
+ * answer as brute force, nearest and any hit.
  * Two UV spheres (meshes) crossed by analytic spheres, rays from inside
  * and outside, some along the axes. */
 START_TEST(cells_of_triangles_and_other_primitives_answer_as_brute_force)
@@ -536,18 +542,23 @@ START_TEST(cells_of_triangles_and_other_primitives_answer_as_brute_force)
     primset_t ps;
     ck_assert(primset_build(&ps, objs, 8, &e) == SVET_OK);
     long cases = 0, quads = 0, mixed = 0;
-    for (int depth = 0; depth <= 2; depth += 2) {
+    for (int variant = 0; variant < 4; variant++) {
+        /* uniform and hierarchical, with quads (where the build has
+         * them: forced, as the defaults keep them for large scenes) and
+         * without */
+        int depth = 2 * (variant & 1), with = !(variant >> 1);
         grid_params_t p;
         grid_params_uniform(&p);
         p.k = 1;
+        p.quad_min = with ? 0 : LONG_MAX;
         p.max_depth = depth;
         p.leaf_max = 4;
         grid_t *g;
         ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
         if (depth > 0)
             ck_assert_uint_gt(g->nnodes, 1);
-        ck_assert(GRID_QUADS ? g->quads != NULL : g->quads == NULL);
-        for (uint32_t f = 0; GRID_QUADS && f < g->nfull; f++) {
+        ck_assert(GRID_QUADS && with ? g->quads != NULL : g->quads == NULL);
+        for (uint32_t f = 0; g->quads && f < g->nfull; f++) {
             uint32_t qa = g->qstart[f] & ~GRID_MORE;
             uint32_t qb = g->qstart[f + 1] & ~GRID_MORE;
             uint32_t lane = 0, more = 0;
