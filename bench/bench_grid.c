@@ -10,6 +10,8 @@
  *   make bench-grid BENCH_ARGS=file.obj   the same for an OBJ file
  *   make bench-grid BENCH_ARGS=--tune     the sweep that chose k
  *   make bench-grid BENCH_ARGS=--quick    a smoke run
+ *   make bench-grid BENCH_ARGS="--only 1000000"   one sphere size only
+ *   make bench-grid BENCH_ARGS="--only stadium"   the teapot in a stadium
  */
 #include "accel.h"
 #include "bench.h"
@@ -267,7 +269,13 @@ static void machine(int argc, char **argv)
     printf("- Mrays/s by wall clock at 1 and 2 threads (OpenMP); \"per "
            "CPU-s\" divides by the process's CPU time instead, which a "
            "busy machine disturbs less; a measurement stops after %g s "
-           "and counts the rays traced by then\n\n", TRACE_BUDGET);
+           "and counts the rays traced by then\n", TRACE_BUDGET);
+    printf("- tests/ray counts the primitives the mailbox let through; "
+           "%s\n\n",
+           GRID_QUADS ? "where a grid has quads (grid.h: from "
+                        "GRID_QUAD_MIN_DEFAULT mesh triangles on), only the "
+                        "triangles their four-lane sign test kept"
+                      : "this build has no quads");
 }
 
 /* How a cost grows with N: the exponent of a power law through the
@@ -393,6 +401,7 @@ static void tune(void)
 int main(int argc, char **argv)
 {
     const char *objfile = NULL;
+    const char *only = NULL; /* one sphere size, or "stadium" */
     bool quick = false;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--tune") == 0) {
@@ -403,6 +412,8 @@ int main(int argc, char **argv)
             quick = true;
             g_cam = 128;
             g_rays = 1L << 14;
+        } else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+            only = argv[++i];
         } else {
             objfile = argv[i];
         }
@@ -435,6 +446,8 @@ int main(int argc, char **argv)
     size_t mesh_mem = 0;
     long mesh_tris = 0;
     for (int i = 0; i < nsizes; i++) {
+        if (only && atol(only) != sizes[i])
+            continue;
         meshgen_scene_t s;
         sphere_scene(sizes[i], &s);
         char *name = malloc(64);
@@ -452,6 +465,8 @@ int main(int argc, char **argv)
         }
         meshgen_free_objects(&s);
     }
+    if (only && strcmp(only, "stadium") != 0)
+        return 0;
     /* the teapot in a stadium, seen from the stands' side */
     meshgen_scene_t s;
     svet_error e;
@@ -461,6 +476,8 @@ int main(int argc, char **argv)
     bench_scene("teapot in a stadium", s.objs, s.nobjs, s.ntris, false, eye,
                 target, 40);
     meshgen_free_objects(&s);
+    if (only)
+        return 0;
     growth();
     printf("\nMeshes: %zu bytes per triangle at %ld triangles (vertices, "
            "normals, st, indices, alias table; mesh.h).\n",

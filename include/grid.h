@@ -45,8 +45,20 @@
 #define GRID_SPAN_MAX(n) \
     ((double)(n) * 32 > 0x1p27 ? 0x1p27 : fmax(0x1p22, (double)(n) * 32))
 
+/* Quads (below) only for scenes of at least this many mesh triangles.
+ * They copy every triangle's corners into each of its cells (about 4.7
+ * times the corners' memory): where the corners come from main memory
+ * anyway that costs little and saves the gathers (1e6 triangles: camera
+ * rays +9%, incoherent +8%, measured per CPU-second at load 2), but where
+ * the corners and the grid fit the caches and the quads do not, the
+ * incoherent rays wait on memory instead (1e5 triangles, 10 MB against
+ * 33 MB: incoherent -22%, camera +10%; 1e4: incoherent -8%). Between the
+ * two sizes it is not measured; 500,000 splits them. */
+#define GRID_QUAD_MIN_DEFAULT 500000
+
 typedef struct {
     double k;       /* top level: cells per axis = k N^(1/3) */
+    long quad_min;  /* quads where at least this many mesh triangles */
     int max_depth;  /* 0: uniform grid; > 0: levels of child grids */
     int leaf_max;   /* a cell with more primitives gets a child grid */
     double child_k; /* child grid: cells per axis = child_k n^(1/3) */
@@ -88,8 +100,41 @@ typedef struct {
  * Two arrays, so that the walk's words (8 bytes a block) share the cache
  * with nothing it reads less often. */
 
+/* Where the vectors hold MESH_BATCH reals (float with SSE2), and the
+ * scene has at least grid_params_t.quad_min mesh triangles, every
+ * non-empty cell also keeps its mesh triangles' corners, MESH_BATCH
+ * triangles side by side as mesh_lanes_reject_soa() reads them: the walk
+ * tests a cell's triangles without gathering their corners from the
+ * primset (one cache line each, scattered) or transposing them. Without
+ * quads it gathers MESH_BATCH triangles the mailbox lets through and
+ * tests them with mesh_ray_reject(). */
+#if defined(SIMD_REAL) && VLANES == MESH_BATCH
+#define GRID_QUADS 1
+#else
+#define GRID_QUADS 0
+#endif
+
+/* A triangle in more cells than this stays out of the quads (grid.c). */
+#define GRID_QUAD_SPAN 8
+
+/* A lane of a grid_quad_t holding no triangle (the last quad of a cell
+ * is padded with copies of its first lane). */
+#define GRID_QUAD_PAD UINT32_MAX
+/* Set in qstart[s] when cell s holds items other than its quads' mesh
+ * triangles (large triangles, other primitives, a child grid): the walk
+ * then reads its items too. */
+#define GRID_MORE ((uint32_t)1 << 31)
+
+/* MESH_BATCH mesh triangles of one cell: coordinate k (x0 y0 z0 x1 ... z2)
+ * of lane j is c[k MESH_BATCH + j]. 160 bytes in float. */
+typedef struct {
+    real c[9 * MESH_BATCH];
+    uint32_t ref[MESH_BATCH]; /* primitive numbers, or GRID_QUAD_PAD */
+} grid_quad_t;
+
 /* The grid: flat arrays. An empty cell costs a bit, an empty block 12
- * bytes (3/16 byte a cell); a non-empty cell 4 bytes plus 4 per item. */
+ * bytes (3/16 byte a cell); a non-empty cell 4 bytes plus 4 per item,
+ * and where GRID_QUADS 4 more and 160 per quad of its triangles. */
 typedef struct {
     const primset_t *ps;  /* the primitives (borrowed) */
     grid_node_t *nodes;   /* nodes[0] is the top level */
@@ -102,11 +147,16 @@ typedef struct {
     uint32_t nfull;       /* non-empty cells */
     uint32_t *items;      /* primitive numbers, child markers last */
     uint32_t nitems;
-    uint32_t ncells;      /* cells of every node, empty or not */
-    uint32_t *cells;      /* the top level's cells only, x fastest: cell c
-                             holds cells[c + 1] - cells[c] items (prefix
-                             sums, for callers that count; the walk does
-                             not read it, see grid_cell_items()) */
+    grid_quad_t *quads;   /* with quads: non-empty cell s's mesh
+                             triangles are quads[qstart[s] & ~GRID_MORE ..
+                             qstart[s + 1] & ~GRID_MORE); else NULL */
+    uint32_t *qstart;
+    uint32_t nquads;
+    uint64_t *qout;       /* bit t % 64 of word t / 64: mesh triangle t is
+                             in more than GRID_QUAD_SPAN cells and in no
+                             quad (tested from the items) */
+    uint32_t ncells;      /* cells of every node, empty or not (a cell's
+                             items: grid_cell_items()) */
     double diag;          /* diagonal of the top level */
     /* statistics of the build */
     int depth;            /* deepest level */

@@ -337,14 +337,12 @@ static inline unsigned mesh_lanes_reject_perm(
     return (unsigned)V_MASK(V_AND(nz, V_AND(neg, pos)));
 }
 
-/* mesh_lane_rejects() for VLANES triangles at once, each V_ macro one
- * IEEE operation of the scalar code (simd.h), in its order. The three
+/* mesh_lanes_reject_perm() on the 9 corner vectors c (x0 y0 z0 x1 ...
+ * z2, as mesh_lanes_load() gives them), permuted for the ray. The three
  * permutations are spelled out so that the vectors stay in registers. */
-static inline unsigned mesh_lanes_reject(const real *const *q,
-                                         const mesh_ray_t *mr)
+static inline unsigned mesh_lanes_reject_vec(const vreal c[9],
+                                             const mesh_ray_t *mr)
 {
-    vreal c[9];
-    mesh_lanes_load(q, c);
     switch (mr->kz) {
     case 0: /* kx = 1, ky = 2 */
         return mesh_lanes_reject_perm(c[1], c[2], c[0], c[4], c[5], c[3],
@@ -356,6 +354,31 @@ static inline unsigned mesh_lanes_reject(const real *const *q,
         return mesh_lanes_reject_perm(c[0], c[1], c[2], c[3], c[4], c[5],
                                       c[6], c[7], c[8], mr);
     }
+}
+
+/* mesh_lane_rejects() for VLANES triangles at once, each V_ macro one
+ * IEEE operation of the scalar code (simd.h), in its order. */
+static inline unsigned mesh_lanes_reject(const real *const *q,
+                                         const mesh_ray_t *mr)
+{
+    vreal c[9];
+    mesh_lanes_load(q, c);
+    return mesh_lanes_reject_vec(c, mr);
+}
+
+/* The same for VLANES triangles stored side by side, as a grid cell keeps
+ * them (grid.h): coordinate k (x0 y0 z0 x1 ... z2) of lane j is
+ * soa[k VLANES + j]. No gather, no transpose: 9 loads. For a ray that is
+ * not fast, no lane is rejected. This function can't fail. */
+static inline unsigned mesh_lanes_reject_soa(const real *soa,
+                                             const mesh_ray_t *mr)
+{
+    if (!mr->fast)
+        return 0;
+    vreal c[9];
+    for (int k = 0; k < 9; k++)
+        c[k] = V_LOAD(soa + k * VLANES);
+    return mesh_lanes_reject_vec(c, mr);
 }
 #endif
 

@@ -7,13 +7,16 @@
  *          (cell, primitive) pairs, a counting sort lays them out; then
  *          flat arrays: blocks of 4^3 cells with a 64-bit word of which
  *          cells hold something, and only the non-empty cells numbered;
+ *          where the vectors have 4 lanes, each non-empty cell's mesh
+ *          triangles copied four side by side (quads, grid.h);
  *   hierarchy (Jevans & Wyvill 1989): a cell with more than leaf_max
  *          primitives gets a child grid over the part of the cell its
  *          primitives occupy, recursively, bounded by depth and size;
  *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
  *          an empty block in one step (macro-regions, Devillers 1989);
- *          a cell's mesh triangles through the sign test four at a time
- *          (mesh_ray_reject), the survivors through the full test;
+ *          a cell's quads through the sign test four triangles at a
+ *          time (mesh_lanes_reject_soa), the survivors through the full
+ *          test; elsewhere (double, no SSE2) one triangle at a time;
  *   tables: both grids as accel.h's accel_ops_t (grid_accels, at the
  *          end), which accel.c calls without naming this file.
  * Tests: tests/test_grid.c, tests/test_accel.c
@@ -42,6 +45,7 @@
 void grid_params_uniform(grid_params_t *p)
 {
     p->k = GRID_K_DEFAULT;
+    p->quad_min = GRID_QUAD_MIN_DEFAULT;
     p->max_depth = 0;
     p->leaf_max = HGRID_LEAF_DEFAULT;
     p->child_k = HGRID_CHILD_K_DEFAULT;
@@ -50,6 +54,7 @@ void grid_params_uniform(grid_params_t *p)
 void grid_params_hierarchical(grid_params_t *p)
 {
     p->k = HGRID_K_DEFAULT;
+    p->quad_min = GRID_QUAD_MIN_DEFAULT;
     p->max_depth = HGRID_DEPTH_DEFAULT;
     p->leaf_max = HGRID_LEAF_DEFAULT;
     p->child_k = HGRID_CHILD_K_DEFAULT;
@@ -607,15 +612,20 @@ static long node_blocks(const grid_node_t *nd)
     return (long)nd->nb[0] * nd->nb[1] * nd->nb[2];
 }
 
-/* The number of bits set in x (a portable popcount: the build targets
- * plain x86-64, which has no such instruction). */
+/* The number of bits set in x: the POPCNT instruction where the compiler
+ * targets it (-march=native on this machine), else a portable popcount
+ * (plain x86-64 has no such instruction). */
 static inline int bits_set(uint64_t x)
 {
+#if defined(__POPCNT__) && (defined(__GNUC__) || defined(__clang__))
+    return __builtin_popcountll(x);
+#else
     x = x - ((x >> 1) & UINT64_C(0x5555555555555555));
     x = (x & UINT64_C(0x3333333333333333)) +
         ((x >> 2) & UINT64_C(0x3333333333333333));
     x = (x + (x >> 4)) & UINT64_C(0x0f0f0f0f0f0f0f0f);
     return (int)((x * UINT64_C(0x0101010101010101)) >> 56);
+#endif
 }
 
 /* The non-empty cell of bit `bit` (set) of a block: base its bbase, mask
@@ -625,7 +635,95 @@ static inline uint32_t full_cell(uint32_t base, uint64_t mask, int bit)
     return base + (uint32_t)bits_set(mask & ((UINT64_C(1) << bit) - 1));
 }
 
-static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
+/* Is item it a mesh triangle kept in the grid's quads? */
+static inline bool in_quads(const grid_t *g, uint32_t it)
+{
+    return g->quads && it < g->ps->ntri &&
+           !(g->qout[it / 64] >> (it % 64) & 1);
+}
+
+/* The cells' mesh triangles as quads (grid.h, GRID_QUADS): each
+ * non-empty cell's triangles in the order of its items, MESH_BATCH a
+ * quad, the last quad padded with its first lane (GRID_QUAD_PAD). A
+ * triangle listed in more than GRID_QUAD_SPAN cells (a stadium's ground)
+ * stays out of the quads: copying its corners into every cell would cost
+ * far more memory than its one shared copy, which stays in cache; the walk
+ * tests it from the items (g->qout marks it). */
+static bool quad_candidate(const grid_t *g, uint32_t it)
+{
+    return it < g->ps->ntri && !(g->qout[it / 64] >> (it % 64) & 1);
+}
+
+static svet_status make_quads(grid_t *g, svet_error *err)
+{
+    const primset_t *ps = g->ps;
+    uint8_t *span = calloc((size_t)ps->ntri + 1, 1);
+    g->qout = calloc((size_t)ps->ntri / 64 + 1, sizeof *g->qout);
+    if (!span || !g->qout) {
+        free(span);
+        return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    }
+    for (uint32_t k = 0; k < g->nitems; k++)
+        if (g->items[k] < ps->ntri && span[g->items[k]] <= GRID_QUAD_SPAN)
+            span[g->items[k]]++;
+    for (uint32_t t = 0; t < ps->ntri; t++)
+        if (span[t] > GRID_QUAD_SPAN)
+            g->qout[t / 64] |= UINT64_C(1) << (t % 64);
+    free(span);
+    uint64_t nq = 0;
+    for (uint32_t f = 0; f < g->nfull; f++) {
+        uint32_t nt = 0;
+        for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++)
+            nt += quad_candidate(g, g->items[k]);
+        nq += (nt + MESH_BATCH - 1) / MESH_BATCH;
+    }
+    if (nq >= GRID_MORE)
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "grid: %llu quads: too many",
+                              (unsigned long long)nq);
+    /* 64-byte aligned: a quad's vectors never straddle more lines than
+     * they must */
+    size_t bytes = ((size_t)(nq ? nq : 1) * sizeof *g->quads + 63) / 64 * 64;
+    g->quads = aligned_alloc(64, bytes);
+    g->qstart = malloc(((size_t)g->nfull + 1) * sizeof *g->qstart);
+    if (!g->quads || !g->qstart)
+        return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    uint32_t q = 0;
+    for (uint32_t f = 0; f < g->nfull; f++) {
+        bool more = false;
+        int lane = MESH_BATCH;
+        g->qstart[f] = q;
+        for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++) {
+            uint32_t it = g->items[k];
+            if (!quad_candidate(g, it)) {
+                more = true;
+                continue;
+            }
+            if (lane == MESH_BATCH) {
+                lane = 0;
+                q++;
+            }
+            grid_quad_t *qd = &g->quads[q - 1];
+            for (int c = 0; c < 9; c++)
+                qd->c[c * MESH_BATCH + lane] = ps->tri[it][c];
+            qd->ref[lane++] = it;
+        }
+        for (; q > g->qstart[f] && lane < MESH_BATCH; lane++) {
+            grid_quad_t *qd = &g->quads[q - 1];
+            for (int c = 0; c < 9; c++)
+                qd->c[c * MESH_BATCH + lane] = qd->c[c * MESH_BATCH];
+            qd->ref[lane] = GRID_QUAD_PAD;
+        }
+        if (more)
+            g->qstart[f] |= GRID_MORE;
+    }
+    g->qstart[g->nfull] = q;
+    g->nquads = q;
+    return SVET_OK;
+}
+
+static svet_status flatten(build_t *B, grid_t *g, long quad_min,
+                           svet_error *err)
 {
     uint64_t cells = 0, items = 0, blocks = 0, full = 0;
     for (uint32_t i = 0; i < B->nnodes; i++) {
@@ -643,18 +741,13 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
                               "grid: %llu cells, %llu items: too many",
                               (unsigned long long)cells,
                               (unsigned long long)items);
-    long ntop = node_cells(&B->nodes[0].node);
     g->nodes = malloc(B->nnodes * sizeof *g->nodes);
     g->bmask = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bmask);
     g->bbase = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bbase);
     g->cstart = malloc((size_t)(full + 1) * sizeof *g->cstart);
     g->items = malloc((size_t)(items ? items : 1) * sizeof *g->items);
-    g->cells = malloc((size_t)(ntop + 1) * sizeof *g->cells);
-    if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items ||
-        !g->cells)
+    if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
-    /* the top level's counts, x fastest */
-    memcpy(g->cells, B->nodes[0].start, (size_t)(ntop + 1) * sizeof *g->cells);
     uint32_t c0 = 0, i0 = 0, b0 = 0, s0 = 0;
     g->depth = 0;
     g->max_items = 0;
@@ -706,7 +799,8 @@ static svet_status flatten(build_t *B, grid_t *g, svet_error *err)
     g->nitems = i0;
     g->nblocks = b0;
     g->nfull = s0;
-    return SVET_OK;
+    return GRID_QUADS && g->ps->ntri >= quad_min ? make_quads(g, err)
+                                                 : SVET_OK;
 }
 
 void grid_cell_items(const grid_t *g, uint32_t n, long c, uint32_t *begin,
@@ -783,7 +877,7 @@ svet_status grid_build(grid_t **out, const primset_t *ps,
     if (st == SVET_OK && p->max_depth > 0 && !refine(&B, 0, UINT32_MAX))
         st = svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
     if (st == SVET_OK)
-        st = flatten(&B, g, err);
+        st = flatten(&B, g, p->quad_min, err);
     if (B.nnodes == 0)
         free_bnode(&top);
     for (uint32_t i = 0; i < B.nnodes; i++)
@@ -801,13 +895,14 @@ size_t grid_bytes(const grid_t *g)
 {
     if (!g || !g->nodes)
         return g ? sizeof *g : 0;
-    const grid_node_t *top = &g->nodes[0];
-    long ntop = (long)top->res[0] * top->res[1] * top->res[2];
     return sizeof *g + g->nnodes * sizeof *g->nodes +
            (size_t)g->nblocks * (sizeof *g->bmask + sizeof *g->bbase) +
            ((size_t)g->nfull + 1) * sizeof *g->cstart +
            (size_t)g->nitems * sizeof *g->items +
-           ((size_t)ntop + 1) * sizeof *g->cells;
+           (g->quads ? (size_t)g->nquads * sizeof *g->quads +
+                           ((size_t)g->nfull + 1) * sizeof *g->qstart +
+                           ((size_t)g->ps->ntri / 64 + 1) * sizeof *g->qout
+                     : 0);
 }
 
 void grid_free(grid_t *g)
@@ -815,11 +910,13 @@ void grid_free(grid_t *g)
     if (!g)
         return;
     free(g->nodes);
-    free(g->cells);
     free(g->items);
     free(g->bmask);
     free(g->bbase);
     free(g->cstart);
+    free(g->quads);
+    free(g->qstart);
+    free(g->qout);
     free(g);
 }
 
@@ -899,14 +996,16 @@ static double plane_t(const grid_node_t *nd, const walk_t *w, int a, long p)
 
 /* The state of a walk through one node (see walk()): per axis, t the t
  * of the next cell plane crossed, dt the t between two cell planes, lc
- * the cells left ahead in the current block, lb the blocks left ahead in
- * the grid, sg the direction (+1, -1, or 0 for an axis the ray does not
- * move along: d = 0, or 1/d not finite), ix the cell of an axis with sg 0;
- * blk and bit the current block and the cell's bit in its word; steps
- * the cells and empty blocks visited. */
+ * the cells left ahead in the current block; tb the t of the next plane
+ * between blocks, db = GRID_BLOCK dt, lb the blocks left ahead in the
+ * grid; sg the direction (+1, -1, or 0 for an axis the ray does not move
+ * along: d = 0, or 1/d not finite), ix the cell of an axis with sg 0;
+ * blk and bit the current block and the cell's bit in its word, dblk and
+ * dbit their steps; steps the cells and empty blocks visited. */
 typedef struct {
-    double t[3], dt[3];
-    int lc[3], lb[3], sg[3], ix[3];
+    double t[3], dt[3], tb[3], db[3];
+    int lc[3], lb[3], sg[3], ix[3], dbit[3];
+    long dblk[3];
     long blk;
     int bit;
     long steps;
@@ -914,13 +1013,23 @@ typedef struct {
 
 static const int bit_stride[3] = { 1, GRID_BLOCK, GRID_BLOCK * GRID_BLOCK };
 
-/* The last cell on axis a of the block whose first is lo: the grid's
- * last blocks may reach past res, and the walk never steps into a cell
- * that is not there. */
-static long block_last(const grid_node_t *nd, int a, long lo)
+/* The cells ahead on axis a (lc) in the block the walk has just entered
+ * on that axis: all but one, except in the grid's last block going up,
+ * which may reach past res (the walk never steps into a cell that is not
+ * there). */
+static inline int entry_lc(const grid_node_t *nd, const dda_t *s, int a)
 {
-    long last = lo + GRID_BLOCK - 1;
-    return last < nd->res[a] - 1 ? last : nd->res[a] - 1;
+    return s->sg[a] > 0 && s->lb[a] == 0
+               ? nd->res[a] - 1 - GRID_BLOCK * (nd->nb[a] - 1)
+               : GRID_BLOCK - 1;
+}
+
+/* The cell's coordinate within its block on axis a. */
+static inline int local_cell(const grid_node_t *nd, const dda_t *s, int a)
+{
+    return s->sg[a] > 0   ? entry_lc(nd, s, a) - s->lc[a]
+           : s->sg[a] < 0 ? s->lc[a]
+                          : s->ix[a] % GRID_BLOCK;
 }
 
 /* The axis of the nearest of the crossings tx, ty, tz (ties to the
@@ -943,94 +1052,127 @@ static inline int nearest_axis(double tx, double ty, double tz, double *t)
 /* Cross empty blocks (the current one is empty) until one holds
  * something, and set the walk on the cell of that block it enters first;
  * returns that block's word, or 0 when the walk is over (past tend, or out
- * of the grid). tb is the t of the next plane between blocks on each axis,
- * from plane_t() and then by steps of GRID_BLOCK dt, as the cells' t
- * (GRID_BLOCK dt is exact: a power of two times dt). Here the axis is
- * picked by branches, as in walk(). See walk() for why the cell entered is right. */
-static uint64_t skip_empty(const grid_t *g, const grid_node_t *nd,
-                           const walk_t *w, dda_t *s, double tend)
+ * of the grid). The block DDA runs on tb, kept by walk() along with the
+ * cells' t (no set-up here); the axis is picked by branches, as in walk().
+ * See walk() for why the cell entered is right. */
+static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
+                           const uint64_t *bmask, dda_t *s, double tend)
 {
-    const uint64_t *bmask = g->bmask + nd->bfirst;
-    double tb[3], db[3];
-    long dblk[3];
-    const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
-    for (int a = 0; a < 3; a++) {
-        long pb = s->sg[a] > 0 ? (long)GRID_BLOCK * (nd->nb[a] - s->lb[a])
-                               : (long)GRID_BLOCK * s->lb[a];
-        tb[a] = s->sg[a] ? plane_t(nd, w, a, pb) : (double)INFINITY;
-        db[a] = GRID_BLOCK * s->dt[a];
-        dblk[a] = s->sg[a] * bstride[a];
-    }
-    double tx = tb[0], ty = tb[1], tz = tb[2];
+    double tx = s->tb[0], ty = s->tb[1], tz = s->tb[2];
+    const double dx = s->db[0], dy = s->db[1], dz = s->db[2];
+    const long bx = s->dblk[0], by = s->dblk[1], bz = s->dblk[2];
     int lx = s->lb[0], ly = s->lb[1], lz = s->lb[2];
-    int mx = 0, my = 0, mz = 0; /* the axes stepped on */
-    int ent = 0; /* the axis of the last step */
-    long blk = s->blk, steps = s->steps;
-    double tin;
-    uint64_t mask;
-    do {
-        int a = nearest_axis(tx, ty, tz, &tin);
-        ent = a;
-        int l = a == 0 ? lx : a == 1 ? ly : lz;
-        if (!(tin <= tend) || l == 0) {
-            s->steps = steps;
-            return 0;
-        }
-        steps++;
-        blk += dblk[a];
-        if (a == 0) {
+    int a = 0;      /* the axis of the last step */
+    double tin = 0; /* and its t */
+    long blk = s->blk;
+    uint64_t mask = 0; /* the current block's: empty */
+    /* every branch does its axis's whole step, with its own registers:
+     * no array indexed by the axis in the loop */
+    for (;;) {
+        if (tx < ty && tx < tz) {
+            if (!(tx <= tend) || lx == 0)
+                break;
+            a = 0;
+            tin = tx;
             lx--;
-            mx = 1;
-            tx += db[0];
-        } else if (a == 1) {
+            tx += dx;
+            blk += bx;
+        } else if (ty < tz) {
+            if (!(ty <= tend) || ly == 0)
+                break;
+            a = 1;
+            tin = ty;
             ly--;
-            my = 1;
-            ty += db[1];
+            ty += dy;
+            blk += by;
         } else {
+            if (!(tz <= tend) || lz == 0)
+                break;
+            a = 2;
+            tin = tz;
             lz--;
-            mz = 1;
-            tz += db[2];
+            tz += dz;
+            blk += bz;
         }
-        mask = bmask[blk];
-    } while (mask == 0);
-    s->steps = steps;
+        if ((mask = bmask[blk]) != 0)
+            break;
+    }
+    /* one step per block crossed */
+    int moved = (lx != s->lb[0]) | (ly != s->lb[1]) << 1 |
+                (lz != s->lb[2]) << 2;
+    s->steps += (s->lb[0] - lx) + (s->lb[1] - ly) + (s->lb[2] - lz);
+    if (mask == 0) /* past tend, or out of the grid */
+        return 0;
     s->blk = blk;
     s->lb[0] = lx;
     s->lb[1] = ly;
     s->lb[2] = lz;
-    const int moved[3] = { mx, my, mz };
-    const int a = ent;
-    /* Enter the block at tin through its face on axis a. */
+    s->tb[0] = tx;
+    s->tb[1] = ty;
+    s->tb[2] = tz;
+    /* Enter the block at tin through its face on axis a: on a and on the
+     * other axes whose block changed, the block's first cell, t from
+     * plane_t(); then, on every axis but a, on past the cell planes the
+     * ray crossed before tin, as the cell DDA would have. */
     s->bit = 0;
     for (int b = 0; b < 3; b++) {
         int sg = s->sg[b];
-        long lo = GRID_BLOCK * (sg > 0   ? nd->nb[b] - 1 - s->lb[b]
-                                : sg < 0 ? s->lb[b]
-                                         : s->ix[b] / GRID_BLOCK);
-        long last = block_last(nd, b, lo);
-        if (moved[b]) /* a new block on this axis: all of it ahead */
-            s->lc[b] = (int)(last - lo);
-        if (b != a && sg != 0) {
-            /* the cell of the entry point, clamped into the block (floor
-             * by truncation, as in cell_of()), then no earlier than lc */
-            double u = (w->o[b] + tin * w->d[b] - nd->min[b]) * nd->inv_w[b];
-            long c = !(u >= (double)lo)    ? lo
-                     : u >= (double)last ? last
-                                         : (long)u;
-            int left = (int)(sg > 0 ? last - c : c - lo);
-            if (left < s->lc[b])
-                s->lc[b] = left;
+        if (sg != 0 && (b == a || (moved >> b & 1))) {
+            long bc = sg > 0 ? nd->nb[b] - 1 - s->lb[b] : s->lb[b];
+            s->lc[b] = entry_lc(nd, s, b);
+            s->t[b] = plane_t(nd, w, b,
+                              GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
         }
-        long c = sg > 0 ? last - s->lc[b] : sg < 0 ? lo + s->lc[b] : s->ix[b];
-        s->bit += (int)(c - lo) * bit_stride[b];
-        if (sg)
-            s->t[b] = plane_t(nd, w, b, sg > 0 ? c + 1 : c);
+        if (b != a)
+            while (s->lc[b] > 0 && s->t[b] < tin) {
+                s->t[b] += s->dt[b];
+                s->lc[b]--;
+            }
+        s->bit += local_cell(nd, s, b) * bit_stride[b];
     }
     return mask;
 }
 
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
+
+/* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
+ * quad's triangles at once (mesh_lanes_reject_soa), then, for each lane it
+ * cannot reject, the mailbox and the full test. The same answers as
+ * primset_test() on each triangle: a lane is rejected only where
+ * mesh_ray_intersect() returns false at that very test, with the same
+ * bits (mesh.h), the mailbox only keeps a triangle from being tested
+ * twice, and the nearest-hit rule does not depend on the order. A
+ * triangle the sign test rejects is not entered in the mailbox (nor
+ * counted in q->tests): in the next cell it is rejected again, as
+ * cheaply. Returns true when a shadow query found a hit. */
+static bool test_quads(const primset_t *ps, primset_query_t *q,
+                       const grid_quad_t *qd, uint32_t nq, bool shadow)
+{
+#if GRID_QUADS
+    for (uint32_t i = 0; i < nq; i++) {
+        unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q->mr) &
+                        ((1u << MESH_BATCH) - 1);
+        for (int j = 0; left; j++, left >>= 1) {
+            uint32_t ref = qd[i].ref[j];
+            if (!(left & 1))
+                continue;
+            if (ref == GRID_QUAD_PAD) /* padding is last */
+                break;
+            if (!primset_seen(q, ref) && primset_test_tri(ps, q, ref) &&
+                shadow)
+                return true;
+        }
+    }
+#else
+    (void)ps;
+    (void)q;
+    (void)qd;
+    (void)nq;
+    (void)shadow;
+#endif
+    return false;
+}
 
 /* Test the nb (1 to MESH_BATCH) mesh triangles rb[] (corners qb[]), which
  * the mailbox has passed: the sign test of all of them at once
@@ -1065,8 +1207,9 @@ static bool test_batch(const primset_t *ps, primset_query_t *q,
 #endif
 
 /* Test the n items of a cell: mesh triangles MESH_BATCH at a time (where
- * GRID_BATCHES), other primitives one by one, child grids (listed last)
- * walked. Returns true when a shadow query found a hit. */
+ * GRID_BATCHES; those in the grid's quads are left to test_quads()),
+ * other primitives one by one, child grids (listed last) walked. Returns
+ * true when a shadow query found a hit. */
 static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
                       const uint32_t *items, uint32_t n, bool shadow)
 {
@@ -1086,7 +1229,7 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
                 walk(g, it & ~GRID_CHILD, w, q, c0, c1, shadow))
                 return true;
         } else if (GRID_BATCHES && it < ps->ntri) {
-            if (primset_seen(q, it))
+            if (in_quads(g, it) || primset_seen(q, it))
                 continue;
             qb[nb] = ps->tri[it];
             rb[nb++] = it;
@@ -1100,6 +1243,22 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
         }
     }
     return nb && test_batch(ps, q, qb, rb, nb, shadow);
+}
+
+/* Test non-empty cell f: its quads, then its other items. */
+static bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
+                      uint32_t f, bool shadow)
+{
+    if (GRID_QUADS && g->quads) {
+        uint32_t a = g->qstart[f], b = g->qstart[f + 1] & ~GRID_MORE;
+        if (test_quads(g->ps, q, g->quads + (a & ~GRID_MORE),
+                       b - (a & ~GRID_MORE), shadow))
+            return true;
+        if (!(a & GRID_MORE))
+            return false;
+    }
+    return test_cell(g, w, q, g->items + g->cstart[f],
+                     g->cstart[f + 1] - g->cstart[f], shadow);
 }
 
 /* Walk node ni over [t0, t1] (inside its box). Returns true when a
@@ -1116,30 +1275,39 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
  * the scene). The step picks its axis with plain branches: selects
  * without branches (and Amanatides & Woo's table) ran slower, measured
  * on this machine; the patterns of a ray's steps are regular enough for
- * the branch predictor. Stepping out of the last cell of a block loads the next block's word;
- * when it is 0, skip_empty() goes block by block (the same DDA over the
- * planes between blocks) until a block holds something.
+ * the branch predictor. Stepping out of the last cell of a block loads
+ * the next block's word; when it is 0, skip_empty() goes block by block
+ * (the same DDA over the planes between blocks, whose t, tb, the walk
+ * keeps all along: no set-up per empty run) until a block holds
+ * something.
  *
  * Why skipping never jumps past a cell it should visit. The planes between
- * blocks are cell planes, and every crossing t comes from plane_t(), so
- * the block DDA enters a block at the t the cell DDA would (to a few ulps).
- * The cell entered is, on the axis crossed, the block's first; on each
- * other axis the cell of the entry point o + t d, found by floor and then
- * clamped into the block and to no earlier than the cell the walk was in
- * on that axis: by exact arithmetic the point lies there (the axis crossed
- * was the nearest crossing, and t only grows), so the clamp moves it only
- * when rounding put it across a boundary, by a few ulps. A primitive hit
- * there lies within its padding (2^-20 of the scene, grid.c's top) of the
- * cells on both sides, so it is in a cell the walk visits. The clamps also
- * make every step advance on one axis and never go back on another: the
- * walk ends after at most res_x + res_y + res_z steps, whatever rounding
- * does. An axis the ray does not move along has lc = lb = 0 and t = inf:
- * it is never chosen before another, and choosing it ends the walk. */
+ * blocks are cell planes; their t (tb) comes from plane_t() and then grows
+ * by GRID_BLOCK dt (exact: a power of two times dt), as the cells' t grow
+ * by dt, so the block DDA crosses a block plane at the t the cell DDA
+ * would (to a few ulps), and so enters the blocks the cell DDA would
+ * enter, save where two crossings lie within a few ulps of each other:
+ * there the ray passes within a few ulps of a block edge or corner, and
+ * a primitive it hits there lies within its padding (2^-20 of the scene,
+ * grid.c's top) of the blocks on both sides, so it is in a cell the walk
+ * visits. The cell entered, at the entry t tin through the face on axis
+ * a: on a, the block's first; on an axis whose block changed during the
+ * skip, the block's first, with t from plane_t(); then, on every axis but
+ * a, the walk moves on past the cell planes whose t lies before tin (at
+ * most GRID_BLOCK - 1, never out of the block) -- the cell DDA's own rule
+ * on its own t, so the cell is the one the cell DDA would be in at tin, to
+ * the same few ulps. Every step moves one axis forward and none back (a
+ * cell or block step on its axis; the catching up on the others only
+ * forward, within the block): counting 4 per block left and 1 per cell
+ * left in the block on every axis, each step lowers the count, so the
+ * walk ends after at most about res_x + res_y + res_z steps, whatever
+ * rounding does. An axis the ray does not move along has lc = lb = 0 and
+ * t = tb = inf: it is never chosen before another, and choosing it ends
+ * the walk. */
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow)
 {
     const grid_node_t *nd = &g->nodes[ni];
-    const uint32_t *cstart = g->cstart, *items = g->items;
     const uint64_t *bmask = g->bmask + nd->bfirst;
     const uint32_t *bbase = g->bbase + nd->bfirst;
     const long bstride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
@@ -1147,7 +1315,6 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     s.blk = 0;
     s.bit = 0;
     s.steps = 1;
-    int dbit[3];
     for (int a = 0; a < 3; a++) {
         int ix = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
         int sg = !isfinite(w->inv_d[a]) ? 0 : w->d[a] > 0 ? 1
@@ -1156,30 +1323,34 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         s.ix[a] = ix;
         s.sg[a] = sg;
         if (sg > 0) {
-            s.lc[a] = (int)(block_last(nd, a, (long)bl * GRID_BLOCK) - ix);
             s.lb[a] = nd->nb[a] - 1 - bl;
+            s.lc[a] = entry_lc(nd, &s, a) - loc;
             s.t[a] = plane_t(nd, w, a, ix + 1);
             s.dt[a] = nd->w[a] * w->inv_d[a];
+            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * (bl + 1));
         } else if (sg < 0) {
             s.lc[a] = loc;
             s.lb[a] = bl;
             s.t[a] = plane_t(nd, w, a, ix);
             s.dt[a] = -nd->w[a] * w->inv_d[a];
+            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * bl);
         } else {
             s.lc[a] = s.lb[a] = 0;
-            s.t[a] = (double)INFINITY;
+            s.t[a] = s.tb[a] = (double)INFINITY;
             s.dt[a] = 0;
         }
-        dbit[a] = sg * bit_stride[a];
+        s.db[a] = GRID_BLOCK * s.dt[a];
+        s.dbit[a] = sg * bit_stride[a];
+        s.dblk[a] = sg * bstride[a];
         s.blk += bl * bstride[a];
         s.bit += loc * bit_stride[a];
     }
     const double dtx = s.dt[0], dty = s.dt[1], dtz = s.dt[2];
-    const int dbx = dbit[0], dby = dbit[1], dbz = dbit[2];
+    const int dbx = s.dbit[0], dby = s.dbit[1], dbz = s.dbit[2];
     double tend = walk_end(w, q, t1);
     bool hit = false;
     uint64_t mask = bmask[s.blk];
-    if (mask == 0 && !(mask = skip_empty(g, nd, w, &s, tend)))
+    if (mask == 0 && !(mask = skip_empty(nd, w, bmask, &s, tend)))
         goto done;
     for (;;) {
         /* the hot state in scalars, which the compiler keeps in registers */
@@ -1191,8 +1362,7 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         for (;;) {
             if (mask >> bit & 1) {
                 uint32_t f = full_cell(bbase[s.blk], mask, bit);
-                if (test_cell(g, w, q, items + cstart[f],
-                              cstart[f + 1] - cstart[f], shadow)) {
+                if (test_full(g, w, q, f, shadow)) {
                     s.steps = steps;
                     hit = true;
                     goto done;
@@ -1240,16 +1410,14 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
             goto done;
         s.steps++;
         s.lb[a]--;
-        /* the first cell of the next block: lo below */
-        long lo = (s.sg[a] > 0 ? (long)nd->nb[a] - 1 - s.lb[a] : s.lb[a]) *
-                  GRID_BLOCK;
-        s.lc[a] = s.sg[a] > 0 ? (int)(block_last(nd, a, lo) - lo)
-                              : GRID_BLOCK - 1;
-        s.bit = bit - (GRID_BLOCK - 1) * dbit[a];
-        s.blk += s.sg[a] * bstride[a];
+        /* the first cell of the next block */
+        s.lc[a] = entry_lc(nd, &s, a);
+        s.bit = bit - (GRID_BLOCK - 1) * s.dbit[a];
+        s.blk += s.dblk[a];
         s.t[a] += s.dt[a];
+        s.tb[a] += s.db[a];
         mask = bmask[s.blk];
-        if (mask == 0 && !(mask = skip_empty(g, nd, w, &s, tend)))
+        if (mask == 0 && !(mask = skip_empty(nd, w, bmask, &s, tend)))
             goto done;
     }
 done:

@@ -12,7 +12,9 @@
 #include "meshgen.h"
 #include "primset.h"
 #include "rng.h"
+#include "sphere.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -141,8 +143,10 @@ START_TEST(every_triangle_is_in_every_cell_it_overlaps)
                     memset(in, 0, ps.ntri);
                     uint32_t cb, ce;
                     grid_cell_items(g, 0, c, &cb, &ce);
-                    /* the top level's counts agree */
-                    ck_assert_uint_eq(ce - cb, g->cells[c + 1] - g->cells[c]);
+                    /* ascending: the walk relies on mesh triangles
+                     * coming first in a cell (and child grids last) */
+                    for (uint32_t i = cb + 1; i < ce; i++)
+                        ck_assert_uint_lt(g->items[i - 1], g->items[i]);
                     for (uint32_t i = cb; i < ce; i++)
                         in[g->items[i]] = 1;
                     int ix[3] = { x, y, z };
@@ -359,10 +363,14 @@ START_TEST(skipping_empty_blocks_never_misses_a_cell)
     primset_t ps;
     ck_assert(primset_build(&ps, &o, 1, &e) == SVET_OK);
     long cases = 0;
-    for (int depth = 0; depth <= 2; depth += 2) {
+    for (int variant = 0; variant < 4; variant++) {
+        /* uniform and hierarchical, with quads (where the build has
+         * them) and without */
+        int depth = 2 * (variant & 1);
         grid_params_t p;
         grid_params_uniform(&p);
         p.k = 32 / cbrt((double)ps.nbounded); /* 32 cells per axis */
+        p.quad_min = variant >> 1 ? LONG_MAX : 0;
         p.max_depth = depth;
         p.leaf_max = 1; /* the hierarchy refines every shared cell */
         grid_t *g;
@@ -507,6 +515,108 @@ START_TEST(huge_primitives_coarsen_the_grid_instead_of_exploding)
 }
 END_TEST
 
+/* Cells that hold mesh triangles, other primitives and child grids
+ * together: with quads (GRID_QUADS), a cell's triangles are its quads
+ * (checked here against its items and the primset's corners, padding
+ * last) and the rest its items; both grids, with quads and without,
+ * answer as brute force, nearest and any hit.
+ * Two UV spheres (meshes) crossed by analytic spheres, rays from inside
+ * and outside, some along the axes. */
+START_TEST(cells_of_triangles_and_other_primitives_answer_as_brute_force)
+{
+    svet_error e;
+    COBJECT *objs[8];
+    VECTOR3 c0 = { 0, 0, 0 }, c1 = { REAL_C(1.5), REAL_C(0.3), 0 };
+    ck_assert(meshgen_uv_sphere(&objs[0], c0, 1, 24, 12, &e) == SVET_OK);
+    ck_assert(meshgen_uv_sphere(&objs[1], c1, REAL_C(0.8), 16, 9, &e) ==
+              SVET_OK);
+    pcg32_t rng;
+    pcg32_seed(&rng, 77, 7);
+    for (int i = 2; i < 8; i++) {
+        VECTOR3 c = { 3 * pcg32_real(&rng) - 1, 2 * pcg32_real(&rng) - 1,
+                      2 * pcg32_real(&rng) - 1 };
+        objs[i] = sphere_new(c, REAL_C(0.1) + REAL_C(0.4) * pcg32_real(&rng),
+                             &e);
+        ck_assert(objs[i] != NULL);
+    }
+    primset_t ps;
+    ck_assert(primset_build(&ps, objs, 8, &e) == SVET_OK);
+    long cases = 0, quads = 0, mixed = 0;
+    for (int variant = 0; variant < 4; variant++) {
+        /* uniform and hierarchical, with quads (where the build has
+         * them: forced, as the defaults keep them for large scenes) and
+         * without */
+        int depth = 2 * (variant & 1), with = !(variant >> 1);
+        grid_params_t p;
+        grid_params_uniform(&p);
+        p.k = 1;
+        p.quad_min = with ? 0 : LONG_MAX;
+        p.max_depth = depth;
+        p.leaf_max = 4;
+        grid_t *g;
+        ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
+        if (depth > 0)
+            ck_assert_uint_gt(g->nnodes, 1);
+        ck_assert(GRID_QUADS && with ? g->quads != NULL : g->quads == NULL);
+        for (uint32_t f = 0; g->quads && f < g->nfull; f++) {
+            uint32_t qa = g->qstart[f] & ~GRID_MORE;
+            uint32_t qb = g->qstart[f + 1] & ~GRID_MORE;
+            uint32_t lane = 0, more = 0;
+            for (uint32_t k = g->cstart[f]; k < g->cstart[f + 1]; k++) {
+                uint32_t it = g->items[k];
+                /* other primitives, child grids and triangles in many
+                 * cells are left to the items */
+                if (it >= ps.ntri || (g->qout[it / 64] >> (it % 64) & 1)) {
+                    more = 1;
+                    continue;
+                }
+                const grid_quad_t *qd = &g->quads[qa + lane / MESH_BATCH];
+                ck_assert_uint_eq(qd->ref[lane % MESH_BATCH], it);
+                for (int c = 0; c < 9; c++)
+                    ck_assert(qd->c[c * MESH_BATCH + lane % MESH_BATCH] ==
+                              ps.tri[it][c]);
+                lane++;
+            }
+            ck_assert_uint_eq(qb - qa, (lane + MESH_BATCH - 1) / MESH_BATCH);
+            for (; lane % MESH_BATCH; lane++)
+                ck_assert_uint_eq(
+                    g->quads[qa + lane / MESH_BATCH].ref[lane % MESH_BATCH],
+                    GRID_QUAD_PAD);
+            ck_assert_uint_eq(!!(g->qstart[f] & GRID_MORE), more);
+            quads += qb - qa;
+            mixed += more && lane > 0;
+        }
+        for (int i = 0; i < 4000; i++) {
+            ray_t r;
+            for (int a = 0; a < 3; a++) {
+                r.o[a] = 5 * pcg32_real(&rng) - 2;
+                r.d[a] = 2 * pcg32_real(&rng) - 1;
+            }
+            if (i % 4 == 0) { /* along an axis */
+                int a = (int)pcg32_bounded(&rng, 3);
+                vec_set(r.d, 0, 0, 0);
+                r.d[a] = i % 8 ? 1 : -1;
+            }
+            check_ray(g, &ps, &r);
+            cases++;
+        }
+        grid_free(g);
+    }
+    /* the case this test is for: cells with both (where there are quads) */
+    ck_assert(!GRID_QUADS || mixed > 10);
+    test_report_cases(
+        "cells_of_triangles_and_other_primitives_answer_as_brute_force",
+        cases);
+    if (GRID_QUADS)
+        test_report_cases("cells_of_triangles_and_other_primitives_answer_"
+                          "as_brute_force (quads checked)",
+                          quads);
+    primset_free(&ps);
+    for (int i = 0; i < 8; i++)
+        cobject_free(objs[i]);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("grid");
@@ -518,6 +628,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, skipping_empty_blocks_never_misses_a_cell);
     tcase_add_test(tc, a_crowded_cell_gets_a_child_grid);
     tcase_add_test(tc, huge_primitives_coarsen_the_grid_instead_of_exploding);
+    tcase_add_test(tc,
+                   cells_of_triangles_and_other_primitives_answer_as_brute_force);
     suite_add_tcase(s, tc);
     return s;
 }

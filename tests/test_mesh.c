@@ -142,7 +142,7 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
 {
     pcg32_t g;
     pcg32_seed(&g, 62, 3);
-    long cases = 0, rejected = 0, kept = 0, hits = 0;
+    long cases = 0, rejected = 0, kept = 0, hits = 0, soa_cases = 0;
     for (int i = 0; i < 50000; i++) {
         real q[MESH_BATCH][9];
         for (int j = 0; j < MESH_BATCH; j++) {
@@ -198,6 +198,17 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
         unsigned m = mesh_ray_reject(qp, &mr);
         unsigned mp = mesh_ray_reject_plain(qp, &mr);
         ck_assert_msg(m == mp, "case %d: mask %x, plain lanes %x", i, m, mp);
+#if defined(SIMD_REAL) && VLANES == MESH_BATCH
+        /* the same triangles side by side, as a grid cell keeps them */
+        real soa[9 * MESH_BATCH];
+        for (int j = 0; j < MESH_BATCH; j++)
+            for (int k = 0; k < 9; k++)
+                soa[k * MESH_BATCH + j] = q[j][k];
+        unsigned ms = mesh_lanes_reject_soa(soa, &mr);
+        ck_assert_msg(ms == mp, "case %d: side by side %x, plain lanes %x", i,
+                      ms, mp);
+        soa_cases++;
+#endif
         for (int j = 0; j < MESH_BATCH; j++) {
             real t, b[3];
             bool h = triangle_intersect_watertight(
@@ -218,6 +229,9 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
     test_report_cases(
         "batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit",
         cases);
+    test_report_cases("batch_sign_test_matches_the_plain_lanes_and_never_"
+                      "rejects_a_hit (corners side by side)",
+                      soa_cases);
 }
 END_TEST
 
