@@ -387,7 +387,8 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
         if (hit && brute_found(q, ps, i, &hh))
             return true;
     }
-    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin);
+    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin,
+                                              q->tmax_tie);
     if (maybe) {
         triangle_ray_t pr;
         triangle_ray_prepare(&pr, r);

@@ -24,6 +24,9 @@ typedef struct {
     VECTOR3 a, b;    /* dual to e1, e2 in the plane: (p - c0) . a = s,
                         (p - c0) . b = t for p = c0 + s e1 + t e2 */
     real a1, b1;     /* |a|_1, |b|_1, rounded up */
+    real k_area;     /* 2 / (the smaller of the two triangles' areas),
+                        rounded up; infinite when that is not positive or
+                        the quotient overflows (stays_before()) */
 } para_cull_t;
 
 typedef struct {
@@ -203,14 +206,67 @@ static inline bool misses_quad(const para_cull_t *k, const ray_t *r,
     return steep & ((s < -ms) | (s > 1 + ms) | (tt < -mt) | (tt > 1 + mt));
 }
 
-/* Both early rejections: true only when the watertight test would report
- * no hit in (tmin, anything) (the proofs above). */
+#define STEEP_PAD (1024 * REAL_UNIT_ROUNDOFF)
+#define TRI_PAD (512 * REAL_UNIT_ROUNDOFF)
+
+/* True when the segment of the ray over [0, tmax] stays on one side of
+ * the slab: its origin beyond h_hi + pad (or below h_lo - pad, the pad of
+ * leaves_plane) and its end o + tmax d beyond h_hi + pad2 (below
+ * h_lo - pad2). For tmin >= 0 only. The mirror of leaves_plane() for a
+ * ray that comes toward the plane but ends before it: a shadow ray to a
+ * light just under the ceiling, a bounce ray whose tmax a box in front of
+ * the wall has shortened.
+ *   Why no reported hit is lost. A reported hit has tt > dt and
+ * tt < tmax (triangle_hit_sheared; the same in units of 2^-scale), where
+ * dt is pbrt-v3's bound (sec. 3.9.6) on the distance of tt from the t' at
+ * which the exact ray meets the moved triangle, so 0 < t' < tmax + dt;
+ * the point there has n . p within eta + 6 u c_max of [h_lo, h_hi] (see
+ * above). n . p is linear along the ray, so over [0, tmax + dt] it is no
+ * lower than min(n . o, n . (o + tmax d) - dt |n . d|), the side of h_hi
+ * (h_lo alike). What dt |n . d| can be: dt = 3 (gamma(3) max_e max_z +
+ * de max_z + dz max_e) / |det|, with max_e <= |det| (1 + gamma(2)) on a
+ * hit (the e_i share det's sign), dz = gamma(3) max_z, and
+ * max_z |n . d| <= sqrt(3) max_z |d_kz| <= sqrt(3) A (1 + 2u), A = c_max
+ * + max|o|: the first and last terms give less than 32 u A. The sheared
+ * |x|, |y| are at most |a_x| + |a_z| <= 2 A (|sx|, |sy| <= 1), so de <=
+ * (8 gamma(2) + 24 gamma(5)) A^2 < 136 u A^2. det is the sum of the e_i,
+ * each within de of the exact edge functions, whose sum is twice the
+ * triangle's area T' projected along d: 2 T' |n . d| / |d_kz| (signed).
+ * "Steep": |n . d| >= 1024 u max|d| A^2 k_area, k_area = 2 / T with T the
+ * smaller triangle's area (T' >= T / 2 for both triangles, with room for
+ * the rounding of T, of c2 and of the computed n . d, less than 1/256 of
+ * it here), gives 2 T' |n . d| / |d_kz| >= 12 de, so |det| >= (3/4) 2 T'
+ * |n . d| / |d_kz| (1 - gamma(2)), and 3 de max_z |n . d| / |det| <=
+ * 272 u A^3 / T' (1 + 4 u). So for a steep ray
+ *   pad2 = 128 u (A + tmax max|d|) + 512 u A (A^2 k_area)
+ * covers eta + 6 u c_max < 28 u A, dt |n . d| < 32 u A + 288 u A^3 / T',
+ * the errors of n . o, n . d and of e = n . o + tmax n . d (less than
+ * 6 u max|o|, 6 u tmax max|d| and 2 u (|n . o| + tmax |n . d|)) and its
+ * own rounding. When tmax is infinite (or A^2 k_area overflows), pad2 is
+ * infinite and nothing is rejected; a NaN makes every comparison false. */
+static inline bool stays_before(const para_cull_t *k, const plane_ray_t *pl,
+                                real tmax)
+{
+    real A = k->c_max + pl->o_max;
+    real pad = SLAB_PAD * A;
+    real q = A * A * k->k_area;
+    bool steep = fabs(pl->dn) >= STEEP_PAD * pl->d_max * q;
+    real e = pl->s + tmax * pl->dn;
+    real pad2 = SLAB_PAD * (A + tmax * pl->d_max) + TRI_PAD * (A * q);
+    return steep & (((pl->s > k->h_hi + pad) & (e > k->h_hi + pad2)) |
+                    ((pl->s < k->h_lo - pad) & (e < k->h_lo - pad2)));
+}
+
+/* The early rejections: true only when the watertight test would report
+ * no hit in (tmin, tmax) (the proofs above). */
 static inline bool rejects(const para_cull_t *k, const ray_t *r,
-                           const ray_size_t *rs, real tmin)
+                           const ray_size_t *rs, real tmin, real tmax)
 {
     plane_ray_t pl;
     plane_ray(k, r, rs, &pl);
-    return ((tmin >= 0) & leaves_plane(k, &pl)) | misses_quad(k, r, &pl);
+    return ((tmin >= 0) &
+            (leaves_plane(k, &pl) | stays_before(k, &pl, tmax))) |
+           misses_quad(k, r, &pl);
 }
 
 /* True when the ray is outside (tmin, tmax) all along the parallelogram
@@ -297,7 +353,7 @@ static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
     const para_shape *sh = obj->shape;
     ray_size_t rs;
     ray_size(r, &rs);
-    if (rejects(&sh->k, r, &rs, tmin))
+    if (rejects(&sh->k, r, &rs, tmin, tmax))
         return false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
@@ -373,6 +429,7 @@ struct parallelogram_batch {
     real bx[PARALLELOGRAM_BATCH_MAX], by[PARALLELOGRAM_BATCH_MAX],
         bz[PARALLELOGRAM_BATCH_MAX];
     real a1[PARALLELOGRAM_BATCH_MAX], b1[PARALLELOGRAM_BATCH_MAX];
+    real k_area[PARALLELOGRAM_BATCH_MAX];
 };
 
 bool parallelogram_is(const COBJECT *obj)
@@ -402,6 +459,7 @@ parallelogram_batch_t *parallelogram_batch_new(const COBJECT *const *objs,
         b->ax[i] = k->a[X], b->ay[i] = k->a[Y], b->az[i] = k->a[Z];
         b->bx[i] = k->b[X], b->by[i] = k->b[Y], b->bz[i] = k->b[Z];
         b->a1[i] = k->a1, b->b1[i] = k->b1;
+        b->k_area[i] = k->k_area;
     }
     return b;
 }
@@ -412,7 +470,7 @@ void parallelogram_batch_free(parallelogram_batch_t *b)
 }
 
 uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
-                                        const ray_t *r, real tmin)
+                                        const ray_t *r, real tmin, real tmax)
 {
     ray_size_t rs;
     ray_size(r, &rs);
@@ -424,9 +482,9 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
             b->h_lo[i], b->h_hi[i], b->h_mid[i], b->h_half[i], b->c_max[i],
             { b->ax[i], b->ay[i], b->az[i] },
             { b->bx[i], b->by[i], b->bz[i] },
-            b->a1[i], b->b1[i]
+            b->a1[i], b->b1[i], b->k_area[i]
         };
-        if (!rejects(&k, r, &rs, tmin))
+        if (!rejects(&k, r, &rs, tmin, tmax))
             maybe |= (uint64_t)1 << i;
     }
     return maybe;
@@ -438,7 +496,7 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
  * the same order, so each lane gets exactly the bits of the plain loop.
  * tests/test_parallelogram.c compares the two. */
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin)
+                                  const ray_t *r, real tmin, real tmax)
 {
     const real u = REAL_UNIT_ROUNDOFF;
     ray_size_t rs;
@@ -454,6 +512,11 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
     const vreal one = V_SET1(1), slab = V_SET1(SLAB_PAD);
     const vreal u64 = V_SET1(64 * u), u32 = V_SET1(32 * u);
     const int ahead = tmin >= 0;
+    /* stays_before() is false in every lane for tmax = +infinity */
+    const bool segment = ahead && tmax != (real)INFINITY;
+    const vreal vtmax = V_SET1(tmax), tdm = V_SET1(tmax * rs.d_max);
+    const vreal steep_d = V_SET1(STEEP_PAD * rs.d_max);
+    const vreal tri = V_SET1(TRI_PAD);
     uint64_t maybe = 0;
     for (int i = 0; i < b->n; i += VLANES) {
         /* plane_ray(): n . o, n . d */
@@ -463,13 +526,28 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
         vreal dn = V_ADD(V_ADD(V_MUL(nx, dx), V_MUL(ny, dy)), V_MUL(nz, dz));
         /* leaves_plane() */
         vreal c_max = V_LOAD(b->c_max + i);
-        vreal pad = V_MUL(slab, V_ADD(c_max, o_max));
-        vreal leaves = V_OR(
-            V_AND(V_GT(s, V_ADD(V_LOAD(b->h_hi + i), pad)), V_GE(dn, dpad)),
-            V_AND(V_LT(s, V_SUB(V_LOAD(b->h_lo + i), pad)),
-                  V_LE(dn, V_XOR(dpad, sign))));
-        /* misses_quad() */
+        vreal A = V_ADD(c_max, o_max);
+        vreal pad = V_MUL(slab, A);
+        vreal h_hi = V_LOAD(b->h_hi + i), h_lo = V_LOAD(b->h_lo + i);
+        vreal above = V_GT(s, V_ADD(h_hi, pad)),
+              below = V_LT(s, V_SUB(h_lo, pad));
+        vreal leaves = V_OR(V_AND(above, V_GE(dn, dpad)),
+                            V_AND(below, V_LE(dn, V_XOR(dpad, sign))));
         vreal adn = V_ANDNOT(sign, dn);
+        if (segment) { /* stays_before() */
+            vreal q = V_MUL(V_MUL(A, A), V_LOAD(b->k_area + i));
+            vreal steep2 = V_GE(adn, V_MUL(steep_d, q));
+            vreal e = V_ADD(s, V_MUL(vtmax, dn));
+            vreal pad2 = V_ADD(V_MUL(slab, V_ADD(A, tdm)),
+                               V_MUL(tri, V_MUL(A, q)));
+            leaves = V_OR(leaves,
+                          V_AND(steep2,
+                                V_OR(V_AND(above,
+                                           V_GT(e, V_ADD(h_hi, pad2))),
+                                     V_AND(below,
+                                           V_LT(e, V_SUB(h_lo, pad2))))));
+        }
+        /* misses_quad() */
         vreal steep = V_GE(adn, dpad);
         vreal t = V_DIV(V_SUB(V_LOAD(b->h_mid + i), s), dn);
         vreal px = V_ADD(ox, V_MUL(t, dx)), py = V_ADD(oy, V_MUL(t, dy)),
@@ -483,7 +561,6 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
         vreal tt = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->bx + i)),
                                V_MUL(qy, V_LOAD(b->by + i))),
                          V_MUL(qz, V_LOAD(b->bz + i)));
-        vreal A = V_ADD(c_max, o_max);
         vreal p_max = V_MAX(V_ANDNOT(sign, px),
                             V_MAX(V_ANDNOT(sign, py), V_ANDNOT(sign, pz)));
         vreal G = V_DIV(g4, adn);
@@ -506,9 +583,9 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
 }
 #else
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin)
+                                  const ray_t *r, real tmin, real tmax)
 {
-    return parallelogram_batch_cull_plain(b, r, tmin);
+    return parallelogram_batch_cull_plain(b, r, tmin, tmax);
 }
 #endif
 
@@ -551,6 +628,36 @@ static void dual_vectors(const para_shape *sh, para_cull_t *kc)
     if (!vec_is_finite(kc->a) || !vec_is_finite(kc->b) || !isfinite(kc->a1) ||
         !isfinite(kc->b1))
         kc->a1 = kc->b1 = (real)INFINITY;
+}
+
+/* k_area of para_cull_t: 2 / T, T the smaller of the areas of the
+ * triangles (c0, c1, c2) and (c0, c2, c3) with the corners as stored,
+ * computed in long double (its error is far below the factor 2 that
+ * stays_before() allows for), rounded up; infinite when T is not
+ * positive or 2 / T overflows. */
+static real k_area(const para_shape *sh)
+{
+    long double T = INFINITY;
+    for (int tri = 0; tri < 2; tri++) {
+        const real *p = sh->c[0], *q = sh->c[1 + tri], *w = sh->c[2 + tri];
+        long double a[3], b[3], c2 = 0;
+        for (int k = 0; k < 3; k++) {
+            a[k] = (long double)q[k] - p[k];
+            b[k] = (long double)w[k] - p[k];
+        }
+        for (int k = 0; k < 3; k++) {
+            int i = (k + 1) % 3, j = (k + 2) % 3;
+            long double c = a[i] * b[j] - a[j] * b[i];
+            c2 += c * c;
+        }
+        long double area = sqrtl(c2) / 2;
+        if (area < T)
+            T = area;
+    }
+    real k = (real)(2 / T);
+    if (!(T > 0) || !isfinite(k))
+        return (real)INFINITY;
+    return real_next_up(k);
 }
 
 /* The checks both constructors share, and the object. */
@@ -608,6 +715,7 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
             k->c_max = real_max(k->c_max, fabs(sh->c[i][j]));
     }
     k->h_mid = REAL_C(0.5) * k->h_lo + REAL_C(0.5) * k->h_hi;
+    k->k_area = k_area(sh);
     k->h_half = real_next_up(REAL_C(0.5) * (k->h_hi - k->h_lo));
     dual_vectors(sh, k);
     return obj;
