@@ -40,6 +40,8 @@ typedef struct {
     uint32_t n;
     parallelogram_batch_t *batch;
     uint32_t para[PARALLELOGRAM_BATCH_MAX]; /* the item of each bit */
+    const COBJECT *para_obj[PARALLELOGRAM_BATCH_MAX]; /* its object */
+    int npara;
     uint32_t *others;    /* the items not in the batch, in order */
     uint32_t nothers;
     xform_sphere_t *spheres;
@@ -191,6 +193,7 @@ static brute_t *brute_new(const primset_t *ps)
             it->kind = ITEM_PARALLELOGRAM;
             it->slot = npara;
             b->para[npara] = i;
+            b->para_obj[npara] = it->obj;
             para[npara++] = it->obj;
             continue;
         }
@@ -200,6 +203,7 @@ static brute_t *brute_new(const primset_t *ps)
         }
         b->others[b->nothers++] = i;
     }
+    b->npara = npara;
     b->batch = parallelogram_batch_new(para, npara);
     if (!b->batch) {
         brute_free(b);
@@ -387,8 +391,15 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
         if (hit && brute_found(q, ps, i, &hh))
             return true;
     }
+    /* the parallelograms in q->skip are left out of the batch */
+    uint64_t want = ~(uint64_t)0;
+    if (q->skip[0] || q->skip[1])
+        for (int slot = 0; slot < b->npara; slot++)
+            if (b->para_obj[slot] == q->skip[0] ||
+                b->para_obj[slot] == q->skip[1])
+                want &= ~((uint64_t)1 << slot);
     uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin,
-                                              q->tmax_tie);
+                                              q->tmax_tie, want);
     if (maybe) {
         triangle_ray_t pr;
         triangle_ray_prepare(&pr, r);
@@ -396,8 +407,6 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
             if (!(maybe & 1))
                 continue;
             uint32_t i = b->para[slot];
-            if (b->items[i].obj == q->skip[0] || b->items[i].obj == q->skip[1])
-                continue;
             hit_t hh = { 0, 0, { 0, 0, 0 } };
             if (parallelogram_intersect_prepared(b->items[i].obj,
                                                  b->items[i].prim, &pr,

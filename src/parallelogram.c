@@ -470,12 +470,15 @@ void parallelogram_batch_free(parallelogram_batch_t *b)
 }
 
 uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
-                                        const ray_t *r, real tmin, real tmax)
+                                        const ray_t *r, real tmin, real tmax,
+                                        uint64_t want)
 {
     ray_size_t rs;
     ray_size(r, &rs);
     uint64_t maybe = 0;
     for (int i = 0; i < b->n; i++) {
+        if (!((want >> i) & 1))
+            continue;
         const para_cull_t k = {
             { b->nx[i], b->ny[i], b->nz[i] },
             { b->c0x[i], b->c0y[i], b->c0z[i] },
@@ -494,9 +497,12 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
 /* rejects() on a vector of parallelograms at once (simd.h): every
  * operation is the IEEE operation rejects() makes, on the same operands in
  * the same order, so each lane gets exactly the bits of the plain loop.
- * tests/test_parallelogram.c compares the two. */
+ * tests/test_parallelogram.c compares the two. A step whose wanted lanes
+ * the plane tests (leaves_plane, stays_before) all reject skips
+ * misses_quad(), whose answer could only repeat theirs. */
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin, real tmax)
+                                  const ray_t *r, real tmin, real tmax,
+                                  uint64_t want)
 {
     const real u = REAL_UNIT_ROUNDOFF;
     ray_size_t rs;
@@ -547,6 +553,11 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
                                      V_AND(below,
                                            V_LT(e, V_SUB(h_lo, pad2))))));
         }
+        const int lanes = (1 << VLANES) - 1;
+        int wanted = (int)(want >> i) & lanes;
+        int left = wanted & ~(ahead ? V_MASK(leaves) : 0);
+        if (!left)
+            continue;
         /* misses_quad() */
         vreal steep = V_GE(adn, dpad);
         vreal t = V_DIV(V_SUB(V_LOAD(b->h_mid + i), s), dn);
@@ -575,17 +586,17 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
             V_OR(V_LT(ss, V_XOR(ms, sign)), V_GT(ss, V_ADD(one, ms))),
             V_OR(V_LT(tt, V_XOR(mt, sign)), V_GT(tt, V_ADD(one, mt))));
         vreal misses = V_AND(steep, outside);
-        int rejected = V_MASK(misses) | (ahead ? V_MASK(leaves) : 0);
-        maybe |= (uint64_t)(~rejected & ((1 << VLANES) - 1)) << i;
+        maybe |= (uint64_t)(left & ~V_MASK(misses)) << i;
     }
     /* the padding lanes past n */
     return b->n < 64 ? maybe & (((uint64_t)1 << b->n) - 1) : maybe;
 }
 #else
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin, real tmax)
+                                  const ray_t *r, real tmin, real tmax,
+                                  uint64_t want)
 {
-    return parallelogram_batch_cull_plain(b, r, tmin, tmax);
+    return parallelogram_batch_cull_plain(b, r, tmin, tmax, want);
 }
 #endif
 

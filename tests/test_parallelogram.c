@@ -229,7 +229,8 @@ static bool via_batch(const parallelogram_batch_t *batch, int i,
                       const COBJECT *o, const ray_t *r, real tmin, real tmax,
                       hit_t *h)
 {
-    if (!((parallelogram_batch_cull(batch, r, tmin, tmax) >> i) & 1))
+    const uint64_t all = ~(uint64_t)0;
+    if (!((parallelogram_batch_cull(batch, r, tmin, tmax, all) >> i) & 1))
         return false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
@@ -497,9 +498,9 @@ START_TEST(segments_that_end_before_the_plane_lose_no_hit)
                 n++;
                 hits += agrees_with_two_triangles(o, (const VECTOR3 *)c, &r,
                                                   0, tmax);
-                rejected += parallelogram_batch_cull(batch, &r, 0, tmax) !=
+                rejected += parallelogram_batch_cull(batch, &r, 0, tmax, 1) !=
                             parallelogram_batch_cull(batch, &r, 0,
-                                                     (real)INFINITY);
+                                                     (real)INFINITY, 1);
             }
         }
         parallelogram_batch_free(batch);
@@ -587,25 +588,40 @@ START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
                         : j % 4 == 1 ? 1
                         : j % 23 == 2 ? -(real)INFINITY
                                       : 2 * pcg32_real(&g);
-            uint64_t mask = parallelogram_batch_cull(all, &r, tmin, tmax);
+            const uint64_t every = ~(uint64_t)0;
+            uint64_t mask = parallelogram_batch_cull(all, &r, tmin, tmax,
+                                                     every);
             ck_assert(m == 64 || mask >> m == 0);
-            ck_assert(mask ==
-                      parallelogram_batch_cull_plain(all, &r, tmin, tmax));
+            ck_assert(mask == parallelogram_batch_cull_plain(all, &r, tmin,
+                                                             tmax, every));
+            /* some objects left out: their bits are 0, the others' the
+             * same (and a step of lanes all left out or rejected by the
+             * plane tests skips the rest) */
+            uint64_t want = (uint64_t)pcg32_next(&g) << 32 | pcg32_next(&g);
+            if (j % 3 == 0)
+                want &= (uint64_t)pcg32_next(&g) << 32 | pcg32_next(&g);
+            ck_assert(parallelogram_batch_cull(all, &r, tmin, tmax, want) ==
+                      (mask & want));
+            ck_assert(parallelogram_batch_cull_plain(all, &r, tmin, tmax,
+                                                     want) == (mask & want));
             if (j % 19 == 0) { /* NaN and infinity: every lane as the plain
                                   loop answers */
                 ray_t bad = r;
                 bad.o[j % 3] = j % 2 ? (real)NAN : (real)INFINITY;
-                ck_assert(parallelogram_batch_cull(all, &bad, 0, tmax) ==
-                          parallelogram_batch_cull_plain(all, &bad, 0, tmax));
+                ck_assert(parallelogram_batch_cull(all, &bad, 0, tmax, want) ==
+                          parallelogram_batch_cull_plain(all, &bad, 0, tmax,
+                                                         want));
                 bad = r;
                 bad.d[j % 3] = (real)NAN;
-                ck_assert(parallelogram_batch_cull(all, &bad, 0, tmax) ==
-                          parallelogram_batch_cull_plain(all, &bad, 0, tmax));
+                ck_assert(parallelogram_batch_cull(all, &bad, 0, tmax, want) ==
+                          parallelogram_batch_cull_plain(all, &bad, 0, tmax,
+                                                         want));
             }
             for (int i = 0; i < m; i++, n++) {
                 uint64_t bit = (mask >> i) & 1;
                 ck_assert(bit ==
-                          parallelogram_batch_cull(one[i], &r, tmin, tmax));
+                          parallelogram_batch_cull(one[i], &r, tmin, tmax,
+                                                   every));
                 hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
                 bool a = o[i]->ops->intersect(o[i], 0, &r, tmin, tmax, &h1);
                 bool b = via_batch(all, i, o[i], &r, tmin, tmax,
