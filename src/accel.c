@@ -281,11 +281,18 @@ void accel_free(accel_t *a)
     free(a);
 }
 
+/* A finite ray with a nonzero direction over a nonempty interval. x - x
+ * is 0 for a finite x and NaN for an infinity or a NaN, so the sum below
+ * is 0 exactly when all six coordinates are finite (a few operations,
+ * no branch per coordinate: every query makes this test); a NaN tmin or
+ * tmax makes tmin < tmax false. */
 static bool ray_ok(const ray_t *r, real tmin, real tmax)
 {
-    return vec_is_finite(r->o) && vec_is_finite(r->d) &&
-           (r->d[X] != 0 || r->d[Y] != 0 || r->d[Z] != 0) &&
-           !isnan(tmin) && !isnan(tmax) && tmin < tmax;
+    real f = ((r->o[X] - r->o[X]) + (r->o[Y] - r->o[Y])) +
+             ((r->o[Z] - r->o[Z]) + (r->d[X] - r->d[X])) +
+             ((r->d[Y] - r->d[Y]) + (r->d[Z] - r->d[Z]));
+    return f == 0 && (r->d[X] != 0 || r->d[Y] != 0 || r->d[Z] != 0) &&
+           tmin < tmax;
 }
 
 /* Brute force, and the unbounded primitives of a structure: refs
