@@ -166,4 +166,11 @@ static inline bool xform_sphere_misses(const xform_sphere_t *sh,
 bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
                               real tmin, real tmax, hit_t *hit);
 
+/* The surface() of an object from xform_new the general way: the inner
+ * primitive's normals, derivatives and frame mapped to the world at every
+ * hit. surface() gives the same bits; for a box it takes them from a
+ * table made once per face. For tests. This function can't fail. */
+void xform_surface_generic(const COBJECT *obj, const ray_t *r,
+                           const hit_t *hit, PATHPOINT *pp);
+
 #endif

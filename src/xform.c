@@ -290,6 +290,13 @@ typedef struct {
     /* world_point()'s constants, each the very product it would compute:
      * |m_ij|, gamma(4) |m_i3| and gamma(4) |inv_ij| */
     real abs_m[3][3], g_m3[3], g_inv[3][4];
+    /* For a box, what xf_surface() computes from the fields of a hit that
+     * depend on its face alone (pp->prim), computed once per face by the
+     * very same calls (set_faces()); nfaces is 0 for other primitives. */
+    int nfaces;
+    struct {
+        VECTOR3 ng, n, u, v, dpds, dpdt;
+    } face[6];
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -414,10 +421,11 @@ static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
     return len;
 }
 
-static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
-                       PATHPOINT *pp)
+/* The inner primitive's surface() on the ray in object space, and the
+ * point mapped back to the world. */
+static void surface_point(const xf_shape *sh, const ray_t *r,
+                          const hit_t *hit, PATHPOINT *pp)
 {
-    const xf_shape *sh = obj->shape;
     ray_t ro;
     int k;
     object_ray(sh, r, &ro, &k);
@@ -429,6 +437,12 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     world_point(sh, pp->cross_point, pp->p_error, p, e);
     vec_copy(pp->cross_point, p);
     vec_copy(pp->p_error, e);
+}
+
+/* The normals, derivatives and frame of pp, in object space, mapped to
+ * the world. */
+static void surface_frame(const xf_shape *sh, PATHPOINT *pp)
+{
     /* the shading normal is the geometric one for most primitives: map it
      * once */
     bool same = memcmp(pp->n, pp->ng, sizeof pp->n) == 0;
@@ -440,6 +454,63 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     xform_vector(&sh->x, pp->dpds, pp->dpds);
     xform_vector(&sh->x, pp->dpdt, pp->dpdt);
     shape_frame(pp->u, pp->v, pp->n, pp->dpds);
+}
+
+void xform_surface_generic(const COBJECT *obj, const ray_t *r,
+                           const hit_t *hit, PATHPOINT *pp)
+{
+    const xf_shape *sh = obj->shape;
+    surface_point(sh, r, hit, pp);
+    surface_frame(sh, pp);
+}
+
+static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
+                       PATHPOINT *pp)
+{
+    const xf_shape *sh = obj->shape;
+    surface_point(sh, r, hit, pp);
+    if (pp->prim >= 0 && pp->prim < sh->nfaces) {
+        /* a box's face: its world frame as surface_frame() made it */
+        int f = pp->prim;
+        vec_copy(pp->ng, sh->face[f].ng);
+        vec_copy(pp->n, sh->face[f].n);
+        vec_copy(pp->u, sh->face[f].u);
+        vec_copy(pp->v, sh->face[f].v);
+        vec_copy(pp->dpds, sh->face[f].dpds);
+        vec_copy(pp->dpdt, sh->face[f].dpdt);
+        return;
+    }
+    surface_frame(sh, pp);
+}
+
+/* The face table of a transformed box (xf_shape.face): box.c's surface()
+ * sets ng, n, u, v, dpds and dpdt from the face alone (the one in
+ * hit->b[0], returned in pp->prim), so surface_frame() maps them to the
+ * same bits at every hit on that face; here it runs once per face, on a
+ * hit of that face from a ray at the origin. */
+static void set_faces(xf_shape *sh)
+{
+    sh->nfaces = 0;
+    if (strcmp(sh->inner->ops->name, "box") != 0)
+        return;
+    for (int f = 0; f < 6; f++) {
+        ray_t r = { { 0, 0, 0 }, { 0, 0, 0 } };
+        hit_t h = { 0, 0, { (real)f, 0, 0 } };
+        PATHPOINT pp;
+        memset(&pp, 0, sizeof pp);
+        pp.prim = 0;
+        sh->inner->ops->surface(sh->inner, &r, &h, &pp);
+        if (pp.prim != f)
+            return;
+        surface_frame(sh, &pp);
+        vec_copy(sh->face[f].ng, pp.ng);
+        vec_copy(sh->face[f].n, pp.n);
+        vec_copy(sh->face[f].u, pp.u);
+        vec_copy(sh->face[f].v, pp.v);
+        vec_copy(sh->face[f].dpds, pp.dpds);
+        vec_copy(sh->face[f].dpdt, pp.dpdt);
+    }
+    sh->nfaces = 6;
 }
 
 static void xf_bounds(const COBJECT *obj, int prim, bbox_t *b)
@@ -798,6 +869,7 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     }
     sh->area = transformed_area(sh);
     set_culling(sh);
+    set_faces(sh);
     obj->nprims = inner->nprims;
     return obj;
 }
