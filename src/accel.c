@@ -40,8 +40,14 @@ typedef struct {
     uint32_t n;
     parallelogram_batch_t *batch;
     uint32_t para[PARALLELOGRAM_BATCH_MAX]; /* the item of each bit */
-    const COBJECT *para_obj[PARALLELOGRAM_BATCH_MAX]; /* its object */
-    int npara;
+    /* The bit of each parallelogram's object, found by its address: open
+     * addressing over SLOT_TABLE entries, at least twice the batch's
+     * size, so that a query finds the bits of its skip in a probe or
+     * two rather than a walk over the batch. */
+    struct {
+        const COBJECT *obj; /* NULL: empty */
+        int slot;
+    } slot_of[2 * PARALLELOGRAM_BATCH_MAX];
     uint32_t *others;    /* the items not in the batch, in order */
     uint32_t nothers;
     xform_sphere_t *spheres;
@@ -161,6 +167,29 @@ static void brute_free(brute_t *b)
     free(b);
 }
 
+#define SLOT_TABLE (2 * PARALLELOGRAM_BATCH_MAX)
+
+/* Where the search for obj in brute_t.slot_of starts. */
+static uint32_t slot_hash(const COBJECT *obj)
+{
+    uint64_t h = (uint64_t)(uintptr_t)obj * UINT64_C(0x9e3779b97f4a7c15);
+    return (uint32_t)(h >> 57); /* 7 bits: SLOT_TABLE = 128 entries */
+}
+
+/* The batch's bit of obj, or 0 when obj is none of its parallelograms
+ * (NULL included). */
+static uint64_t slot_bit(const brute_t *b, const COBJECT *obj)
+{
+    if (!obj)
+        return 0;
+    for (uint32_t h = slot_hash(obj);; h = (h + 1) % SLOT_TABLE) {
+        if (b->slot_of[h].obj == obj)
+            return (uint64_t)1 << b->slot_of[h].slot;
+        if (!b->slot_of[h].obj)
+            return 0;
+    }
+}
+
 /* The fast brute force over ps, or NULL when ps has mesh triangles (they
  * keep primset_test's inline test) or memory runs out (primset_test then
  * serves, with the same answers). Parallelograms past the batch's 64 are
@@ -193,7 +222,11 @@ static brute_t *brute_new(const primset_t *ps)
             it->kind = ITEM_PARALLELOGRAM;
             it->slot = npara;
             b->para[npara] = i;
-            b->para_obj[npara] = it->obj;
+            uint32_t h = slot_hash(it->obj);
+            while (b->slot_of[h].obj && b->slot_of[h].obj != it->obj)
+                h = (h + 1) % SLOT_TABLE;
+            b->slot_of[h].obj = it->obj;
+            b->slot_of[h].slot = npara;
             para[npara++] = it->obj;
             continue;
         }
@@ -203,7 +236,6 @@ static brute_t *brute_new(const primset_t *ps)
         }
         b->others[b->nothers++] = i;
     }
-    b->npara = npara;
     b->batch = parallelogram_batch_new(para, npara);
     if (!b->batch) {
         brute_free(b);
@@ -399,12 +431,7 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
             return true;
     }
     /* the parallelograms in q->skip are left out of the batch */
-    uint64_t want = ~(uint64_t)0;
-    if (q->skip[0] || q->skip[1])
-        for (int slot = 0; slot < b->npara; slot++)
-            if (b->para_obj[slot] == q->skip[0] ||
-                b->para_obj[slot] == q->skip[1])
-                want &= ~((uint64_t)1 << slot);
+    uint64_t want = ~(slot_bit(b, q->skip[0]) | slot_bit(b, q->skip[1]));
     uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin,
                                               q->tmax_tie, want);
     if (maybe) {
