@@ -305,15 +305,16 @@ static const cobject_ops xform_ops;
  * when its largest component is far from 1, so that M^-1 d neither
  * underflows nor overflows; then t_object = t_world 2^k. Returns false
  * when the object-space direction is zero or not finite. */
-static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
+/* object_ray() for a direction whose largest component m lies outside
+ * [2^-16, 2^17): the rare case, a function of its own, so that the
+ * usual one (inline) saves no registers. */
+static bool
+object_ray_scaled(const xf_shape *sh, const ray_t *r, real m, ray_t *ro,
+                  int *k)
 {
     VECTOR3 d;
-    /* no libm in this inner loop: plain comparisons for the max (a NaN
-     * component makes ro->d NaN below whatever m is), and ilogb only for
-     * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
-    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
     *k = 0;
-    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)) && m > 0 && isfinite(m))
+    if (m > 0 && isfinite(m))
         *k = real_ilogb(m);
     if (*k)
         for (int i = 0; i < 3; i++)
@@ -324,6 +325,26 @@ static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
     apply(MAT(sh->x.inv), ro->d, d, false);
     return vec_is_finite(ro->o) && vec_is_finite(ro->d) &&
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
+}
+
+static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
+                              int *k)
+{
+    /* no libm in this inner loop: plain comparisons for the max (a NaN
+     * component makes ro->d NaN below whatever m is), and ilogb only for
+     * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
+    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)))
+        return object_ray_scaled(sh, r, m, ro, k);
+    *k = 0;
+    apply(MAT(sh->x.inv), ro->o, r->o, true);
+    apply(MAT(sh->x.inv), ro->d, r->d, false);
+    /* finite: x - x is 0 for a finite x, NaN otherwise (vec_is_finite's
+     * answer without a branch per coordinate) */
+    real f = ((ro->o[X] - ro->o[X]) + (ro->o[Y] - ro->o[Y])) +
+             ((ro->o[Z] - ro->o[Z]) + (ro->d[X] - ro->d[X])) +
+             ((ro->d[Y] - ro->d[Y]) + (ro->d[Z] - ro->d[Z]));
+    return f == 0 && (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
 bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
