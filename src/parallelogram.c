@@ -179,9 +179,11 @@ static inline bool leaves_plane(const para_cull_t *k, const plane_ray_t *pl)
  * 6/16 of it). The computed crossing p = o + t d, t = (h_mid - n . o) /
  * n . d, is within 11 G u (|t d| + A) of p* (the errors of n . o and
  * n . d over |n . d|, two roundings of t, two of p). Its (s, t) carry
- * 6 u |a|_1 (|p| + c_max) more (p - c0, the dot, a's rounding). All
- * told, with room to spare for the rounding of the margin itself:
- *   dist = G (h_half + 64 u (A + |t| max|d|)) + 32 u (A + max|p|),
+ * 6 u |a|_1 (|p| + c_max) more (p - c0, the dot, a's rounding), and
+ * |p| <= sqrt(3) max|p|, max|p| <= (max|o| + |t| max|d|) (1 + 2u) with
+ * max|o| <= A, so that term is below 11 u (A + |t| max|d|). All told,
+ * with room to spare for the rounding of the margin itself:
+ *   dist = G (h_half + 64 u B) + 64 u B,  B = A + |t| max|d|,
  * and |a|_1 dist, |b|_1 dist bound the distance in s and t. */
 static inline bool misses_quad(const para_cull_t *k, const ray_t *r,
                                const plane_ray_t *pl)
@@ -197,10 +199,9 @@ static inline bool misses_quad(const para_cull_t *k, const ray_t *r,
     vec_sub(q, p, k->c0);
     real s = SVECTOR3(q, k->a), tt = SVECTOR3(q, k->b);
     real A = k->c_max + pl->o_max;
-    real p_max = real_max(fabs(p[X]), real_max(fabs(p[Y]), fabs(p[Z])));
     real G = 4 * pl->d_max / adn;
-    real dist = G * (k->h_half + 64 * u * (A + fabs(t) * pl->d_max)) +
-                32 * u * (A + p_max);
+    real B = A + fabs(t) * pl->d_max;
+    real dist = G * (k->h_half + 64 * u * B) + 64 * u * B;
     real ms = k->a1 * dist, mt = k->b1 * dist;
     /* a NaN or an infinity makes every comparison false */
     return steep & ((s < -ms) | (s > 1 + ms) | (tt < -mt) | (tt > 1 + mt));
@@ -516,7 +517,7 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
     const vreal dpad = V_SET1(DIR_PAD * rs.d_max);
     const vreal g4 = V_SET1(4 * rs.d_max);
     const vreal one = V_SET1(1), slab = V_SET1(SLAB_PAD);
-    const vreal u64 = V_SET1(64 * u), u32 = V_SET1(32 * u);
+    const vreal u64 = V_SET1(64 * u);
     const int ahead = tmin >= 0;
     /* stays_before() is false in every lane for tmax = +infinity */
     const bool segment = ahead && tmax != (real)INFINITY;
@@ -572,14 +573,11 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
         vreal tt = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->bx + i)),
                                V_MUL(qy, V_LOAD(b->by + i))),
                          V_MUL(qz, V_LOAD(b->bz + i)));
-        vreal p_max = V_MAX(V_ANDNOT(sign, px),
-                            V_MAX(V_ANDNOT(sign, py), V_ANDNOT(sign, pz)));
         vreal G = V_DIV(g4, adn);
-        vreal dist = V_ADD(
-            V_MUL(G, V_ADD(V_LOAD(b->h_half + i),
-                           V_MUL(u64, V_ADD(A, V_MUL(V_ANDNOT(sign, t),
-                                                    d_max))))),
-            V_MUL(u32, V_ADD(A, p_max)));
+        vreal B = V_ADD(A, V_MUL(V_ANDNOT(sign, t), d_max));
+        vreal u64B = V_MUL(u64, B);
+        vreal dist = V_ADD(V_MUL(G, V_ADD(V_LOAD(b->h_half + i), u64B)),
+                           u64B);
         vreal ms = V_MUL(V_LOAD(b->a1 + i), dist),
               mt = V_MUL(V_LOAD(b->b1 + i), dist);
         vreal outside = V_OR(
