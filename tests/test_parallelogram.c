@@ -335,6 +335,40 @@ START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
 }
 END_TEST
 
+/* A parallelogram for the probes below (draw i): corners at a scale
+ * *size from 2^-10 to 2^10, every third one axis-aligned; with thin set,
+ * every fourth one thin (c3 - c0 shorter by up to 2^-11). c[2] is set as
+ * the shape sets it, e1, e2 to the edges and nrm to the unit normal.
+ * NULL when the draw is degenerate. */
+static COBJECT *probe_parallelogram(pcg32_t *g, int i, bool thin,
+                                    VECTOR3 c[4], VECTOR3 e1, VECTOR3 e2,
+                                    VECTOR3 nrm, real *size)
+{
+    *size = ldexp(REAL_C(1.0), (int)pcg32_bounded(g, 21) - 10);
+    real f = thin && i % 4 == 1
+                 ? ldexp(REAL_C(1.0), -(int)pcg32_bounded(g, 12))
+                 : 1;
+    for (int k = 0; k < 3; k++) {
+        c[0][k] = *size * (4 * pcg32_real(g) - 2);
+        c[1][k] = c[0][k] + *size * (2 * pcg32_real(g) - 1);
+        c[3][k] = c[0][k] + f * *size * (2 * pcg32_real(g) - 1);
+    }
+    if (i % 3 == 0) /* axis-aligned, as the Cornell box's walls */
+        for (int j = 1; j < 4; j += 2)
+            c[j][i % 9 / 3] = c[0][i % 9 / 3];
+    svet_error err;
+    COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+    if (!o)
+        return NULL;
+    for (int k = 0; k < 3; k++)
+        c[2][k] = c[1][k] + (c[3][k] - c[0][k]);
+    vec_sub(e1, c[1], c[0]);
+    vec_sub(e2, c[3], c[0]);
+    VVECTOR3(nrm, e1, e2);
+    vec_normalize(nrm, nrm);
+    return o;
+}
+
 START_TEST(parallelogram_early_rejections_lose_no_hit)
 {
     /* The parallelogram rejects a ray early when it leaves the plane
@@ -348,25 +382,10 @@ START_TEST(parallelogram_early_rejections_lose_no_hit)
     long n = 0, hits = 0;
     for (int i = 0; i < 3000; i++) {
         VECTOR3 c[4], e1, e2, nrm;
-        real size = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 21) - 10);
-        for (int k = 0; k < 3; k++) {
-            c[0][k] = size * (4 * pcg32_real(&g) - 2);
-            c[1][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
-            c[3][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
-        }
-        if (i % 3 == 0) /* axis-aligned, as the Cornell box's walls */
-            for (int j = 1; j < 4; j += 2)
-                c[j][i % 9 / 3] = c[0][i % 9 / 3];
-        svet_error err;
-        COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+        real size;
+        COBJECT *o = probe_parallelogram(&g, i, false, c, e1, e2, nrm, &size);
         if (!o)
             continue;
-        for (int k = 0; k < 3; k++)
-            c[2][k] = c[1][k] + (c[3][k] - c[0][k]);
-        vec_sub(e1, c[1], c[0]);
-        vec_sub(e2, c[3], c[0]);
-        VVECTOR3(nrm, e1, e2);
-        vec_normalize(nrm, nrm);
         for (int j = 0; j < 30; j++) {
             /* origin off the plane by +-2^-k size (or on it), over a point
              * in or around the parallelogram */
@@ -434,31 +453,13 @@ START_TEST(segments_that_end_before_the_plane_lose_no_hit)
     long n = 0, hits = 0, rejected = 0;
     for (int i = 0; i < 2000; i++) {
         VECTOR3 c[4], e1, e2, nrm;
-        real size = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 21) - 10);
-        real thin = i % 4 == 1
-                        ? ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 12))
-                        : 1;
-        for (int k = 0; k < 3; k++) {
-            c[0][k] = size * (4 * pcg32_real(&g) - 2);
-            c[1][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
-            c[3][k] = c[0][k] + thin * size * (2 * pcg32_real(&g) - 1);
-        }
-        if (i % 3 == 0) /* axis-aligned, as the Cornell box's walls */
-            for (int j = 1; j < 4; j += 2)
-                c[j][i % 9 / 3] = c[0][i % 9 / 3];
-        svet_error err;
-        COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+        real size;
+        COBJECT *o = probe_parallelogram(&g, i, true, c, e1, e2, nrm, &size);
         if (!o)
             continue;
         parallelogram_batch_t *batch =
             parallelogram_batch_new((const COBJECT *const *)&o, 1);
         ck_assert_ptr_nonnull(batch);
-        for (int k = 0; k < 3; k++)
-            c[2][k] = c[1][k] + (c[3][k] - c[0][k]);
-        vec_sub(e1, c[1], c[0]);
-        vec_sub(e2, c[3], c[0]);
-        VVECTOR3(nrm, e1, e2);
-        vec_normalize(nrm, nrm);
         for (int j = 0; j < 20; j++) {
             /* the origin 2^-k to 2^3 of the size off the plane */
             real off = ldexp(size, 3 - (int)pcg32_bounded(&g, 30));
