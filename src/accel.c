@@ -412,6 +412,8 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
      * a hit there shortens tmax, so the walls behind it are turned away
      * early by their watertight test's interval check, and a shadow ray
      * they block ends before any wall is looked at. */
+    xform_sphere_ray_t rs; /* the spheres' per-ray values, made once */
+    xform_sphere_ray(r, &rs);
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
         const brute_item_t *it = &b->items[i];
@@ -419,7 +421,7 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
         bool hit;
         if (it->kind == ITEM_SPHERE) {
             if (q->tmin >= 0 &&
-                xform_sphere_misses(&b->spheres[it->slot], r))
+                xform_sphere_misses_ray(&b->spheres[it->slot], r, &rs))
                 continue;
             hit = xform_intersect_unculled(it->obj, it->prim, r, q->tmin,
                                            q->tmax_tie, &hh);
