@@ -409,9 +409,9 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
                       brute_search_t *q)
 {
     /* The objects in the room first (in the Cornell box, its two boxes):
-     * a hit there shortens tmax, so the walls behind it are turned away
-     * early by their watertight test's interval check, and a shadow ray
-     * they block ends before any wall is looked at. */
+     * a hit there shortens tmax, so the batch turns the walls behind it
+     * away (stays_before() in parallelogram.c), and a shadow ray they
+     * block ends before any wall is looked at. */
     xform_sphere_ray_t rs; /* the spheres' per-ray values, made once */
     xform_sphere_ray(r, &rs);
     for (uint32_t k = 0; k < b->nothers; k++) {

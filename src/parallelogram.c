@@ -270,19 +270,6 @@ static inline bool rejects(const para_cull_t *k, const ray_t *r,
            misses_quad(k, r, &pl);
 }
 
-/* True when the ray is outside (tmin, tmax) all along the parallelogram
- * in the ray's own axis kz: the t the watertight test reports is a mean
- * of the corners' z_i = sz a_z (triangle.h), within gamma(8) max|z_i| of
- * their range; gamma(16) covers that and the rounding of this test. Only
- * for a ray that needed no rescaling (scale = 0). */
-static bool outside_interval(const real z[4], real tmin, real tmax)
-{
-    real lo = real_min(real_min(z[0], z[1]), real_min(z[2], z[3]));
-    real hi = real_max(real_max(z[0], z[1]), real_max(z[2], z[3]));
-    real pad = ray_gamma(16) * real_max(fabs(lo), fabs(hi));
-    return hi + pad <= tmin || lo - pad >= tmax;
-}
-
 /* The watertight test of the two triangles A = (c0, c1, c2) and
  * B = (c0, c2, c3), sharing what they share: the ray is prepared once,
  * each corner is sheared once, and the diagonal's edge function once
@@ -291,27 +278,21 @@ static bool outside_interval(const real z[4], real tmin, real tmax)
  * are those of two triangle tests bit for bit, and watertight as they
  * are: a parallelogram sharing an edge with another shears the same two
  * corners into the same points. Only a zero edge function, which needs
- * the exact recomputation, takes the way of two separate tests. */
+ * the exact recomputation, takes the way of two separate tests. No early
+ * check of the corners' z against (tmin, tmax) here any more: every
+ * caller has made rejects() first, whose stays_before() turns away what
+ * that check did (a segment that ends before the plane), so it found
+ * almost nothing left. */
 static bool exact(const para_shape *sh, int prim, const triangle_ray_t *pr,
                   real tmin, real tmax, hit_t *hit)
 {
     if (!pr->ok)
         return false;
     triangle_sheared_t v0, v1, v2, v3;
-    triangle_shear_z(&v0, sh->c[0], pr);
-    triangle_shear_z(&v1, sh->c[1], pr);
-    triangle_shear_z(&v2, sh->c[2], pr);
-    triangle_shear_z(&v3, sh->c[3], pr);
-    if (pr->scale == 0) {
-        const real z[4] = { pr->sz * v0.az, pr->sz * v1.az, pr->sz * v2.az,
-                            pr->sz * v3.az };
-        if (outside_interval(z, tmin, tmax))
-            return false;
-    }
-    triangle_shear_xy(&v0, sh->c[0], pr);
-    triangle_shear_xy(&v1, sh->c[1], pr);
-    triangle_shear_xy(&v2, sh->c[2], pr);
-    triangle_shear_xy(&v3, sh->c[3], pr);
+    triangle_shear(&v0, sh->c[0], pr);
+    triangle_shear(&v1, sh->c[1], pr);
+    triangle_shear(&v2, sh->c[2], pr);
+    triangle_shear(&v3, sh->c[3], pr);
     real e01 = triangle_edge(&v0, &v1), e12 = triangle_edge(&v1, &v2);
     real e20 = triangle_edge(&v2, &v0), e23 = triangle_edge(&v2, &v3);
     real e30 = triangle_edge(&v3, &v0);

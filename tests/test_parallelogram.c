@@ -372,8 +372,8 @@ static COBJECT *probe_parallelogram(pcg32_t *g, int i, bool thin,
 START_TEST(parallelogram_early_rejections_lose_no_hit)
 {
     /* The parallelogram rejects a ray early when it leaves the plane
-     * behind it and when it is outside (tmin, tmax) all along the corners
-     * (parallelogram.c). Probe both where they are closest to wrong:
+     * behind it, crosses it clearly outside, or ends before it
+     * (parallelogram.c). Probe them where they are closest to wrong:
      * origins at 2^-k of the size off the plane on either side (and on
      * it), directions grazing the plane from either side, and intervals
      * that end one ulp before, at and after the hit. */
