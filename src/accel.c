@@ -316,14 +316,16 @@ void accel_free(accel_t *a)
 /* A finite ray with a nonzero direction over a nonempty interval. x - x
  * is 0 for a finite x and NaN for an infinity or a NaN, so the sum below
  * is 0 exactly when all six coordinates are finite (a few operations,
- * no branch per coordinate: every query makes this test); a NaN tmin or
- * tmax makes tmin < tmax false. */
+ * no branch per coordinate: every query makes this test); a finite d is
+ * nonzero exactly when the sum of |d_i| is positive (a sum of
+ * nonnegative numbers is no smaller than each); a NaN tmin or tmax makes
+ * tmin < tmax false. */
 static bool ray_ok(const ray_t *r, real tmin, real tmax)
 {
     real f = ((r->o[X] - r->o[X]) + (r->o[Y] - r->o[Y])) +
              ((r->o[Z] - r->o[Z]) + (r->d[X] - r->d[X])) +
              ((r->d[Y] - r->d[Y]) + (r->d[Z] - r->d[Z]));
-    return f == 0 && (r->d[X] != 0 || r->d[Y] != 0 || r->d[Z] != 0) &&
+    return f == 0 && fabs(r->d[X]) + fabs(r->d[Y]) + fabs(r->d[Z]) > 0 &&
            tmin < tmax;
 }
 
@@ -417,12 +419,12 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
         const brute_item_t *it = &b->items[i];
+        if (it->kind == ITEM_SPHERE && q->tmin >= 0 &&
+            xform_sphere_misses_ray(&b->spheres[it->slot], r, &rs))
+            continue;
         hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
         bool hit;
         if (it->kind == ITEM_SPHERE) {
-            if (q->tmin >= 0 &&
-                xform_sphere_misses_ray(&b->spheres[it->slot], r, &rs))
-                continue;
             hit = xform_intersect_unculled(it->obj, it->prim, r, q->tmin,
                                            q->tmax_tie, &hh);
         } else {
