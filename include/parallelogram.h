@@ -60,19 +60,23 @@ parallelogram_batch_t *parallelogram_batch_new(const COBJECT *const *objs,
 void parallelogram_batch_free(parallelogram_batch_t *b);
 
 /* The early rejections that a parallelogram's intersect() makes before
- * its watertight test, for every object of the batch and the ray r over
- * (tmin, anything): bit i of the result is 0 when objs[i] rejects r there
- * (it cannot report a hit: parallelogram.c proves it), 1 when it may hit.
- * This function can't fail. */
+ * its watertight test, for the objects of the batch whose bit is set in
+ * want and the ray r over (tmin, tmax): bit i of the result is 0 when
+ * objs[i] rejects r there (it cannot report a hit: parallelogram.c proves
+ * it) or bit i of want is 0, 1 when it may hit. Leaving out the objects a
+ * ray cannot meet (accel.c's skip) spares their tests. This function
+ * can't fail. */
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin);
+                                  const ray_t *r, real tmin, real tmax,
+                                  uint64_t want);
 
 /* The same answer, bit for bit, by a plain loop over the parallelograms:
  * what parallelogram_batch_cull runs where SSE2 is missing (it runs
  * several at once with SSE2 where it is there). For tests. This function
  * can't fail. */
 uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
-                                        const ray_t *r, real tmin);
+                                        const ray_t *r, real tmin, real tmax,
+                                        uint64_t want);
 
 /* A parallelogram's intersect() without those early rejections, on a ray
  * prepared once by triangle_ray_prepare(pr, r) for any number of them:

@@ -145,7 +145,18 @@ static inline bool vec_is_finite(const VECTOR3 a)
 /* c = a / |a|; c may alias a. Returns |a|. The zero vector (and a vector
  * with a NaN or infinite component) has no direction: c is set to (0,0,0)
  * and 0 is returned, so callers test the result instead of dividing by 0. */
-real vec_normalize(VECTOR3 c, const VECTOR3 a);
+static inline real vec_normalize(VECTOR3 c, const VECTOR3 a)
+{
+    real len = vec_length(a);
+    if (!(len > 0) || !isfinite(len)) {
+        vec_set(c, 0, 0, 0);
+        return 0;
+    }
+    /* Divide rather than multiply by 1/len: the result is then correctly
+     * rounded per component, and a vector along an axis stays exactly unit. */
+    c[X] = a[X] / len; c[Y] = a[Y] / len; c[Z] = a[Z] / len;
+    return len;
+}
 
 /* Mirror direction, eq. (1.4): r = 2 (in . n) n - in, for a unit normal n
  * and `in` pointing away from the surface (the book's Psi_i). r may alias

@@ -130,6 +130,43 @@ typedef struct {
  * transform is extreme); false otherwise. This function can't fail. */
 bool xform_culling_sphere(const COBJECT *obj, xform_sphere_t *s);
 
+/* What xform_sphere_misses() reads of the ray alone, the same for every
+ * sphere: max|o|, d . d and max|d|, made by xform_sphere_ray(), which
+ * can't fail. */
+typedef struct {
+    real o_max, dd, d_max;
+} xform_sphere_ray_t;
+
+static inline void xform_sphere_ray(const ray_t *r, xform_sphere_ray_t *rs)
+{
+    rs->o_max = real_max(fabs(r->o[X]),
+                         real_max(fabs(r->o[Y]), fabs(r->o[Z])));
+    rs->dd = SVECTOR3(r->d, r->d);
+    rs->d_max = real_max(fabs(r->d[X]),
+                         real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+}
+
+/* xform_sphere_misses() with rs = xform_sphere_ray(r) made once for
+ * many spheres: the same answer. This function can't fail. */
+static inline bool xform_sphere_misses_ray(const xform_sphere_t *sh,
+                                           const ray_t *r,
+                                           const xform_sphere_ray_t *rs)
+{
+    VECTOR3 oc;
+    vec_sub(oc, sh->centre, r->o);
+    real oc1 = fabs(oc[X]) + fabs(oc[Y]) + fabs(oc[Z]);
+    real rho = sh->radius +
+               (sh->pad0 + sh->pad_o * rs->o_max + sh->pad_oc * oc1);
+    real rho2 = rho * rho;
+    real c2 = SVECTOR3(oc, oc), b = SVECTOR3(oc, r->d);
+    real dd = rs->dd;
+    const real u = REAL_UNIT_ROUNDOFF;
+    /* the distance of the line from the centre, squared, times dd */
+    if (c2 * dd - b * b > (rho2 + 32 * u * c2) * dd)
+        return true;
+    return b + 4 * u * oc1 * rs->d_max <= 0 && c2 > rho2 * (1 + 8 * u);
+}
+
 /* The test that intersect() makes first, for tmin >= 0: true when the
  * ray (over t >= 0) stays outside the culling sphere: its
  * line passes the centre farther than the radius, or it starts outside
@@ -142,22 +179,9 @@ bool xform_culling_sphere(const COBJECT *obj, xform_sphere_t *s);
 static inline bool xform_sphere_misses(const xform_sphere_t *sh,
                                        const ray_t *r)
 {
-    VECTOR3 oc;
-    vec_sub(oc, sh->centre, r->o);
-    real oc1 = fabs(oc[X]) + fabs(oc[Y]) + fabs(oc[Z]);
-    real o_max = real_max(fabs(r->o[X]),
-                          real_max(fabs(r->o[Y]), fabs(r->o[Z])));
-    real rho = sh->radius + (sh->pad0 + sh->pad_o * o_max + sh->pad_oc * oc1);
-    real rho2 = rho * rho;
-    real c2 = SVECTOR3(oc, oc), b = SVECTOR3(oc, r->d);
-    real dd = SVECTOR3(r->d, r->d);
-    const real u = REAL_UNIT_ROUNDOFF;
-    /* the distance of the line from the centre, squared, times dd */
-    if (c2 * dd - b * b > (rho2 + 32 * u * c2) * dd)
-        return true;
-    real d_max = real_max(fabs(r->d[X]),
-                          real_max(fabs(r->d[Y]), fabs(r->d[Z])));
-    return b + 4 * u * oc1 * d_max <= 0 && c2 > rho2 * (1 + 8 * u);
+    xform_sphere_ray_t rs;
+    xform_sphere_ray(r, &rs);
+    return xform_sphere_misses_ray(sh, r, &rs);
 }
 
 /* The intersect() of an object from xform_new without the sphere test:
@@ -165,5 +189,12 @@ static inline bool xform_sphere_misses(const xform_sphere_t *sh,
  * through. This function can't fail. */
 bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
                               real tmin, real tmax, hit_t *hit);
+
+/* The surface() of an object from xform_new the general way: the inner
+ * primitive's normals, derivatives and frame mapped to the world at every
+ * hit. surface() gives the same bits; for a box it takes them from a
+ * table made once per face. For tests. This function can't fail. */
+void xform_surface_generic(const COBJECT *obj, const ray_t *r,
+                           const hit_t *hit, PATHPOINT *pp);
 
 #endif

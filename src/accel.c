@@ -40,6 +40,14 @@ typedef struct {
     uint32_t n;
     parallelogram_batch_t *batch;
     uint32_t para[PARALLELOGRAM_BATCH_MAX]; /* the item of each bit */
+    /* The bit of each parallelogram's object, found by its address: open
+     * addressing over SLOT_TABLE entries, at least twice the batch's
+     * size, so that a query finds the bits of its skip in a probe or
+     * two rather than a walk over the batch. */
+    struct {
+        const COBJECT *obj; /* NULL: empty */
+        int slot;
+    } slot_of[2 * PARALLELOGRAM_BATCH_MAX];
     uint32_t *others;    /* the items not in the batch, in order */
     uint32_t nothers;
     xform_sphere_t *spheres;
@@ -159,6 +167,29 @@ static void brute_free(brute_t *b)
     free(b);
 }
 
+#define SLOT_TABLE (2 * PARALLELOGRAM_BATCH_MAX)
+
+/* Where the search for obj in brute_t.slot_of starts. */
+static uint32_t slot_hash(const COBJECT *obj)
+{
+    uint64_t h = (uint64_t)(uintptr_t)obj * UINT64_C(0x9e3779b97f4a7c15);
+    return (uint32_t)(h >> 57); /* 7 bits: SLOT_TABLE = 128 entries */
+}
+
+/* The batch's bit of obj, or 0 when obj is none of its parallelograms
+ * (NULL included). */
+static uint64_t slot_bit(const brute_t *b, const COBJECT *obj)
+{
+    if (!obj)
+        return 0;
+    for (uint32_t h = slot_hash(obj);; h = (h + 1) % SLOT_TABLE) {
+        if (b->slot_of[h].obj == obj)
+            return (uint64_t)1 << b->slot_of[h].slot;
+        if (!b->slot_of[h].obj)
+            return 0;
+    }
+}
+
 /* The fast brute force over ps, or NULL when ps has mesh triangles (they
  * keep primset_test's inline test) or memory runs out (primset_test then
  * serves, with the same answers). Parallelograms past the batch's 64 are
@@ -191,6 +222,11 @@ static brute_t *brute_new(const primset_t *ps)
             it->kind = ITEM_PARALLELOGRAM;
             it->slot = npara;
             b->para[npara] = i;
+            uint32_t h = slot_hash(it->obj);
+            while (b->slot_of[h].obj && b->slot_of[h].obj != it->obj)
+                h = (h + 1) % SLOT_TABLE;
+            b->slot_of[h].obj = it->obj;
+            b->slot_of[h].slot = npara;
             para[npara++] = it->obj;
             continue;
         }
@@ -277,11 +313,20 @@ void accel_free(accel_t *a)
     free(a);
 }
 
+/* A finite ray with a nonzero direction over a nonempty interval. x - x
+ * is 0 for a finite x and NaN for an infinity or a NaN, so the sum below
+ * is 0 exactly when all six coordinates are finite (a few operations,
+ * no branch per coordinate: every query makes this test); a finite d is
+ * nonzero exactly when the sum of |d_i| is positive (a sum of
+ * nonnegative numbers is no smaller than each); a NaN tmin or tmax makes
+ * tmin < tmax false. */
 static bool ray_ok(const ray_t *r, real tmin, real tmax)
 {
-    return vec_is_finite(r->o) && vec_is_finite(r->d) &&
-           (r->d[X] != 0 || r->d[Y] != 0 || r->d[Z] != 0) &&
-           !isnan(tmin) && !isnan(tmax) && tmin < tmax;
+    real f = ((r->o[X] - r->o[X]) + (r->o[Y] - r->o[Y])) +
+             ((r->o[Z] - r->o[Z]) + (r->d[X] - r->d[X])) +
+             ((r->d[Y] - r->d[Y]) + (r->d[Z] - r->d[Z]));
+    return f == 0 && fabs(r->d[X]) + fabs(r->d[Y]) + fabs(r->d[Z]) > 0 &&
+           tmin < tmax;
 }
 
 /* Brute force, and the unbounded primitives of a structure: refs
@@ -366,18 +411,20 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
                       brute_search_t *q)
 {
     /* The objects in the room first (in the Cornell box, its two boxes):
-     * a hit there shortens tmax, so the walls behind it are turned away
-     * early by their watertight test's interval check, and a shadow ray
-     * they block ends before any wall is looked at. */
+     * a hit there shortens tmax, so the batch turns the walls behind it
+     * away (stays_before() in parallelogram.c), and a shadow ray they
+     * block ends before any wall is looked at. */
+    xform_sphere_ray_t rs; /* the spheres' per-ray values, made once */
+    xform_sphere_ray(r, &rs);
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
         const brute_item_t *it = &b->items[i];
+        if (it->kind == ITEM_SPHERE && q->tmin >= 0 &&
+            xform_sphere_misses_ray(&b->spheres[it->slot], r, &rs))
+            continue;
         hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
         bool hit;
         if (it->kind == ITEM_SPHERE) {
-            if (q->tmin >= 0 &&
-                xform_sphere_misses(&b->spheres[it->slot], r))
-                continue;
             hit = xform_intersect_unculled(it->obj, it->prim, r, q->tmin,
                                            q->tmax_tie, &hh);
         } else {
@@ -387,7 +434,10 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
         if (hit && brute_found(q, ps, i, &hh))
             return true;
     }
-    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin);
+    /* the parallelograms in q->skip are left out of the batch */
+    uint64_t want = ~(slot_bit(b, q->skip[0]) | slot_bit(b, q->skip[1]));
+    uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin,
+                                              q->tmax_tie, want);
     if (maybe) {
         triangle_ray_t pr;
         triangle_ray_prepare(&pr, r);
@@ -395,8 +445,6 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
             if (!(maybe & 1))
                 continue;
             uint32_t i = b->para[slot];
-            if (b->items[i].obj == q->skip[0] || b->items[i].obj == q->skip[1])
-                continue;
             hit_t hh = { 0, 0, { 0, 0, 0 } };
             if (parallelogram_intersect_prepared(b->items[i].obj,
                                                  b->items[i].prim, &pr,

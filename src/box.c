@@ -14,41 +14,50 @@ typedef struct {
     real area;
 } box_shape;
 
+/* One axis k of box_intersect's slab test: narrows [lo, hi] and their
+ * faces; false when the ray is parallel to the slab and outside it.
+ * Inline, so that the three axes are written out with k a constant. */
+static inline bool slab(const box_shape *s, const ray_t *r, int k, real *lo,
+                        real *hi, int *face_lo, int *face_hi)
+{
+    if (r->d[k] == 0) {
+        /* parallel to the slab: inside it for every t, or never */
+        return !(r->o[k] < s->min[k] || r->o[k] > s->max[k]);
+    }
+    /* Division rather than a reciprocal: 1/d overflows for a tiny d,
+     * and (min - o) * inf gives NaN when o lies on the slab plane. */
+    real t0 = (s->min[k] - r->o[k]) / r->d[k];
+    real t1 = (s->max[k] - r->o[k]) / r->d[k];
+    int f0 = 2 * k, f1 = 2 * k + 1;
+    if (r->d[k] < 0) {
+        real tt = t0; t0 = t1; t1 = tt;
+        int ff = f0; f0 = f1; f1 = ff;
+    }
+    /* pbrt-v3 sec. 3.9.2: t0 and t1 carry two roundings each (gamma(2)
+     * relative); pushing the exit out by 2 gamma(3) |t1| keeps a ray
+     * through an edge, where exactly t0 = t1 of another axis, inside. */
+    t1 += 2 * ray_gamma(3) * fabs(t1);
+    if (t0 > *lo) {
+        *lo = t0;
+        *face_lo = f0;
+    }
+    if (t1 < *hi) {
+        *hi = t1;
+        *face_hi = f1;
+    }
+    return true;
+}
+
 static bool box_intersect(const COBJECT *obj, int prim, const ray_t *r,
                           real tmin, real tmax, hit_t *hit)
 {
     const box_shape *s = obj->shape;
     real lo = -(real)INFINITY, hi = (real)INFINITY;
     int face_lo = -1, face_hi = -1;
-    for (int k = 0; k < 3; k++) {
-        if (r->d[k] == 0) {
-            /* parallel to the slab: inside it for every t, or never */
-            if (r->o[k] < s->min[k] || r->o[k] > s->max[k])
-                return false;
-            continue;
-        }
-        /* Division rather than a reciprocal: 1/d overflows for a tiny d,
-         * and (min - o) * inf gives NaN when o lies on the slab plane. */
-        real t0 = (s->min[k] - r->o[k]) / r->d[k];
-        real t1 = (s->max[k] - r->o[k]) / r->d[k];
-        int f0 = 2 * k, f1 = 2 * k + 1;
-        if (r->d[k] < 0) {
-            real tt = t0; t0 = t1; t1 = tt;
-            int ff = f0; f0 = f1; f1 = ff;
-        }
-        /* pbrt-v3 sec. 3.9.2: t0 and t1 carry two roundings each (gamma(2)
-         * relative); pushing the exit out by 2 gamma(3) |t1| keeps a ray
-         * through an edge, where exactly t0 = t1 of another axis, inside. */
-        t1 += 2 * ray_gamma(3) * fabs(t1);
-        if (t0 > lo) {
-            lo = t0;
-            face_lo = f0;
-        }
-        if (t1 < hi) {
-            hi = t1;
-            face_hi = f1;
-        }
-    }
+    if (!slab(s, r, 0, &lo, &hi, &face_lo, &face_hi) ||
+        !slab(s, r, 1, &lo, &hi, &face_lo, &face_hi) ||
+        !slab(s, r, 2, &lo, &hi, &face_lo, &face_hi))
+        return false;
     if (!(lo <= hi))
         return false;
     /* the entry face, or the exit face for a ray that starts inside */

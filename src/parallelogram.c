@@ -24,6 +24,9 @@ typedef struct {
     VECTOR3 a, b;    /* dual to e1, e2 in the plane: (p - c0) . a = s,
                         (p - c0) . b = t for p = c0 + s e1 + t e2 */
     real a1, b1;     /* |a|_1, |b|_1, rounded up */
+    real k_area;     /* 2 / (the smaller of the two triangles' areas),
+                        rounded up; infinite when that is not positive or
+                        the quotient overflows (stays_before()) */
 } para_cull_t;
 
 typedef struct {
@@ -176,9 +179,11 @@ static inline bool leaves_plane(const para_cull_t *k, const plane_ray_t *pl)
  * 6/16 of it). The computed crossing p = o + t d, t = (h_mid - n . o) /
  * n . d, is within 11 G u (|t d| + A) of p* (the errors of n . o and
  * n . d over |n . d|, two roundings of t, two of p). Its (s, t) carry
- * 6 u |a|_1 (|p| + c_max) more (p - c0, the dot, a's rounding). All
- * told, with room to spare for the rounding of the margin itself:
- *   dist = G (h_half + 64 u (A + |t| max|d|)) + 32 u (A + max|p|),
+ * 6 u |a|_1 (|p| + c_max) more (p - c0, the dot, a's rounding), and
+ * |p| <= sqrt(3) max|p|, max|p| <= (max|o| + |t| max|d|) (1 + 2u) with
+ * max|o| <= A, so that term is below 11 u (A + |t| max|d|). All told,
+ * with room to spare for the rounding of the margin itself:
+ *   dist = G (h_half + 64 u B) + 64 u B,  B = A + |t| max|d|,
  * and |a|_1 dist, |b|_1 dist bound the distance in s and t. */
 static inline bool misses_quad(const para_cull_t *k, const ray_t *r,
                                const plane_ray_t *pl)
@@ -194,36 +199,75 @@ static inline bool misses_quad(const para_cull_t *k, const ray_t *r,
     vec_sub(q, p, k->c0);
     real s = SVECTOR3(q, k->a), tt = SVECTOR3(q, k->b);
     real A = k->c_max + pl->o_max;
-    real p_max = real_max(fabs(p[X]), real_max(fabs(p[Y]), fabs(p[Z])));
     real G = 4 * pl->d_max / adn;
-    real dist = G * (k->h_half + 64 * u * (A + fabs(t) * pl->d_max)) +
-                32 * u * (A + p_max);
+    real B = A + fabs(t) * pl->d_max;
+    real dist = G * (k->h_half + 64 * u * B) + 64 * u * B;
     real ms = k->a1 * dist, mt = k->b1 * dist;
     /* a NaN or an infinity makes every comparison false */
     return steep & ((s < -ms) | (s > 1 + ms) | (tt < -mt) | (tt > 1 + mt));
 }
 
-/* Both early rejections: true only when the watertight test would report
- * no hit in (tmin, anything) (the proofs above). */
+#define STEEP_PAD (1024 * REAL_UNIT_ROUNDOFF)
+#define TRI_PAD (512 * REAL_UNIT_ROUNDOFF)
+
+/* True when the segment of the ray over [0, tmax] stays on one side of
+ * the slab: its origin beyond h_hi + pad (or below h_lo - pad, the pad of
+ * leaves_plane) and its end o + tmax d beyond h_hi + pad2 (below
+ * h_lo - pad2). For tmin >= 0 only. The mirror of leaves_plane() for a
+ * ray that comes toward the plane but ends before it: a shadow ray to a
+ * light just under the ceiling, a bounce ray whose tmax a box in front of
+ * the wall has shortened.
+ *   Why no reported hit is lost. A reported hit has tt > dt and
+ * tt < tmax (triangle_hit_sheared; the same in units of 2^-scale), where
+ * dt is pbrt-v3's bound (sec. 3.9.6) on the distance of tt from the t' at
+ * which the exact ray meets the moved triangle, so 0 < t' < tmax + dt;
+ * the point there has n . p within eta + 6 u c_max of [h_lo, h_hi] (see
+ * above). n . p is linear along the ray, so over [0, tmax + dt] it is no
+ * lower than min(n . o, n . (o + tmax d) - dt |n . d|), the side of h_hi
+ * (h_lo alike). What dt |n . d| can be: dt = 3 (gamma(3) max_e max_z +
+ * de max_z + dz max_e) / |det|, with max_e <= |det| (1 + gamma(2)) on a
+ * hit (the e_i share det's sign), dz = gamma(3) max_z, and
+ * max_z |n . d| <= sqrt(3) max_z |d_kz| <= sqrt(3) A (1 + 2u), A = c_max
+ * + max|o|: the first and last terms give less than 32 u A. The sheared
+ * |x|, |y| are at most |a_x| + |a_z| <= 2 A (|sx|, |sy| <= 1), so de <=
+ * (8 gamma(2) + 24 gamma(5)) A^2 < 136 u A^2. det is the sum of the e_i,
+ * each within de of the exact edge functions, whose sum is twice the
+ * triangle's area T' projected along d: 2 T' |n . d| / |d_kz| (signed).
+ * "Steep": |n . d| >= 1024 u max|d| A^2 k_area, k_area = 2 / T with T the
+ * smaller triangle's area (T' >= T / 2 for both triangles, with room for
+ * the rounding of T, of c2 and of the computed n . d, less than 1/256 of
+ * it here), gives 2 T' |n . d| / |d_kz| >= 12 de, so |det| >= (3/4) 2 T'
+ * |n . d| / |d_kz| (1 - gamma(2)), and 3 de max_z |n . d| / |det| <=
+ * 272 u A^3 / T' (1 + 4 u). So for a steep ray
+ *   pad2 = 128 u (A + tmax max|d|) + 512 u A (A^2 k_area)
+ * covers eta + 6 u c_max < 28 u A, dt |n . d| < 32 u A + 288 u A^3 / T',
+ * the errors of n . o, n . d and of e = n . o + tmax n . d (less than
+ * 6 u max|o|, 6 u tmax max|d| and 2 u (|n . o| + tmax |n . d|)) and its
+ * own rounding. When tmax is infinite (or A^2 k_area overflows), pad2 is
+ * infinite and nothing is rejected; a NaN makes every comparison false. */
+static inline bool stays_before(const para_cull_t *k, const plane_ray_t *pl,
+                                real tmax)
+{
+    real A = k->c_max + pl->o_max;
+    real pad = SLAB_PAD * A;
+    real q = A * A * k->k_area;
+    bool steep = fabs(pl->dn) >= STEEP_PAD * pl->d_max * q;
+    real e = pl->s + tmax * pl->dn;
+    real pad2 = SLAB_PAD * (A + tmax * pl->d_max) + TRI_PAD * (A * q);
+    return steep & (((pl->s > k->h_hi + pad) & (e > k->h_hi + pad2)) |
+                    ((pl->s < k->h_lo - pad) & (e < k->h_lo - pad2)));
+}
+
+/* The early rejections: true only when the watertight test would report
+ * no hit in (tmin, tmax) (the proofs above). */
 static inline bool rejects(const para_cull_t *k, const ray_t *r,
-                           const ray_size_t *rs, real tmin)
+                           const ray_size_t *rs, real tmin, real tmax)
 {
     plane_ray_t pl;
     plane_ray(k, r, rs, &pl);
-    return ((tmin >= 0) & leaves_plane(k, &pl)) | misses_quad(k, r, &pl);
-}
-
-/* True when the ray is outside (tmin, tmax) all along the parallelogram
- * in the ray's own axis kz: the t the watertight test reports is a mean
- * of the corners' z_i = sz a_z (triangle.h), within gamma(8) max|z_i| of
- * their range; gamma(16) covers that and the rounding of this test. Only
- * for a ray that needed no rescaling (scale = 0). */
-static bool outside_interval(const real z[4], real tmin, real tmax)
-{
-    real lo = real_min(real_min(z[0], z[1]), real_min(z[2], z[3]));
-    real hi = real_max(real_max(z[0], z[1]), real_max(z[2], z[3]));
-    real pad = ray_gamma(16) * real_max(fabs(lo), fabs(hi));
-    return hi + pad <= tmin || lo - pad >= tmax;
+    return ((tmin >= 0) &
+            (leaves_plane(k, &pl) | stays_before(k, &pl, tmax))) |
+           misses_quad(k, r, &pl);
 }
 
 /* The watertight test of the two triangles A = (c0, c1, c2) and
@@ -234,27 +278,21 @@ static bool outside_interval(const real z[4], real tmin, real tmax)
  * are those of two triangle tests bit for bit, and watertight as they
  * are: a parallelogram sharing an edge with another shears the same two
  * corners into the same points. Only a zero edge function, which needs
- * the exact recomputation, takes the way of two separate tests. */
+ * the exact recomputation, takes the way of two separate tests. No early
+ * check of the corners' z against (tmin, tmax) here any more: every
+ * caller has made rejects() first, whose stays_before() turns away what
+ * that check did (a segment that ends before the plane), so it found
+ * almost nothing left. */
 static bool exact(const para_shape *sh, int prim, const triangle_ray_t *pr,
                   real tmin, real tmax, hit_t *hit)
 {
     if (!pr->ok)
         return false;
     triangle_sheared_t v0, v1, v2, v3;
-    triangle_shear_z(&v0, sh->c[0], pr);
-    triangle_shear_z(&v1, sh->c[1], pr);
-    triangle_shear_z(&v2, sh->c[2], pr);
-    triangle_shear_z(&v3, sh->c[3], pr);
-    if (pr->scale == 0) {
-        const real z[4] = { pr->sz * v0.az, pr->sz * v1.az, pr->sz * v2.az,
-                            pr->sz * v3.az };
-        if (outside_interval(z, tmin, tmax))
-            return false;
-    }
-    triangle_shear_xy(&v0, sh->c[0], pr);
-    triangle_shear_xy(&v1, sh->c[1], pr);
-    triangle_shear_xy(&v2, sh->c[2], pr);
-    triangle_shear_xy(&v3, sh->c[3], pr);
+    triangle_shear(&v0, sh->c[0], pr);
+    triangle_shear(&v1, sh->c[1], pr);
+    triangle_shear(&v2, sh->c[2], pr);
+    triangle_shear(&v3, sh->c[3], pr);
     real e01 = triangle_edge(&v0, &v1), e12 = triangle_edge(&v1, &v2);
     real e20 = triangle_edge(&v2, &v0), e23 = triangle_edge(&v2, &v3);
     real e30 = triangle_edge(&v3, &v0);
@@ -297,7 +335,7 @@ static bool para_intersect(const COBJECT *obj, int prim, const ray_t *r,
     const para_shape *sh = obj->shape;
     ray_size_t rs;
     ray_size(r, &rs);
-    if (rejects(&sh->k, r, &rs, tmin))
+    if (rejects(&sh->k, r, &rs, tmin, tmax))
         return false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
@@ -373,6 +411,7 @@ struct parallelogram_batch {
     real bx[PARALLELOGRAM_BATCH_MAX], by[PARALLELOGRAM_BATCH_MAX],
         bz[PARALLELOGRAM_BATCH_MAX];
     real a1[PARALLELOGRAM_BATCH_MAX], b1[PARALLELOGRAM_BATCH_MAX];
+    real k_area[PARALLELOGRAM_BATCH_MAX];
 };
 
 bool parallelogram_is(const COBJECT *obj)
@@ -402,6 +441,7 @@ parallelogram_batch_t *parallelogram_batch_new(const COBJECT *const *objs,
         b->ax[i] = k->a[X], b->ay[i] = k->a[Y], b->az[i] = k->a[Z];
         b->bx[i] = k->b[X], b->by[i] = k->b[Y], b->bz[i] = k->b[Z];
         b->a1[i] = k->a1, b->b1[i] = k->b1;
+        b->k_area[i] = k->k_area;
     }
     return b;
 }
@@ -412,21 +452,24 @@ void parallelogram_batch_free(parallelogram_batch_t *b)
 }
 
 uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
-                                        const ray_t *r, real tmin)
+                                        const ray_t *r, real tmin, real tmax,
+                                        uint64_t want)
 {
     ray_size_t rs;
     ray_size(r, &rs);
     uint64_t maybe = 0;
     for (int i = 0; i < b->n; i++) {
+        if (!((want >> i) & 1))
+            continue;
         const para_cull_t k = {
             { b->nx[i], b->ny[i], b->nz[i] },
             { b->c0x[i], b->c0y[i], b->c0z[i] },
             b->h_lo[i], b->h_hi[i], b->h_mid[i], b->h_half[i], b->c_max[i],
             { b->ax[i], b->ay[i], b->az[i] },
             { b->bx[i], b->by[i], b->bz[i] },
-            b->a1[i], b->b1[i]
+            b->a1[i], b->b1[i], b->k_area[i]
         };
-        if (!rejects(&k, r, &rs, tmin))
+        if (!rejects(&k, r, &rs, tmin, tmax))
             maybe |= (uint64_t)1 << i;
     }
     return maybe;
@@ -436,9 +479,12 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
 /* rejects() on a vector of parallelograms at once (simd.h): every
  * operation is the IEEE operation rejects() makes, on the same operands in
  * the same order, so each lane gets exactly the bits of the plain loop.
- * tests/test_parallelogram.c compares the two. */
+ * tests/test_parallelogram.c compares the two. A step whose wanted lanes
+ * the plane tests (leaves_plane, stays_before) all reject skips
+ * misses_quad(), whose answer could only repeat theirs. */
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin)
+                                  const ray_t *r, real tmin, real tmax,
+                                  uint64_t want)
 {
     const real u = REAL_UNIT_ROUNDOFF;
     ray_size_t rs;
@@ -452,8 +498,13 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
     const vreal dpad = V_SET1(DIR_PAD * rs.d_max);
     const vreal g4 = V_SET1(4 * rs.d_max);
     const vreal one = V_SET1(1), slab = V_SET1(SLAB_PAD);
-    const vreal u64 = V_SET1(64 * u), u32 = V_SET1(32 * u);
+    const vreal u64 = V_SET1(64 * u);
     const int ahead = tmin >= 0;
+    /* stays_before() is false in every lane for tmax = +infinity */
+    const bool segment = ahead && tmax != (real)INFINITY;
+    const vreal vtmax = V_SET1(tmax), tdm = V_SET1(tmax * rs.d_max);
+    const vreal steep_d = V_SET1(STEEP_PAD * rs.d_max);
+    const vreal tri = V_SET1(TRI_PAD);
     uint64_t maybe = 0;
     for (int i = 0; i < b->n; i += VLANES) {
         /* plane_ray(): n . o, n . d */
@@ -463,13 +514,33 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
         vreal dn = V_ADD(V_ADD(V_MUL(nx, dx), V_MUL(ny, dy)), V_MUL(nz, dz));
         /* leaves_plane() */
         vreal c_max = V_LOAD(b->c_max + i);
-        vreal pad = V_MUL(slab, V_ADD(c_max, o_max));
-        vreal leaves = V_OR(
-            V_AND(V_GT(s, V_ADD(V_LOAD(b->h_hi + i), pad)), V_GE(dn, dpad)),
-            V_AND(V_LT(s, V_SUB(V_LOAD(b->h_lo + i), pad)),
-                  V_LE(dn, V_XOR(dpad, sign))));
-        /* misses_quad() */
+        vreal A = V_ADD(c_max, o_max);
+        vreal pad = V_MUL(slab, A);
+        vreal h_hi = V_LOAD(b->h_hi + i), h_lo = V_LOAD(b->h_lo + i);
+        vreal above = V_GT(s, V_ADD(h_hi, pad)),
+              below = V_LT(s, V_SUB(h_lo, pad));
+        vreal leaves = V_OR(V_AND(above, V_GE(dn, dpad)),
+                            V_AND(below, V_LE(dn, V_XOR(dpad, sign))));
         vreal adn = V_ANDNOT(sign, dn);
+        if (segment) { /* stays_before() */
+            vreal q = V_MUL(V_MUL(A, A), V_LOAD(b->k_area + i));
+            vreal steep2 = V_GE(adn, V_MUL(steep_d, q));
+            vreal e = V_ADD(s, V_MUL(vtmax, dn));
+            vreal pad2 = V_ADD(V_MUL(slab, V_ADD(A, tdm)),
+                               V_MUL(tri, V_MUL(A, q)));
+            leaves = V_OR(leaves,
+                          V_AND(steep2,
+                                V_OR(V_AND(above,
+                                           V_GT(e, V_ADD(h_hi, pad2))),
+                                     V_AND(below,
+                                           V_LT(e, V_SUB(h_lo, pad2))))));
+        }
+        const int lanes = (1 << VLANES) - 1;
+        int wanted = (int)(want >> i) & lanes;
+        int left = wanted & ~(ahead ? V_MASK(leaves) : 0);
+        if (!left)
+            continue;
+        /* misses_quad() */
         vreal steep = V_GE(adn, dpad);
         vreal t = V_DIV(V_SUB(V_LOAD(b->h_mid + i), s), dn);
         vreal px = V_ADD(ox, V_MUL(t, dx)), py = V_ADD(oy, V_MUL(t, dy)),
@@ -483,32 +554,28 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
         vreal tt = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->bx + i)),
                                V_MUL(qy, V_LOAD(b->by + i))),
                          V_MUL(qz, V_LOAD(b->bz + i)));
-        vreal A = V_ADD(c_max, o_max);
-        vreal p_max = V_MAX(V_ANDNOT(sign, px),
-                            V_MAX(V_ANDNOT(sign, py), V_ANDNOT(sign, pz)));
         vreal G = V_DIV(g4, adn);
-        vreal dist = V_ADD(
-            V_MUL(G, V_ADD(V_LOAD(b->h_half + i),
-                           V_MUL(u64, V_ADD(A, V_MUL(V_ANDNOT(sign, t),
-                                                    d_max))))),
-            V_MUL(u32, V_ADD(A, p_max)));
+        vreal B = V_ADD(A, V_MUL(V_ANDNOT(sign, t), d_max));
+        vreal u64B = V_MUL(u64, B);
+        vreal dist = V_ADD(V_MUL(G, V_ADD(V_LOAD(b->h_half + i), u64B)),
+                           u64B);
         vreal ms = V_MUL(V_LOAD(b->a1 + i), dist),
               mt = V_MUL(V_LOAD(b->b1 + i), dist);
         vreal outside = V_OR(
             V_OR(V_LT(ss, V_XOR(ms, sign)), V_GT(ss, V_ADD(one, ms))),
             V_OR(V_LT(tt, V_XOR(mt, sign)), V_GT(tt, V_ADD(one, mt))));
         vreal misses = V_AND(steep, outside);
-        int rejected = V_MASK(misses) | (ahead ? V_MASK(leaves) : 0);
-        maybe |= (uint64_t)(~rejected & ((1 << VLANES) - 1)) << i;
+        maybe |= (uint64_t)(left & ~V_MASK(misses)) << i;
     }
     /* the padding lanes past n */
     return b->n < 64 ? maybe & (((uint64_t)1 << b->n) - 1) : maybe;
 }
 #else
 uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
-                                  const ray_t *r, real tmin)
+                                  const ray_t *r, real tmin, real tmax,
+                                  uint64_t want)
 {
-    return parallelogram_batch_cull_plain(b, r, tmin);
+    return parallelogram_batch_cull_plain(b, r, tmin, tmax, want);
 }
 #endif
 
@@ -551,6 +618,36 @@ static void dual_vectors(const para_shape *sh, para_cull_t *kc)
     if (!vec_is_finite(kc->a) || !vec_is_finite(kc->b) || !isfinite(kc->a1) ||
         !isfinite(kc->b1))
         kc->a1 = kc->b1 = (real)INFINITY;
+}
+
+/* k_area of para_cull_t: 2 / T, T the smaller of the areas of the
+ * triangles (c0, c1, c2) and (c0, c2, c3) with the corners as stored,
+ * computed in long double (its error is far below the factor 2 that
+ * stays_before() allows for), rounded up; infinite when T is not
+ * positive or 2 / T overflows. */
+static real k_area(const para_shape *sh)
+{
+    long double T = INFINITY;
+    for (int tri = 0; tri < 2; tri++) {
+        const real *p = sh->c[0], *q = sh->c[1 + tri], *w = sh->c[2 + tri];
+        long double a[3], b[3], c2 = 0;
+        for (int k = 0; k < 3; k++) {
+            a[k] = (long double)q[k] - p[k];
+            b[k] = (long double)w[k] - p[k];
+        }
+        for (int k = 0; k < 3; k++) {
+            int i = (k + 1) % 3, j = (k + 2) % 3;
+            long double c = a[i] * b[j] - a[j] * b[i];
+            c2 += c * c;
+        }
+        long double area = sqrtl(c2) / 2;
+        if (area < T)
+            T = area;
+    }
+    real k = (real)(2 / T);
+    if (!(T > 0) || !isfinite(k))
+        return (real)INFINITY;
+    return real_next_up(k);
 }
 
 /* The checks both constructors share, and the object. */
@@ -608,6 +705,7 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
             k->c_max = real_max(k->c_max, fabs(sh->c[i][j]));
     }
     k->h_mid = REAL_C(0.5) * k->h_lo + REAL_C(0.5) * k->h_hi;
+    k->k_area = k_area(sh);
     k->h_half = real_next_up(REAL_C(0.5) * (k->h_hi - k->h_lo));
     dual_vectors(sh, k);
     return obj;

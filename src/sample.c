@@ -76,7 +76,9 @@ static void concentric(real d[2], real *one_minus_r, const real u[2])
     }
     d[0] = r * cos(theta);
     d[1] = r * sin(theta);
-    *one_minus_r = 2 * fmin(m, 1 - m);
+    /* real_min, no libm call: fmin's answer here (a NaN m makes both
+     * arguments NaN) */
+    *one_minus_r = 2 * real_min(m, 1 - m);
 }
 
 #define COSINE_Z_MIN REAL_C(0x1p-12)

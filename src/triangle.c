@@ -194,25 +194,6 @@ bool triangle_is_degenerate(const VECTOR3 p0, const VECTOR3 p1,
     return true;
 }
 
-void triangle_point(VECTOR3 p, VECTOR3 p_error, const VECTOR3 p0,
-                    const VECTOR3 p1, const VECTOR3 p2, const real b[3])
-{
-    /* Reconstructing the point from barycentrics instead of o + t d keeps
-     * it on the triangle's plane (pbrt-v3 sec. 3.9.5). Error: the real
-     * numbers b_i sum to 1 + eps with |eps| <= gamma(4) (each b_i = e_i/det
-     * carries one division, det two additions; a sampler's b2 = 1 - b0 - b1
-     * two subtractions), so the exact sum_i b_i p_i lies within
-     * gamma(4) sum|b_i p_i| of the affine combination sum_i b_i p_i /
-     * sum_j b_j, a point of the triangle's plane; evaluating the sum costs
-     * one product and two additions, gamma(3) sum|b_i p_i| more:
-     * gamma(4) + gamma(3) <= gamma(7). */
-    for (int k = 0; k < 3; k++) {
-        real a = b[0] * p0[k], c = b[1] * p1[k], d = b[2] * p2[k];
-        p[k] = a + c + d;
-        p_error[k] = ray_gamma(7) * (fabs(a) + fabs(c) + fabs(d));
-    }
-}
-
 void triangle_fill_surface(const VECTOR3 p0, const VECTOR3 p1,
                            const VECTOR3 p2, const VECTOR3 normals[3],
                            const real b[3], PATHPOINT *pp)

@@ -1,23 +1,10 @@
 /*
  * vec.c - the vector operations of ch. 1 and app. B-C that are too long to
- * inline: normalisation, reflection (1.4), refraction (1.11-1.12) and
- * Rodrigues' rotation (app. C).
+ * inline: reflection (1.4), refraction (1.11-1.12) and Rodrigues' rotation
+ * (app. C). Normalisation is inline in vec.h.
  * Tests: tests/test_vec.c
  */
 #include "vec.h"
-
-real vec_normalize(VECTOR3 c, const VECTOR3 a)
-{
-    real len = vec_length(a);
-    if (!(len > 0) || !isfinite(len)) {
-        vec_set(c, 0, 0, 0);
-        return 0;
-    }
-    /* Divide rather than multiply by 1/len: the result is then correctly
-     * rounded per component, and a vector along an axis stays exactly unit. */
-    c[X] = a[X] / len; c[Y] = a[Y] / len; c[Z] = a[Z] / len;
-    return len;
-}
 
 void vec_reflect(VECTOR3 r, const VECTOR3 in, const VECTOR3 n)
 {

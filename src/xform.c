@@ -290,6 +290,13 @@ typedef struct {
     /* world_point()'s constants, each the very product it would compute:
      * |m_ij|, gamma(4) |m_i3| and gamma(4) |inv_ij| */
     real abs_m[3][3], g_m3[3], g_inv[3][4];
+    /* For a box, what xf_surface() computes from the fields of a hit that
+     * depend on its face alone (pp->prim), computed once per face by the
+     * very same calls (set_faces()); nfaces is 0 for other primitives. */
+    int nfaces;
+    struct {
+        VECTOR3 ng, n, u, v, dpds, dpdt;
+    } face[6];
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -298,15 +305,16 @@ static const cobject_ops xform_ops;
  * when its largest component is far from 1, so that M^-1 d neither
  * underflows nor overflows; then t_object = t_world 2^k. Returns false
  * when the object-space direction is zero or not finite. */
-static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
+/* object_ray() for a direction whose largest component m lies outside
+ * [2^-16, 2^17): the rare case, a function of its own, so that the
+ * usual one (inline) saves no registers. */
+static bool
+object_ray_scaled(const xf_shape *sh, const ray_t *r, real m, ray_t *ro,
+                  int *k)
 {
     VECTOR3 d;
-    /* no libm in this inner loop: plain comparisons for the max (a NaN
-     * component makes ro->d NaN below whatever m is), and ilogb only for
-     * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
-    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
     *k = 0;
-    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)) && m > 0 && isfinite(m))
+    if (m > 0 && isfinite(m))
         *k = real_ilogb(m);
     if (*k)
         for (int i = 0; i < 3; i++)
@@ -317,6 +325,26 @@ static bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
     apply(MAT(sh->x.inv), ro->d, d, false);
     return vec_is_finite(ro->o) && vec_is_finite(ro->d) &&
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
+}
+
+static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
+                              int *k)
+{
+    /* no libm in this inner loop: plain comparisons for the max (a NaN
+     * component makes ro->d NaN below whatever m is), and ilogb only for
+     * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
+    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)))
+        return object_ray_scaled(sh, r, m, ro, k);
+    *k = 0;
+    apply(MAT(sh->x.inv), ro->o, r->o, true);
+    apply(MAT(sh->x.inv), ro->d, r->d, false);
+    /* finite: x - x is 0 for a finite x, NaN otherwise (vec_is_finite's
+     * answer without a branch per coordinate) */
+    real f = ((ro->o[X] - ro->o[X]) + (ro->o[Y] - ro->o[Y])) +
+             ((ro->o[Z] - ro->o[Z]) + (ro->d[X] - ro->d[X])) +
+             ((ro->d[Y] - ro->d[Y]) + (ro->d[Z] - ro->d[Z]));
+    return f == 0 && (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
 bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
@@ -414,10 +442,11 @@ static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
     return len;
 }
 
-static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
-                       PATHPOINT *pp)
+/* The inner primitive's surface() on the ray in object space, and the
+ * point mapped back to the world. */
+static void surface_point(const xf_shape *sh, const ray_t *r,
+                          const hit_t *hit, PATHPOINT *pp)
 {
-    const xf_shape *sh = obj->shape;
     ray_t ro;
     int k;
     object_ray(sh, r, &ro, &k);
@@ -429,6 +458,12 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     world_point(sh, pp->cross_point, pp->p_error, p, e);
     vec_copy(pp->cross_point, p);
     vec_copy(pp->p_error, e);
+}
+
+/* The normals, derivatives and frame of pp, in object space, mapped to
+ * the world. */
+static void surface_frame(const xf_shape *sh, PATHPOINT *pp)
+{
     /* the shading normal is the geometric one for most primitives: map it
      * once */
     bool same = memcmp(pp->n, pp->ng, sizeof pp->n) == 0;
@@ -440,6 +475,63 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     xform_vector(&sh->x, pp->dpds, pp->dpds);
     xform_vector(&sh->x, pp->dpdt, pp->dpdt);
     shape_frame(pp->u, pp->v, pp->n, pp->dpds);
+}
+
+void xform_surface_generic(const COBJECT *obj, const ray_t *r,
+                           const hit_t *hit, PATHPOINT *pp)
+{
+    const xf_shape *sh = obj->shape;
+    surface_point(sh, r, hit, pp);
+    surface_frame(sh, pp);
+}
+
+static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
+                       PATHPOINT *pp)
+{
+    const xf_shape *sh = obj->shape;
+    surface_point(sh, r, hit, pp);
+    if (pp->prim >= 0 && pp->prim < sh->nfaces) {
+        /* a box's face: its world frame as surface_frame() made it */
+        int f = pp->prim;
+        vec_copy(pp->ng, sh->face[f].ng);
+        vec_copy(pp->n, sh->face[f].n);
+        vec_copy(pp->u, sh->face[f].u);
+        vec_copy(pp->v, sh->face[f].v);
+        vec_copy(pp->dpds, sh->face[f].dpds);
+        vec_copy(pp->dpdt, sh->face[f].dpdt);
+        return;
+    }
+    surface_frame(sh, pp);
+}
+
+/* The face table of a transformed box (xf_shape.face): box.c's surface()
+ * sets ng, n, u, v, dpds and dpdt from the face alone (the one in
+ * hit->b[0], returned in pp->prim), so surface_frame() maps them to the
+ * same bits at every hit on that face; here it runs once per face, on a
+ * hit of that face from a ray at the origin. */
+static void set_faces(xf_shape *sh)
+{
+    sh->nfaces = 0;
+    if (strcmp(sh->inner->ops->name, "box") != 0)
+        return;
+    for (int f = 0; f < 6; f++) {
+        ray_t r = { { 0, 0, 0 }, { 0, 0, 0 } };
+        hit_t h = { 0, 0, { (real)f, 0, 0 } };
+        PATHPOINT pp;
+        memset(&pp, 0, sizeof pp);
+        pp.prim = 0;
+        sh->inner->ops->surface(sh->inner, &r, &h, &pp);
+        if (pp.prim != f)
+            return;
+        surface_frame(sh, &pp);
+        vec_copy(sh->face[f].ng, pp.ng);
+        vec_copy(sh->face[f].n, pp.n);
+        vec_copy(sh->face[f].u, pp.u);
+        vec_copy(sh->face[f].v, pp.v);
+        vec_copy(sh->face[f].dpds, pp.dpds);
+        vec_copy(sh->face[f].dpdt, pp.dpdt);
+    }
+    sh->nfaces = 6;
 }
 
 static void xf_bounds(const COBJECT *obj, int prim, bbox_t *b)
@@ -798,6 +890,7 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     }
     sh->area = transformed_area(sh);
     set_culling(sh);
+    set_faces(sh);
     obj->nprims = inner->nprims;
     return obj;
 }

@@ -229,7 +229,8 @@ static bool via_batch(const parallelogram_batch_t *batch, int i,
                       const COBJECT *o, const ray_t *r, real tmin, real tmax,
                       hit_t *h)
 {
-    if (!((parallelogram_batch_cull(batch, r, tmin) >> i) & 1))
+    const uint64_t all = ~(uint64_t)0;
+    if (!((parallelogram_batch_cull(batch, r, tmin, tmax, all) >> i) & 1))
         return false;
     triangle_ray_t pr;
     triangle_ray_prepare(&pr, r);
@@ -334,11 +335,45 @@ START_TEST(parallelogram_answers_as_its_two_triangles_bit_for_bit)
 }
 END_TEST
 
+/* A parallelogram for the probes below (draw i): corners at a scale
+ * *size from 2^-10 to 2^10, every third one axis-aligned; with thin set,
+ * every fourth one thin (c3 - c0 shorter by up to 2^-11). c[2] is set as
+ * the shape sets it, e1, e2 to the edges and nrm to the unit normal.
+ * NULL when the draw is degenerate. */
+static COBJECT *probe_parallelogram(pcg32_t *g, int i, bool thin,
+                                    VECTOR3 c[4], VECTOR3 e1, VECTOR3 e2,
+                                    VECTOR3 nrm, real *size)
+{
+    *size = ldexp(REAL_C(1.0), (int)pcg32_bounded(g, 21) - 10);
+    real f = thin && i % 4 == 1
+                 ? ldexp(REAL_C(1.0), -(int)pcg32_bounded(g, 12))
+                 : 1;
+    for (int k = 0; k < 3; k++) {
+        c[0][k] = *size * (4 * pcg32_real(g) - 2);
+        c[1][k] = c[0][k] + *size * (2 * pcg32_real(g) - 1);
+        c[3][k] = c[0][k] + f * *size * (2 * pcg32_real(g) - 1);
+    }
+    if (i % 3 == 0) /* axis-aligned, as the Cornell box's walls */
+        for (int j = 1; j < 4; j += 2)
+            c[j][i % 9 / 3] = c[0][i % 9 / 3];
+    svet_error err;
+    COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+    if (!o)
+        return NULL;
+    for (int k = 0; k < 3; k++)
+        c[2][k] = c[1][k] + (c[3][k] - c[0][k]);
+    vec_sub(e1, c[1], c[0]);
+    vec_sub(e2, c[3], c[0]);
+    VVECTOR3(nrm, e1, e2);
+    vec_normalize(nrm, nrm);
+    return o;
+}
+
 START_TEST(parallelogram_early_rejections_lose_no_hit)
 {
     /* The parallelogram rejects a ray early when it leaves the plane
-     * behind it and when it is outside (tmin, tmax) all along the corners
-     * (parallelogram.c). Probe both where they are closest to wrong:
+     * behind it, crosses it clearly outside, or ends before it
+     * (parallelogram.c). Probe them where they are closest to wrong:
      * origins at 2^-k of the size off the plane on either side (and on
      * it), directions grazing the plane from either side, and intervals
      * that end one ulp before, at and after the hit. */
@@ -347,25 +382,10 @@ START_TEST(parallelogram_early_rejections_lose_no_hit)
     long n = 0, hits = 0;
     for (int i = 0; i < 3000; i++) {
         VECTOR3 c[4], e1, e2, nrm;
-        real size = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 21) - 10);
-        for (int k = 0; k < 3; k++) {
-            c[0][k] = size * (4 * pcg32_real(&g) - 2);
-            c[1][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
-            c[3][k] = c[0][k] + size * (2 * pcg32_real(&g) - 1);
-        }
-        if (i % 3 == 0) /* axis-aligned, as the Cornell box's walls */
-            for (int j = 1; j < 4; j += 2)
-                c[j][i % 9 / 3] = c[0][i % 9 / 3];
-        svet_error err;
-        COBJECT *o = parallelogram_new(c[0], c[1], c[3], &err);
+        real size;
+        COBJECT *o = probe_parallelogram(&g, i, false, c, e1, e2, nrm, &size);
         if (!o)
             continue;
-        for (int k = 0; k < 3; k++)
-            c[2][k] = c[1][k] + (c[3][k] - c[0][k]);
-        vec_sub(e1, c[1], c[0]);
-        vec_sub(e2, c[3], c[0]);
-        VVECTOR3(nrm, e1, e2);
-        vec_normalize(nrm, nrm);
         for (int j = 0; j < 30; j++) {
             /* origin off the plane by +-2^-k size (or on it), over a point
              * in or around the parallelogram */
@@ -412,6 +432,86 @@ START_TEST(parallelogram_early_rejections_lose_no_hit)
     }
     ck_assert(hits > n / 20);
     test_report_cases("parallelogram_early_rejections_lose_no_hit", n);
+}
+END_TEST
+
+START_TEST(segments_that_end_before_the_plane_lose_no_hit)
+{
+    /* A ray over (0, tmax) whose origin and end lie on one side of the
+     * plane is rejected before the watertight test (stays_before() in
+     * parallelogram.c). Probe it where it is closest to wrong: segments
+     * toward a point of the parallelogram (or near its edges), grazing
+     * ones included, that end 2^-k of the way short of the plane's
+     * crossing or 2^-k past it, from origins near and far, on thin and
+     * axis-aligned parallelograms at scales 2^-10 to 2^10: intersect()
+     * and the batch answer as the two watertight triangles, bit for bit.
+     * The rejection must have been taken (the batch's answer for the
+     * segment differs from its answer for the whole ray) in more than 1 %
+     * of the cases. */
+    pcg32_t g;
+    pcg32_seed(&g, 61, 62);
+    long n = 0, hits = 0, rejected = 0;
+    for (int i = 0; i < 2000; i++) {
+        VECTOR3 c[4], e1, e2, nrm;
+        real size;
+        COBJECT *o = probe_parallelogram(&g, i, true, c, e1, e2, nrm, &size);
+        if (!o)
+            continue;
+        parallelogram_batch_t *batch =
+            parallelogram_batch_new((const COBJECT *const *)&o, 1);
+        ck_assert_ptr_nonnull(batch);
+        for (int j = 0; j < 20; j++) {
+            /* the origin 2^-k to 2^3 of the size off the plane */
+            real off = ldexp(size, 3 - (int)pcg32_bounded(&g, 30));
+            if (pcg32_next(&g) & 1)
+                off = -off;
+            ray_t r;
+            real s0 = REAL_C(5.0) * pcg32_real(&g) - 2;
+            real t0 = REAL_C(5.0) * pcg32_real(&g) - 2;
+            for (int k = 0; k < 3; k++)
+                r.o[k] = c[0][k] + s0 * e1[k] + t0 * e2[k] + off * nrm[k];
+            /* toward a point in or around it; the length of d is the
+             * distance to that point, or far from it */
+            real s1 = REAL_C(1.2) * pcg32_real(&g) - REAL_C(0.1);
+            real t1 = REAL_C(1.2) * pcg32_real(&g) - REAL_C(0.1);
+            for (int k = 0; k < 3; k++)
+                r.d[k] = c[0][k] + s1 * e1[k] + t1 * e2[k] - r.o[k];
+            if (j % 5 == 0)
+                vec_scale(r.d, r.d,
+                          ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 41) - 20));
+            /* the crossing of the plane through c0, in long double */
+            long double sn = 0, dn = 0;
+            for (int k = 0; k < 3; k++) {
+                sn += ((long double)c[0][k] - r.o[k]) * nrm[k];
+                dn += (long double)r.d[k] * nrm[k];
+            }
+            if (dn == 0)
+                continue;
+            long double tc = sn / dn;
+            if (!(tc > 0))
+                continue;
+            for (int q = 0; q < 8; q++) {
+                int k = (int)pcg32_bounded(&g, 32);
+                long double f = q < 6 ? 1 - ldexpl(1, -k) : 1 + ldexpl(1, -k);
+                real tmax = (real)(tc * f);
+                if (!(tmax > 0) || !isfinite(tmax))
+                    continue;
+                n++;
+                hits += agrees_with_two_triangles(o, (const VECTOR3 *)c, &r,
+                                                  0, tmax);
+                rejected += parallelogram_batch_cull(batch, &r, 0, tmax, 1) !=
+                            parallelogram_batch_cull(batch, &r, 0,
+                                                     (real)INFINITY, 1);
+            }
+        }
+        parallelogram_batch_free(batch);
+        cobject_free(o);
+    }
+    ck_assert(hits > n / 20);
+    /* about 1.6 % in float (the pad grows as A^3 / area, large for the
+     * thin ones and far origins), more in double */
+    ck_assert(rejected > n / 100);
+    test_report_cases("segments_that_end_before_the_plane_lose_no_hit", n);
 }
 END_TEST
 
@@ -482,27 +582,50 @@ START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
             if (vec_length2(r.d) == 0)
                 continue;
             real tmin = j % 7 == 0 ? -(real)INFINITY : 0;
-            uint64_t mask = parallelogram_batch_cull(all, &r, tmin);
+            /* an open ray, a segment that ends at the point aimed at or
+             * anywhere up to twice as far, one that ends before it
+             * starts */
+            real tmax = j % 4 == 0   ? (real)INFINITY
+                        : j % 4 == 1 ? 1
+                        : j % 23 == 2 ? -(real)INFINITY
+                                      : 2 * pcg32_real(&g);
+            const uint64_t every = ~(uint64_t)0;
+            uint64_t mask = parallelogram_batch_cull(all, &r, tmin, tmax,
+                                                     every);
             ck_assert(m == 64 || mask >> m == 0);
-            ck_assert(mask == parallelogram_batch_cull_plain(all, &r, tmin));
+            ck_assert(mask == parallelogram_batch_cull_plain(all, &r, tmin,
+                                                             tmax, every));
+            /* some objects left out: their bits are 0, the others' the
+             * same (and a step of lanes all left out or rejected by the
+             * plane tests skips the rest) */
+            uint64_t want = (uint64_t)pcg32_next(&g) << 32 | pcg32_next(&g);
+            if (j % 3 == 0)
+                want &= (uint64_t)pcg32_next(&g) << 32 | pcg32_next(&g);
+            ck_assert(parallelogram_batch_cull(all, &r, tmin, tmax, want) ==
+                      (mask & want));
+            ck_assert(parallelogram_batch_cull_plain(all, &r, tmin, tmax,
+                                                     want) == (mask & want));
             if (j % 19 == 0) { /* NaN and infinity: every lane as the plain
                                   loop answers */
                 ray_t bad = r;
                 bad.o[j % 3] = j % 2 ? (real)NAN : (real)INFINITY;
-                ck_assert(parallelogram_batch_cull(all, &bad, 0) ==
-                          parallelogram_batch_cull_plain(all, &bad, 0));
+                ck_assert(parallelogram_batch_cull(all, &bad, 0, tmax, want) ==
+                          parallelogram_batch_cull_plain(all, &bad, 0, tmax,
+                                                         want));
                 bad = r;
                 bad.d[j % 3] = (real)NAN;
-                ck_assert(parallelogram_batch_cull(all, &bad, 0) ==
-                          parallelogram_batch_cull_plain(all, &bad, 0));
+                ck_assert(parallelogram_batch_cull(all, &bad, 0, tmax, want) ==
+                          parallelogram_batch_cull_plain(all, &bad, 0, tmax,
+                                                         want));
             }
             for (int i = 0; i < m; i++, n++) {
                 uint64_t bit = (mask >> i) & 1;
-                ck_assert(bit == parallelogram_batch_cull(one[i], &r, tmin));
+                ck_assert(bit ==
+                          parallelogram_batch_cull(one[i], &r, tmin, tmax,
+                                                   every));
                 hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
-                bool a = o[i]->ops->intersect(o[i], 0, &r, tmin,
-                                              (real)INFINITY, &h1);
-                bool b = via_batch(all, i, o[i], &r, tmin, (real)INFINITY,
+                bool a = o[i]->ops->intersect(o[i], 0, &r, tmin, tmax, &h1);
+                bool b = via_batch(all, i, o[i], &r, tmin, tmax,
                                    &h2);
                 ck_assert(a == b && (!a || same_hit(&h1, &h2)));
                 hits += a;
@@ -707,6 +830,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, no_ray_slips_through_a_closed_box_of_parallelograms);
     tcase_add_test(tc, parallelogram_answers_as_its_two_triangles_bit_for_bit);
     tcase_add_test(tc, parallelogram_early_rejections_lose_no_hit);
+    tcase_add_test(tc, segments_that_end_before_the_plane_lose_no_hit);
     tcase_add_test(tc,
                    parallelogram_batch_answers_as_each_parallelogram_bit_for_bit);
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);

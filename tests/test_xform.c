@@ -2,7 +2,8 @@
  * test_xform.c - affine transforms and primitives under them (app. C, D):
  * compose/invert round trips, exact quarter turns, Rodrigues against
  * vec_rotate, singular transforms, normals under non-uniform scale, the
- * Cornell box's blocks against hand-computed corners, exact areas and the
+ * Cornell box's blocks against hand-computed corners, a box's table of
+ * world face frames against the general way, exact areas and the
  * ellipsoid's quadrature against a spheroid's closed form, sampling
  * densities, the geomcheck harness on an oriented box, a parallelogram and
  * an ellipsoid, tests/vectors/xform.csv and a NaN sweep.
@@ -12,6 +13,8 @@
 #include "geomcheck.h"
 #include "parallelogram.h"
 #include "primcheck.h"
+#include "ray.h"
+#include "shape.h"
 #include "sphere.h"
 #include "triangle.h"
 #include "xform.h"
@@ -577,6 +580,76 @@ START_TEST(the_culling_sphere_never_turns_away_a_hit)
 }
 END_TEST
 
+START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
+{
+    /* A transformed box's surface() takes the world normals, derivatives
+     * and frame of a hit from a table made once per face (xform.c); the
+     * general way maps them at every hit. The same bytes, PATHPOINT for
+     * PATHPOINT, on hits from outside and from rays leaving a face, for
+     * random maps (mirrors included), thin boxes and scales 2^-20 to
+     * 2^20; and for an ellipsoid, which has no table. */
+    pcg32_t g;
+    pcg32_seed(&g, 71, 72);
+    long n = 0;
+    for (int i = 0; i < 300; i++) {
+        VECTOR3 lo, hi, s3;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = 4 * pcg32_real(&g) - 2;
+            hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(&g);
+            s3[k] = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 41) - 20);
+        }
+        if (i % 3 == 1)
+            hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 16));
+        xform_t x = random_xform(&g);
+        if (i % 2)
+            x = xform_compose(x, xform_scale(s3));
+        svet_error err;
+        VECTOR3 centre = { 0, 0, 0 };
+        COBJECT *o = i % 10 == 9
+                         ? xform_new(sphere_new(centre, 1, &err), &x, &err)
+                         : xform_new(box_new(lo, hi, &err), &x, &err);
+        if (!o)
+            continue; /* a map singular to working precision */
+        const xform_t *xf = xform_of(o);
+        for (int j = 0; j < 200; j++) {
+            VECTOR3 q, target, dir;
+            for (int k = 0; k < 3; k++)
+                q[k] = i % 10 == 9 ? 2 * pcg32_real(&g) - 1
+                                   : lo[k] + pcg32_real(&g) * (hi[k] - lo[k]);
+            xform_point(xf, target, q);
+            geomcheck_random_dir(dir, &g);
+            ray_t r;
+            real dist = 4 * shape_max_abs(target) + 1;
+            vec_add_scaled(r.o, target, dist, dir);
+            vec_neg(r.d, dir);
+            hit_t h = { 0, 0, { 0, 0, 0 } };
+            if (!o->ops->intersect(o, 0, &r, 0, (real)INFINITY, &h))
+                continue;
+            for (int pass = 0; pass < 2; pass++) {
+                PATHPOINT p1, p2;
+                memset(&p1, 0, sizeof p1);
+                memset(&p2, 0, sizeof p2);
+                p1.prim = p2.prim = h.prim;
+                o->ops->surface(o, &r, &h, &p1);
+                xform_surface_generic(o, &r, &h, &p2);
+                ck_assert(memcmp(&p1, &p2, sizeof p1) == 0);
+                n++;
+                /* then a ray leaving that point, and its hit on the far
+                 * side */
+                ray_spawn(&r, p1.cross_point, p1.p_error, p1.ng, r.d);
+                h = (hit_t){ 0, 0, { 0, 0, 0 } };
+                if (!o->ops->intersect(o, 0, &r, 0, (real)INFINITY, &h))
+                    break;
+            }
+        }
+        cobject_free(o);
+    }
+    ck_assert(n > 50000);
+    test_report_cases("box_face_table_completes_hits_as_the_general_way_bit_"
+                      "for_bit", n);
+}
+END_TEST
+
 /* --- the geomcheck harness -------------------------------------------------- */
 
 enum { INNER_BOX, INNER_PARA, INNER_SPHERE };
@@ -733,6 +806,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, nested_transforms_merge_into_one);
     tcase_add_test(tc, a_mirrored_box_keeps_outward_normals);
     tcase_add_test(tc, the_culling_sphere_never_turns_away_a_hit);
+    tcase_add_test(tc,
+                   box_face_table_completes_hits_as_the_general_way_bit_for_bit);
     tcase_add_test(tc, transformed_spawned_rays_never_rehit_at_any_scale);
     tcase_add_test(tc, transformed_sampled_points_are_hit_at_any_scale);
     tcase_add_test(tc, transformed_shadow_rays_between_points_miss_at_any_scale);
