@@ -396,7 +396,8 @@ static const cobject_ops parallelogram_ops = {
  * para_intersect() runs, so the answers are its answers bit for bit. */
 /* The fields of para_cull_t, each an array over the batch (structure of
  * arrays: lane j of a vector step reads element i + j of every array),
- * zero past n (whole steps of 4 or 2 lanes, their answers dropped). */
+ * zero past n (whole steps of VWLANES lanes, at most 8, their answers
+ * dropped). */
 struct parallelogram_batch {
     int n;
     real nx[PARALLELOGRAM_BATCH_MAX], ny[PARALLELOGRAM_BATCH_MAX],
@@ -476,7 +477,8 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
 }
 
 #ifdef SIMD_REAL
-/* rejects() on a vector of parallelograms at once (simd.h): every
+/* rejects() on a vector of parallelograms at once (simd.h's widest:
+ * 8 floats or 4 doubles with AVX, else 4 or 2 with SSE2): every
  * operation is the IEEE operation rejects() makes, on the same operands in
  * the same order, so each lane gets exactly the bits of the plain loop.
  * tests/test_parallelogram.c compares the two. A step whose wanted lanes
@@ -489,83 +491,83 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
     const real u = REAL_UNIT_ROUNDOFF;
     ray_size_t rs;
     ray_size(r, &rs);
-    const vreal sign = V_SET1(-REAL_C(0.0)); /* fabs: clear the sign bit */
-    const vreal ox = V_SET1(r->o[X]), oy = V_SET1(r->o[Y]),
-                oz = V_SET1(r->o[Z]);
-    const vreal dx = V_SET1(r->d[X]), dy = V_SET1(r->d[Y]),
-                dz = V_SET1(r->d[Z]);
-    const vreal o_max = V_SET1(rs.o_max), d_max = V_SET1(rs.d_max);
-    const vreal dpad = V_SET1(DIR_PAD * rs.d_max);
-    const vreal g4 = V_SET1(4 * rs.d_max);
-    const vreal one = V_SET1(1), slab = V_SET1(SLAB_PAD);
-    const vreal u64 = V_SET1(64 * u);
+    const vwreal sign = VW_SET1(-REAL_C(0.0)); /* fabs: clear the sign bit */
+    const vwreal ox = VW_SET1(r->o[X]), oy = VW_SET1(r->o[Y]),
+                oz = VW_SET1(r->o[Z]);
+    const vwreal dx = VW_SET1(r->d[X]), dy = VW_SET1(r->d[Y]),
+                dz = VW_SET1(r->d[Z]);
+    const vwreal o_max = VW_SET1(rs.o_max), d_max = VW_SET1(rs.d_max);
+    const vwreal dpad = VW_SET1(DIR_PAD * rs.d_max);
+    const vwreal g4 = VW_SET1(4 * rs.d_max);
+    const vwreal one = VW_SET1(1), slab = VW_SET1(SLAB_PAD);
+    const vwreal u64 = VW_SET1(64 * u);
     const int ahead = tmin >= 0;
     /* stays_before() is false in every lane for tmax = +infinity */
     const bool segment = ahead && tmax != (real)INFINITY;
-    const vreal vtmax = V_SET1(tmax), tdm = V_SET1(tmax * rs.d_max);
-    const vreal steep_d = V_SET1(STEEP_PAD * rs.d_max);
-    const vreal tri = V_SET1(TRI_PAD);
+    const vwreal vtmax = VW_SET1(tmax), tdm = VW_SET1(tmax * rs.d_max);
+    const vwreal steep_d = VW_SET1(STEEP_PAD * rs.d_max);
+    const vwreal tri = VW_SET1(TRI_PAD);
     uint64_t maybe = 0;
-    for (int i = 0; i < b->n; i += VLANES) {
+    for (int i = 0; i < b->n; i += VWLANES) {
         /* plane_ray(): n . o, n . d */
-        vreal nx = V_LOAD(b->nx + i), ny = V_LOAD(b->ny + i),
-              nz = V_LOAD(b->nz + i);
-        vreal s = V_ADD(V_ADD(V_MUL(nx, ox), V_MUL(ny, oy)), V_MUL(nz, oz));
-        vreal dn = V_ADD(V_ADD(V_MUL(nx, dx), V_MUL(ny, dy)), V_MUL(nz, dz));
+        vwreal nx = VW_LOAD(b->nx + i), ny = VW_LOAD(b->ny + i),
+              nz = VW_LOAD(b->nz + i);
+        vwreal s = VW_ADD(VW_ADD(VW_MUL(nx, ox), VW_MUL(ny, oy)), VW_MUL(nz, oz));
+        vwreal dn = VW_ADD(VW_ADD(VW_MUL(nx, dx), VW_MUL(ny, dy)), VW_MUL(nz, dz));
         /* leaves_plane() */
-        vreal c_max = V_LOAD(b->c_max + i);
-        vreal A = V_ADD(c_max, o_max);
-        vreal pad = V_MUL(slab, A);
-        vreal h_hi = V_LOAD(b->h_hi + i), h_lo = V_LOAD(b->h_lo + i);
-        vreal above = V_GT(s, V_ADD(h_hi, pad)),
-              below = V_LT(s, V_SUB(h_lo, pad));
-        vreal leaves = V_OR(V_AND(above, V_GE(dn, dpad)),
-                            V_AND(below, V_LE(dn, V_XOR(dpad, sign))));
-        vreal adn = V_ANDNOT(sign, dn);
+        vwreal c_max = VW_LOAD(b->c_max + i);
+        vwreal A = VW_ADD(c_max, o_max);
+        vwreal pad = VW_MUL(slab, A);
+        vwreal h_hi = VW_LOAD(b->h_hi + i), h_lo = VW_LOAD(b->h_lo + i);
+        vwreal above = VW_GT(s, VW_ADD(h_hi, pad)),
+              below = VW_LT(s, VW_SUB(h_lo, pad));
+        vwreal leaves = VW_OR(VW_AND(above, VW_GE(dn, dpad)),
+                            VW_AND(below, VW_LE(dn, VW_XOR(dpad, sign))));
+        vwreal adn = VW_ANDNOT(sign, dn);
         if (segment) { /* stays_before() */
-            vreal q = V_MUL(V_MUL(A, A), V_LOAD(b->k_area + i));
-            vreal steep2 = V_GE(adn, V_MUL(steep_d, q));
-            vreal e = V_ADD(s, V_MUL(vtmax, dn));
-            vreal pad2 = V_ADD(V_MUL(slab, V_ADD(A, tdm)),
-                               V_MUL(tri, V_MUL(A, q)));
-            leaves = V_OR(leaves,
-                          V_AND(steep2,
-                                V_OR(V_AND(above,
-                                           V_GT(e, V_ADD(h_hi, pad2))),
-                                     V_AND(below,
-                                           V_LT(e, V_SUB(h_lo, pad2))))));
+            vwreal q = VW_MUL(VW_MUL(A, A), VW_LOAD(b->k_area + i));
+            vwreal steep2 = VW_GE(adn, VW_MUL(steep_d, q));
+            vwreal e = VW_ADD(s, VW_MUL(vtmax, dn));
+            vwreal pad2 = VW_ADD(VW_MUL(slab, VW_ADD(A, tdm)),
+                               VW_MUL(tri, VW_MUL(A, q)));
+            leaves = VW_OR(leaves,
+                          VW_AND(steep2,
+                                VW_OR(VW_AND(above,
+                                           VW_GT(e, VW_ADD(h_hi, pad2))),
+                                     VW_AND(below,
+                                           VW_LT(e, VW_SUB(h_lo, pad2))))));
         }
-        const int lanes = (1 << VLANES) - 1;
+        const int lanes = (1 << VWLANES) - 1;
         int wanted = (int)(want >> i) & lanes;
-        int left = wanted & ~(ahead ? V_MASK(leaves) : 0);
+        int left = wanted & ~(ahead ? VW_MASK(leaves) : 0);
         if (!left)
             continue;
         /* misses_quad() */
-        vreal steep = V_GE(adn, dpad);
-        vreal t = V_DIV(V_SUB(V_LOAD(b->h_mid + i), s), dn);
-        vreal px = V_ADD(ox, V_MUL(t, dx)), py = V_ADD(oy, V_MUL(t, dy)),
-              pz = V_ADD(oz, V_MUL(t, dz));
-        vreal qx = V_SUB(px, V_LOAD(b->c0x + i)),
-              qy = V_SUB(py, V_LOAD(b->c0y + i)),
-              qz = V_SUB(pz, V_LOAD(b->c0z + i));
-        vreal ss = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->ax + i)),
-                               V_MUL(qy, V_LOAD(b->ay + i))),
-                         V_MUL(qz, V_LOAD(b->az + i)));
-        vreal tt = V_ADD(V_ADD(V_MUL(qx, V_LOAD(b->bx + i)),
-                               V_MUL(qy, V_LOAD(b->by + i))),
-                         V_MUL(qz, V_LOAD(b->bz + i)));
-        vreal G = V_DIV(g4, adn);
-        vreal B = V_ADD(A, V_MUL(V_ANDNOT(sign, t), d_max));
-        vreal u64B = V_MUL(u64, B);
-        vreal dist = V_ADD(V_MUL(G, V_ADD(V_LOAD(b->h_half + i), u64B)),
+        vwreal steep = VW_GE(adn, dpad);
+        vwreal t = VW_DIV(VW_SUB(VW_LOAD(b->h_mid + i), s), dn);
+        vwreal px = VW_ADD(ox, VW_MUL(t, dx)), py = VW_ADD(oy, VW_MUL(t, dy)),
+              pz = VW_ADD(oz, VW_MUL(t, dz));
+        vwreal qx = VW_SUB(px, VW_LOAD(b->c0x + i)),
+              qy = VW_SUB(py, VW_LOAD(b->c0y + i)),
+              qz = VW_SUB(pz, VW_LOAD(b->c0z + i));
+        vwreal ss = VW_ADD(VW_ADD(VW_MUL(qx, VW_LOAD(b->ax + i)),
+                               VW_MUL(qy, VW_LOAD(b->ay + i))),
+                         VW_MUL(qz, VW_LOAD(b->az + i)));
+        vwreal tt = VW_ADD(VW_ADD(VW_MUL(qx, VW_LOAD(b->bx + i)),
+                               VW_MUL(qy, VW_LOAD(b->by + i))),
+                         VW_MUL(qz, VW_LOAD(b->bz + i)));
+        vwreal G = VW_DIV(g4, adn);
+        vwreal B = VW_ADD(A, VW_MUL(VW_ANDNOT(sign, t), d_max));
+        vwreal u64B = VW_MUL(u64, B);
+        vwreal dist = VW_ADD(VW_MUL(G, VW_ADD(VW_LOAD(b->h_half + i), u64B)),
                            u64B);
-        vreal ms = V_MUL(V_LOAD(b->a1 + i), dist),
-              mt = V_MUL(V_LOAD(b->b1 + i), dist);
-        vreal outside = V_OR(
-            V_OR(V_LT(ss, V_XOR(ms, sign)), V_GT(ss, V_ADD(one, ms))),
-            V_OR(V_LT(tt, V_XOR(mt, sign)), V_GT(tt, V_ADD(one, mt))));
-        vreal misses = V_AND(steep, outside);
-        maybe |= (uint64_t)(left & ~V_MASK(misses)) << i;
+        vwreal ms = VW_MUL(VW_LOAD(b->a1 + i), dist),
+              mt = VW_MUL(VW_LOAD(b->b1 + i), dist);
+        vwreal outside = VW_OR(
+            VW_OR(VW_LT(ss, VW_XOR(ms, sign)), VW_GT(ss, VW_ADD(one, ms))),
+            VW_OR(VW_LT(tt, VW_XOR(mt, sign)), VW_GT(tt, VW_ADD(one, mt))));
+        vwreal misses = VW_AND(steep, outside);
+        maybe |= (uint64_t)(left & ~VW_MASK(misses)) << i;
     }
     /* the padding lanes past n */
     return b->n < 64 ? maybe & (((uint64_t)1 << b->n) - 1) : maybe;
