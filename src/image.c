@@ -50,7 +50,7 @@ svet_status image_alloc(image_t *img, int width, int height, int channels,
         return svet_error_set(err, SVET_ERR_RANGE,
                               "image with %d channels: only 3 (RGB) or 4 "
                               "(RGBA)", channels);
-    size_t bytes;
+    size_t bytes = 0;
     svet_status st = image_check_size(width, height, channels, sizeof(float),
                                       &bytes, err);
     if (st != SVET_OK)
@@ -89,7 +89,7 @@ svet_status image_accum_alloc(image_accum_t *acc, int width, int height,
                               svet_error *err)
 {
     memset(acc, 0, sizeof *acc);
-    size_t sum_bytes, count_bytes;
+    size_t sum_bytes = 0, count_bytes = 0;
     svet_status st = image_check_size(width, height, 3, sizeof(double),
                                       &sum_bytes, err);
     if (st == SVET_OK)
