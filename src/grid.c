@@ -15,8 +15,10 @@
  *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
  *          an empty block in one step (macro-regions, Devillers 1989);
  *          a cell's quads through the sign test four triangles at a
- *          time (mesh_lanes_reject_soa), the survivors through the full
- *          test; elsewhere (double, no SSE2) one triangle at a time;
+ *          time (mesh_lanes_reject_soa; with AVX two quads, eight
+ *          triangles, at a time: mesh_wide_reject_soa2), the survivors
+ *          through the full test; elsewhere (double, no SSE2) one
+ *          triangle at a time;
  *   tables: both grids as accel.h's accel_ops_t (grid_accels, at the
  *          end), which accel.c calls without naming this file.
  * Tests: tests/test_grid.c, tests/test_accel.c
@@ -930,6 +932,9 @@ typedef struct {
     double o[3], d[3], inv_d[3];
     double t0, t1;  /* the query interval widened by the slack */
     double bias;    /* WALK_SLACK diag / |d| */
+#if GRID_QUADS && MESH_WIDE
+    mesh_wide_ray_t wr; /* for two quads at once (where there are quads) */
+#endif
 } walk_t;
 
 /* The part [*t0, *t1] of [lo, hi] (ray interval) inside the box. */
@@ -970,6 +975,10 @@ static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
     double tmin = (double)q->tmin, tmax = (double)q->tmax;
     w->t0 = tmin - WALK_SLACK * fabs(tmin) - w->bias;
     w->t1 = tmax + WALK_SLACK * fabs(tmax) + w->bias;
+#if GRID_QUADS && MESH_WIDE
+    if (g->quads)
+        mesh_wide_ray_prepare(&w->wr, &q->mr);
+#endif
 }
 
 /* Where the walk may stop once the nearest hit so far is at tmax: a cell
@@ -1136,33 +1145,58 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
 
-/* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
- * quad's triangles at once (mesh_lanes_reject_soa), then, for each lane it
- * cannot reject, the mailbox and the full test. The same answers as
- * primset_test() on each triangle: a lane is rejected only where
- * mesh_ray_intersect() returns false at that very test, with the same
- * bits (mesh.h), the mailbox only keeps a triangle from being tested
- * twice, and the nearest-hit rule does not depend on the order. A
- * triangle the sign test rejects is not entered in the mailbox (nor
- * counted in q->tests): in the next cell it is rejected again, as
- * cheaply. Returns true when a shadow query found a hit. */
-static bool test_quads(const primset_t *ps, primset_query_t *q,
-                       const grid_quad_t *qd, uint32_t nq, bool shadow)
+/* The full test of the lanes `left` of the quads qd (lane j in quad
+ * j / MESH_BATCH), which the sign test could not reject, through the
+ * mailbox. Returns true when a shadow query found a hit. */
+static inline bool test_lanes(const primset_t *ps, primset_query_t *q,
+                              const grid_quad_t *qd, unsigned left,
+                              bool shadow)
 {
+    for (int j = 0; left; j++, left >>= 1) {
+        if (!(left & 1))
+            continue;
+        uint32_t ref = qd[j / MESH_BATCH].ref[j % MESH_BATCH];
+        if (ref == GRID_QUAD_PAD) /* padding is last */
+            break;
+        if (!primset_seen(q, ref) && primset_test_tri(ps, q, ref) && shadow)
+            return true;
+    }
+    return false;
+}
+
+/* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
+ * quad's triangles at once (mesh_lanes_reject_soa; where the widest
+ * vectors hold two quads, AVX, two quads at once with
+ * mesh_wide_reject_soa2), then, for each lane it cannot reject, the
+ * mailbox and the full test. The same answers as primset_test() on each
+ * triangle: a lane is rejected only where mesh_ray_intersect() returns
+ * false at that very test, with the same bits (mesh.h), the mailbox only
+ * keeps a triangle from being tested twice, and the nearest-hit rule does
+ * not depend on the order. A triangle the sign test rejects is not
+ * entered in the mailbox (nor counted in q->tests): in the next cell it
+ * is rejected again, as cheaply. Returns true when a shadow query found a
+ * hit. */
+static bool test_quads(const primset_t *ps, const walk_t *w,
+                       primset_query_t *q, const grid_quad_t *qd, uint32_t nq,
+                       bool shadow)
+{
+    (void)w;
 #if GRID_QUADS
-    for (uint32_t i = 0; i < nq; i++) {
+    uint32_t i = 0;
+#if MESH_WIDE
+    for (; i + 1 < nq; i += 2) {
+        unsigned left = ~mesh_wide_reject_soa2(qd[i].c, qd[i + 1].c, &q->mr,
+                                               &w->wr) &
+                        ((1u << (2 * MESH_BATCH)) - 1);
+        if (left && test_lanes(ps, q, qd + i, left, shadow))
+            return true;
+    }
+#endif
+    for (; i < nq; i++) {
         unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q->mr) &
                         ((1u << MESH_BATCH) - 1);
-        for (int j = 0; left; j++, left >>= 1) {
-            uint32_t ref = qd[i].ref[j];
-            if (!(left & 1))
-                continue;
-            if (ref == GRID_QUAD_PAD) /* padding is last */
-                break;
-            if (!primset_seen(q, ref) && primset_test_tri(ps, q, ref) &&
-                shadow)
-                return true;
-        }
+        if (left && test_lanes(ps, q, qd + i, left, shadow))
+            return true;
     }
 #else
     (void)ps;
@@ -1251,7 +1285,7 @@ static bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
 {
     if (GRID_QUADS && g->quads) {
         uint32_t a = g->qstart[f], b = g->qstart[f + 1] & ~GRID_MORE;
-        if (test_quads(g->ps, q, g->quads + (a & ~GRID_MORE),
+        if (test_quads(g->ps, w, q, g->quads + (a & ~GRID_MORE),
                        b - (a & ~GRID_MORE), shadow))
             return true;
         if (!(a & GRID_MORE))
