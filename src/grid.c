@@ -1012,7 +1012,12 @@ static double plane_t(const grid_node_t *nd, const walk_t *w, int a, long p)
  * blk and bit the current block and the cell's bit in its word, dblk and
  * dbit their steps; steps the cells and empty blocks visited. */
 typedef struct {
-    double t[3], dt[3], tb[3], db[3];
+    struct {
+        double t, dt, tb, db; /* per axis, not four arrays: the compiler
+                                 then keeps tx, ty, tz apart in registers
+                                 (adjacent, it packed two in a vector and
+                                 unpacked them at every step) */
+    } ax[3];
     int lc[3], lb[3], sg[3], ix[3], dbit[3];
     long dblk[3];
     long blk;
@@ -1067,8 +1072,8 @@ static inline int nearest_axis(double tx, double ty, double tz, double *t)
 static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
                            const uint64_t *bmask, dda_t *s, double tend)
 {
-    double tx = s->tb[0], ty = s->tb[1], tz = s->tb[2];
-    const double dx = s->db[0], dy = s->db[1], dz = s->db[2];
+    double tx = s->ax[0].tb, ty = s->ax[1].tb, tz = s->ax[2].tb;
+    const double dx = s->ax[0].db, dy = s->ax[1].db, dz = s->ax[2].db;
     const long bx = s->dblk[0], by = s->dblk[1], bz = s->dblk[2];
     int lx = s->lb[0], ly = s->lb[1], lz = s->lb[2];
     int a = 0;      /* the axis of the last step */
@@ -1116,9 +1121,9 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
     s->lb[0] = lx;
     s->lb[1] = ly;
     s->lb[2] = lz;
-    s->tb[0] = tx;
-    s->tb[1] = ty;
-    s->tb[2] = tz;
+    s->ax[0].tb = tx;
+    s->ax[1].tb = ty;
+    s->ax[2].tb = tz;
     /* Enter the block at tin through its face on axis a: on a and on the
      * other axes whose block changed, the block's first cell, t from
      * plane_t(); then, on every axis but a, on past the cell planes the
@@ -1129,12 +1134,12 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
         if (sg != 0 && (b == a || (moved >> b & 1))) {
             long bc = sg > 0 ? nd->nb[b] - 1 - s->lb[b] : s->lb[b];
             s->lc[b] = entry_lc(nd, s, b);
-            s->t[b] = plane_t(nd, w, b,
+            s->ax[b].t = plane_t(nd, w, b,
                               GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
         }
         if (b != a)
-            while (s->lc[b] > 0 && s->t[b] < tin) {
-                s->t[b] += s->dt[b];
+            while (s->lc[b] > 0 && s->ax[b].t < tin) {
+                s->ax[b].t += s->ax[b].dt;
                 s->lc[b]--;
             }
         s->bit += local_cell(nd, s, b) * bit_stride[b];
@@ -1279,8 +1284,16 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
     return nb && test_batch(ps, q, qb, rb, nb, shadow);
 }
 
+/* Kept out of walk()'s loop, where compilers allow: inlined, its
+ * registers pushed the walk's state (lc, bit, steps) onto the stack. */
+#if defined(__GNUC__) || defined(__clang__)
+#define GRID_NOINLINE __attribute__((noinline))
+#else
+#define GRID_NOINLINE
+#endif
+
 /* Test non-empty cell f: its quads, then its other items. */
-static bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
+static GRID_NOINLINE bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
                       uint32_t f, bool shadow)
 {
     if (GRID_QUADS && g->quads) {
@@ -1359,27 +1372,27 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         if (sg > 0) {
             s.lb[a] = nd->nb[a] - 1 - bl;
             s.lc[a] = entry_lc(nd, &s, a) - loc;
-            s.t[a] = plane_t(nd, w, a, ix + 1);
-            s.dt[a] = nd->w[a] * w->inv_d[a];
-            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * (bl + 1));
+            s.ax[a].t = plane_t(nd, w, a, ix + 1);
+            s.ax[a].dt = nd->w[a] * w->inv_d[a];
+            s.ax[a].tb = plane_t(nd, w, a, (long)GRID_BLOCK * (bl + 1));
         } else if (sg < 0) {
             s.lc[a] = loc;
             s.lb[a] = bl;
-            s.t[a] = plane_t(nd, w, a, ix);
-            s.dt[a] = -nd->w[a] * w->inv_d[a];
-            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * bl);
+            s.ax[a].t = plane_t(nd, w, a, ix);
+            s.ax[a].dt = -nd->w[a] * w->inv_d[a];
+            s.ax[a].tb = plane_t(nd, w, a, (long)GRID_BLOCK * bl);
         } else {
             s.lc[a] = s.lb[a] = 0;
-            s.t[a] = s.tb[a] = (double)INFINITY;
-            s.dt[a] = 0;
+            s.ax[a].t = s.ax[a].tb = (double)INFINITY;
+            s.ax[a].dt = 0;
         }
-        s.db[a] = GRID_BLOCK * s.dt[a];
+        s.ax[a].db = GRID_BLOCK * s.ax[a].dt;
         s.dbit[a] = sg * bit_stride[a];
         s.dblk[a] = sg * bstride[a];
         s.blk += bl * bstride[a];
         s.bit += loc * bit_stride[a];
     }
-    const double dtx = s.dt[0], dty = s.dt[1], dtz = s.dt[2];
+    const double dtx = s.ax[0].dt, dty = s.ax[1].dt, dtz = s.ax[2].dt;
     const int dbx = s.dbit[0], dby = s.dbit[1], dbz = s.dbit[2];
     double tend = walk_end(w, q, t1);
     bool hit = false;
@@ -1388,7 +1401,7 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         goto done;
     for (;;) {
         /* the hot state in scalars, which the compiler keeps in registers */
-        double tx = s.t[0], ty = s.t[1], tz = s.t[2];
+        double tx = s.ax[0].t, ty = s.ax[1].t, tz = s.ax[2].t;
         int lx = s.lc[0], ly = s.lc[1], lz = s.lc[2];
         long steps = s.steps;
         int bit = s.bit;
@@ -1433,9 +1446,9 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
             steps++;
         }
         /* out of the block, into the next one or out of the grid */
-        s.t[0] = tx;
-        s.t[1] = ty;
-        s.t[2] = tz;
+        s.ax[0].t = tx;
+        s.ax[1].t = ty;
+        s.ax[2].t = tz;
         s.lc[0] = lx;
         s.lc[1] = ly;
         s.lc[2] = lz;
@@ -1448,8 +1461,8 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         s.lc[a] = entry_lc(nd, &s, a);
         s.bit = bit - (GRID_BLOCK - 1) * s.dbit[a];
         s.blk += s.dblk[a];
-        s.t[a] += s.dt[a];
-        s.tb[a] += s.db[a];
+        s.ax[a].t += s.ax[a].dt;
+        s.ax[a].tb += s.ax[a].db;
         mask = bmask[s.blk];
         if (mask == 0 && !(mask = skip_empty(nd, w, bmask, &s, tend)))
             goto done;
