@@ -1293,8 +1293,9 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
 #endif
 
 /* Test non-empty cell f: its quads, then its other items. */
-static GRID_NOINLINE bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
-                      uint32_t f, bool shadow)
+static GRID_NOINLINE bool test_full(const grid_t *g, const walk_t *w,
+                                    primset_query_t *q, uint32_t f,
+                                    bool shadow)
 {
     if (GRID_QUADS && g->quads) {
         uint32_t a = g->qstart[f], b = g->qstart[f + 1] & ~GRID_MORE;
