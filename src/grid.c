@@ -1150,6 +1150,20 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
 
+/* The number of the lowest set bit of x (x != 0): TZCNT/BSF where the
+ * compiler offers it. */
+static inline int lowest_bit(unsigned x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(x);
+#else
+    int j = 0;
+    for (; !(x & 1); x >>= 1)
+        j++;
+    return j;
+#endif
+}
+
 /* The full test of the lanes `left` of the quads qd (lane j in quad
  * j / MESH_BATCH), which the sign test could not reject, through the
  * mailbox. Returns true when a shadow query found a hit. */
@@ -1157,9 +1171,9 @@ static inline bool test_lanes(const primset_t *ps, primset_query_t *q,
                               const grid_quad_t *qd, unsigned left,
                               bool shadow)
 {
-    for (int j = 0; left; j++, left >>= 1) {
-        if (!(left & 1))
-            continue;
+    /* one turn per lane kept (usually one or two of eight), not per lane */
+    for (; left; left &= left - 1) {
+        int j = lowest_bit(left);
         uint32_t ref = qd[j / MESH_BATCH].ref[j % MESH_BATCH];
         if (ref == GRID_QUAD_PAD) /* padding is last */
             break;
@@ -1367,7 +1381,9 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         int ix = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
         int sg = !isfinite(w->inv_d[a]) ? 0 : w->d[a] > 0 ? 1
                                            : w->d[a] < 0 ? -1 : 0;
-        int loc = ix % GRID_BLOCK, bl = ix / GRID_BLOCK;
+        /* ix >= 0: unsigned, so that % and / are a mask and a shift */
+        int loc = (int)((unsigned)ix % GRID_BLOCK);
+        int bl = (int)((unsigned)ix / GRID_BLOCK);
         s.ix[a] = ix;
         s.sg[a] = sg;
         if (sg > 0) {
