@@ -274,7 +274,8 @@ static void machine(int argc, char **argv)
            "%s\n\n",
            GRID_QUADS ? "where a grid has quads (grid.h: from "
                         "GRID_QUAD_MIN_DEFAULT mesh triangles on), only the "
-                        "triangles their four-lane sign test kept"
+                        "triangles their sign test (four lanes, eight "
+                        "with AVX) kept"
                       : "this build has no quads");
 }
 
