@@ -924,6 +924,15 @@ void grid_free(grid_t *g)
 
 /* --- the walk (Amanatides & Woo 1987) ------------------------------------- */
 
+/* The per-axis loops of the walk's set-up unrolled where the compiler
+ * takes the hint (gcc's -O2 kept them as loops): callgrind, camera rays
+ * at 1e6, 1,733 -> 1,634 instructions a ray (chapters/ch07/README.md). */
+#if defined(__GNUC__) || defined(__clang__)
+#define GRID_UNROLL3 _Pragma("GCC unroll 3")
+#else
+#define GRID_UNROLL3
+#endif
+
 /* The walk's slack, 256 u (see the top of the file). */
 #define WALK_SLACK (256 * (double)REAL_UNIT_ROUNDOFF)
 
@@ -941,6 +950,7 @@ typedef struct {
 static bool slab(const walk_t *w, const double min[3], const double max[3],
                  double lo, double hi, double *t0, double *t1)
 {
+    GRID_UNROLL3
     for (int a = 0; a < 3; a++) {
         double tn = (min[a] - w->o[a]) * w->inv_d[a];
         double tf = (max[a] - w->o[a]) * w->inv_d[a];
@@ -965,6 +975,7 @@ static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
 {
     const ray_t *r = q->r;
     double len2 = 0;
+    GRID_UNROLL3
     for (int a = 0; a < 3; a++) {
         w->o[a] = (double)r->o[a];
         w->d[a] = (double)r->d[a];
@@ -1129,6 +1140,7 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
      * plane_t(); then, on every axis but a, on past the cell planes the
      * ray crossed before tin, as the cell DDA would have. */
     s->bit = 0;
+    GRID_UNROLL3
     for (int b = 0; b < 3; b++) {
         int sg = s->sg[b];
         if (sg != 0 && (b == a || (moved >> b & 1))) {
@@ -1377,6 +1389,7 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     s.blk = 0;
     s.bit = 0;
     s.steps = 1;
+    GRID_UNROLL3
     for (int a = 0; a < 3; a++) {
         int ix = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
         int sg = !isfinite(w->inv_d[a]) ? 0 : w->d[a] > 0 ? 1
