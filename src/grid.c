@@ -1146,8 +1146,8 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
         if (sg != 0 && (b == a || (moved >> b & 1))) {
             long bc = sg > 0 ? nd->nb[b] - 1 - s->lb[b] : s->lb[b];
             s->lc[b] = entry_lc(nd, s, b);
-            s->ax[b].t = plane_t(nd, w, b,
-                              GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
+            s->ax[b].t = plane_t(
+                nd, w, b, GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
         }
         if (b != a)
             while (s->lc[b] > 0 && s->ax[b].t < tin) {
