@@ -274,7 +274,8 @@ static void machine(int argc, char **argv)
            "%s\n\n",
            GRID_QUADS ? "where a grid has quads (grid.h: from "
                         "GRID_QUAD_MIN_DEFAULT mesh triangles on), only the "
-                        "triangles their four-lane sign test kept"
+                        "triangles their sign test (four lanes, eight "
+                        "with AVX) kept"
                       : "this build has no quads");
 }
 
@@ -418,9 +419,9 @@ int main(int argc, char **argv)
             objfile = argv[i];
         }
     }
-    machine(argc, argv);
-    print_header();
     if (objfile) {
+        /* read first: a file that cannot be read gives its file:line error
+         * alone, and no table */
         obj_t o;
         svet_error e;
         if (obj_read(objfile, NULL, &o, &e) != SVET_OK) {
@@ -429,6 +430,8 @@ int main(int argc, char **argv)
         }
         for (long i = 0; i < o.nwarnings && i < OBJ_MAX_WARNINGS; i++)
             fprintf(stderr, "%s\n", o.warnings[i]);
+        machine(argc, argv);
+        print_header();
         bbox_t b;
         scene_box(&o.mesh, 1, &b);
         VECTOR3 eye, target;
@@ -441,6 +444,8 @@ int main(int argc, char **argv)
         obj_free(&o);
         return 0;
     }
+    machine(argc, argv);
+    print_header();
     long sizes[] = { 1000, 10000, 100000, 1000000 };
     int nsizes = quick ? 2 : 4;
     size_t mesh_mem = 0;

@@ -103,7 +103,8 @@ typedef struct {
 /* Where the vectors hold MESH_BATCH reals (float with SSE2), and the
  * scene has at least grid_params_t.quad_min mesh triangles, every
  * non-empty cell also keeps its mesh triangles' corners, MESH_BATCH
- * triangles side by side as mesh_lanes_reject_soa() reads them: the walk
+ * triangles side by side as mesh_lanes_reject_soa() reads them (and
+ * mesh_wide_reject_soa2(), two quads at once, with AVX): the walk
  * tests a cell's triangles without gathering their corners from the
  * primset (one cache line each, scattered) or transposing them. Without
  * quads it gathers MESH_BATCH triangles the mailbox lets through and

@@ -282,12 +282,6 @@ static inline unsigned mesh_ray_reject_plain(const real *const q[MESH_BATCH],
 }
 
 #ifdef SIMD_REAL
-#ifdef SVET_DOUBLE
-#define MESH_V_NEQ _mm_cmpneq_pd
-#else
-#define MESH_V_NEQ _mm_cmpneq_ps
-#endif
-
 /* The 9 corner coordinates (x0 y0 z0 x1 ... z2) of the VLANES triangles
  * q[0 ..) as 9 vectors, lane j from q[j]. */
 static inline void mesh_lanes_load(const real *const *q, vreal c[9])
@@ -312,48 +306,60 @@ static inline void mesh_lanes_load(const real *const *q, vreal c[9])
 #endif
 }
 
-/* The sign test of mesh_lanes_reject() on corners already permuted
- * (p0 = (x, y, z) of corner 0 in the ray's kx, ky, kz order, ...). */
-static inline unsigned mesh_lanes_reject_perm(
-    vreal p0x, vreal p0y, vreal p0z, vreal p1x, vreal p1y, vreal p1z,
-    vreal p2x, vreal p2y, vreal p2z, const mesh_ray_t *mr)
-{
-    const vreal ox = mr->vo[0], oy = mr->vo[1], oz = mr->vo[2];
-    const vreal sx = mr->vsx, sy = mr->vsy;
-    vreal a0z = V_SUB(p0z, oz), a1z = V_SUB(p1z, oz), a2z = V_SUB(p2z, oz);
-    vreal x0 = V_ADD(V_SUB(p0x, ox), V_MUL(sx, a0z));
-    vreal y0 = V_ADD(V_SUB(p0y, oy), V_MUL(sy, a0z));
-    vreal x1 = V_ADD(V_SUB(p1x, ox), V_MUL(sx, a1z));
-    vreal y1 = V_ADD(V_SUB(p1y, oy), V_MUL(sy, a1z));
-    vreal x2 = V_ADD(V_SUB(p2x, ox), V_MUL(sx, a2z));
-    vreal y2 = V_ADD(V_SUB(p2y, oy), V_MUL(sy, a2z));
-    vreal e0 = V_SUB(V_MUL(x1, y2), V_MUL(y1, x2));
-    vreal e1 = V_SUB(V_MUL(x2, y0), V_MUL(y2, x0));
-    vreal e2 = V_SUB(V_MUL(x0, y1), V_MUL(y0, x1));
-    const vreal zero = V_SET1(0);
-    vreal nz = MESH_V_NEQ(V_MUL(V_MUL(e0, e1), e2), zero);
-    vreal neg = V_OR(V_OR(V_LT(e0, zero), V_LT(e1, zero)), V_LT(e2, zero));
-    vreal pos = V_OR(V_OR(V_GT(e0, zero), V_GT(e1, zero)), V_GT(e2, zero));
-    return (unsigned)V_MASK(V_AND(nz, V_AND(neg, pos)));
-}
+/* The sign test of mesh_lane_rejects() on corners already permuted (p0 =
+ * (x, y, z) of corner 0 in the ray's kx, ky, kz order, ...), o the ray's
+ * origin in that order and sx, sy its shear, in every lane: written once
+ * for vectors of type T and the macros P_ADD, P_SUB, ... of simd.h (P is
+ * V or VW), and made for SSE2's vectors and, where they are wider, for
+ * the widest (MESH_WIDE). */
+#define MESH_DEFINE_LANES_REJECT(NAME, T, P)                                  \
+    static inline unsigned NAME(T p0x, T p0y, T p0z, T p1x, T p1y, T p1z,     \
+                                T p2x, T p2y, T p2z, const T o[3], T sx,      \
+                                T sy)                                         \
+    {                                                                         \
+        T a0z = P##_SUB(p0z, o[2]), a1z = P##_SUB(p1z, o[2]);                 \
+        T a2z = P##_SUB(p2z, o[2]);                                           \
+        T x0 = P##_ADD(P##_SUB(p0x, o[0]), P##_MUL(sx, a0z));                 \
+        T y0 = P##_ADD(P##_SUB(p0y, o[1]), P##_MUL(sy, a0z));                 \
+        T x1 = P##_ADD(P##_SUB(p1x, o[0]), P##_MUL(sx, a1z));                 \
+        T y1 = P##_ADD(P##_SUB(p1y, o[1]), P##_MUL(sy, a1z));                 \
+        T x2 = P##_ADD(P##_SUB(p2x, o[0]), P##_MUL(sx, a2z));                 \
+        T y2 = P##_ADD(P##_SUB(p2y, o[1]), P##_MUL(sy, a2z));                 \
+        T e0 = P##_SUB(P##_MUL(x1, y2), P##_MUL(y1, x2));                     \
+        T e1 = P##_SUB(P##_MUL(x2, y0), P##_MUL(y2, x0));                     \
+        T e2 = P##_SUB(P##_MUL(x0, y1), P##_MUL(y0, x1));                     \
+        const T zero = P##_SET1(0);                                           \
+        T nz = P##_NEQ(P##_MUL(P##_MUL(e0, e1), e2), zero);                   \
+        T neg = P##_OR(P##_OR(P##_LT(e0, zero), P##_LT(e1, zero)),            \
+                       P##_LT(e2, zero));                                     \
+        T pos = P##_OR(P##_OR(P##_GT(e0, zero), P##_GT(e1, zero)),            \
+                       P##_GT(e2, zero));                                     \
+        return (unsigned)P##_MASK(P##_AND(nz, P##_AND(neg, pos)));            \
+    }
+
+/* F called with the 9 corner vectors L(0) ... L(8) (x0 y0 z0 x1 ... z2)
+ * permuted for the ray (kz its largest axis, kx = kz + 1, ky = kx + 1,
+ * mod 3), then the other arguments. The three permutations are spelled
+ * out so that the vectors stay in registers (no array, no copy). */
+#define MESH_PERMUTED(kz, F, L, ...)                                          \
+    ((kz) == 0   ? F(L(1), L(2), L(0), L(4), L(5), L(3), L(7), L(8), L(6),    \
+                     __VA_ARGS__)                                             \
+     : (kz) == 1 ? F(L(2), L(0), L(1), L(5), L(3), L(4), L(8), L(6), L(7),    \
+                     __VA_ARGS__)                                             \
+                 : F(L(0), L(1), L(2), L(3), L(4), L(5), L(6), L(7), L(8),    \
+                     __VA_ARGS__))
+
+MESH_DEFINE_LANES_REJECT(mesh_lanes_reject_perm, vreal, V)
 
 /* mesh_lanes_reject_perm() on the 9 corner vectors c (x0 y0 z0 x1 ...
- * z2, as mesh_lanes_load() gives them), permuted for the ray. The three
- * permutations are spelled out so that the vectors stay in registers. */
+ * z2, as mesh_lanes_load() gives them). */
 static inline unsigned mesh_lanes_reject_vec(const vreal c[9],
                                              const mesh_ray_t *mr)
 {
-    switch (mr->kz) {
-    case 0: /* kx = 1, ky = 2 */
-        return mesh_lanes_reject_perm(c[1], c[2], c[0], c[4], c[5], c[3],
-                                      c[7], c[8], c[6], mr);
-    case 1: /* kx = 2, ky = 0 */
-        return mesh_lanes_reject_perm(c[2], c[0], c[1], c[5], c[3], c[4],
-                                      c[8], c[6], c[7], mr);
-    default: /* kx = 0, ky = 1 */
-        return mesh_lanes_reject_perm(c[0], c[1], c[2], c[3], c[4], c[5],
-                                      c[6], c[7], c[8], mr);
-    }
+#define MESH_C_(k) c[k]
+    return MESH_PERMUTED(mr->kz, mesh_lanes_reject_perm, MESH_C_, mr->vo,
+                         mr->vsx, mr->vsy);
+#undef MESH_C_
 }
 
 /* mesh_lane_rejects() for VLANES triangles at once, each V_ macro one
@@ -375,11 +381,60 @@ static inline unsigned mesh_lanes_reject_soa(const real *soa,
 {
     if (!mr->fast)
         return 0;
-    vreal c[9];
-    for (int k = 0; k < 9; k++)
-        c[k] = V_LOAD(soa + k * VLANES);
-    return mesh_lanes_reject_vec(c, mr);
+#define MESH_SOA_(k) V_LOAD(soa + (k) * VLANES)
+    return MESH_PERMUTED(mr->kz, mesh_lanes_reject_perm, MESH_SOA_, mr->vo,
+                         mr->vsx, mr->vsy);
+#undef MESH_SOA_
 }
+
+/* The widest vectors, where they hold twice SSE2's (AVX: 8 floats, 4
+ * doubles): the same sign test on two blocks of VLANES triangles side by
+ * side at once, lanes 0 .. VLANES-1 from the first block, the others
+ * from the second. */
+#if VWLANES == 2 * VLANES
+#define MESH_WIDE 1
+
+/* The ray's origin (permuted) and shear in every lane of the widest
+ * vectors: made once per ray by the caller, which keeps it on its stack
+ * (mesh_ray_t does not hold it: a struct on the heap need not be aligned
+ * for these vectors). */
+typedef struct {
+    vwreal o[3], sx, sy;
+} mesh_wide_ray_t;
+
+/* This function can't fail. */
+static inline void mesh_wide_ray_prepare(mesh_wide_ray_t *w,
+                                         const mesh_ray_t *mr)
+{
+    w->o[0] = VW_SET1(mr->r->o[mr->kx]);
+    w->o[1] = VW_SET1(mr->r->o[mr->ky]);
+    w->o[2] = VW_SET1(mr->r->o[mr->kz]);
+    w->sx = VW_SET1(mr->sx);
+    w->sy = VW_SET1(mr->sy);
+}
+
+MESH_DEFINE_LANES_REJECT(mesh_wide_reject_perm, vwreal, VW)
+
+/* mesh_lanes_reject_soa() of the blocks lo and hi (each as
+ * mesh_lanes_reject_soa() reads one) at once: bits 0 .. VLANES-1 are lo's
+ * mask, the next VLANES hi's, bit for bit. For a ray that is not fast,
+ * no lane is rejected. This function can't fail. */
+static inline unsigned mesh_wide_reject_soa2(const real *lo, const real *hi,
+                                             const mesh_ray_t *mr,
+                                             const mesh_wide_ray_t *w)
+{
+    if (!mr->fast)
+        return 0;
+#define MESH_SOA2_(k) VW_LOAD2(lo + (k) * VLANES, hi + (k) * VLANES)
+    return MESH_PERMUTED(mr->kz, mesh_wide_reject_perm, MESH_SOA2_, w->o,
+                         w->sx, w->sy);
+#undef MESH_SOA2_
+}
+#else
+#define MESH_WIDE 0
+#endif
+#else
+#define MESH_WIDE 0
 #endif
 
 /* Which of the triangles q[0 .. MESH_BATCH) the ray surely misses: bit j

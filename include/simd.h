@@ -5,12 +5,15 @@
  * vectors the compiler targets (vwreal, VW_): AVX's 8 floats or 4 doubles
  * where it targets AVX (the Makefile's -march=native on such a machine),
  * else the same as V_, used by brute force's parallelogram batch
- * (parallelogram.c). Each macro is one IEEE operation, so code written
+ * (parallelogram.c) and the sign test of a grid cell's triangles (mesh.h). Each macro is one IEEE operation, so code written
  * with them computes in every lane the bits that the same expressions give
  * in plain C, as long as it keeps their order (neither has a fused
  * multiply-add, and the build has -ffp-contract=off); V_MAX(a, b) is
  * a > b ? a : b, real_max's answer, NaN included, and every comparison is
- * false when either side is NaN (AVX's _CMP_*_OQ, as SSE2's). Without
+ * false when either side is NaN (AVX's _CMP_*_OQ, as SSE2's) but V_NEQ,
+ * which is true then (_CMP_NEQ_UQ, as SSE2's cmpneq). VW_LOAD2(lo, hi),
+ * where the widest vectors hold twice SSE2's (AVX), loads VLANES reals
+ * from lo into the low lanes and VLANES from hi into the high ones. Without
  * SSE2, SIMD_REAL is undefined and the callers run their plain loops.
  * Tests: tests/test_parallelogram.c and tests/test_mesh.c (the vector
  * loops against their plain loops)
@@ -42,6 +45,7 @@ typedef __m128d vreal;
 #define V_LT _mm_cmplt_pd
 #define V_LE _mm_cmple_pd
 #define V_MASK _mm_movemask_pd
+#define V_NEQ _mm_cmpneq_pd
 #else
 typedef __m128 vreal;
 #define VLANES 4
@@ -61,6 +65,7 @@ typedef __m128 vreal;
 #define V_LT _mm_cmplt_ps
 #define V_LE _mm_cmple_ps
 #define V_MASK _mm_movemask_ps
+#define V_NEQ _mm_cmpneq_ps
 #endif
 #endif
 
@@ -87,6 +92,8 @@ typedef __m256d vwreal;
 #define VW_LT(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
 #define VW_LE(a, b) _mm256_cmp_pd(a, b, _CMP_LE_OQ)
 #define VW_MASK _mm256_movemask_pd
+#define VW_NEQ(a, b) _mm256_cmp_pd(a, b, _CMP_NEQ_UQ)
+#define VW_LOAD2(lo, hi) _mm256_loadu2_m128d(hi, lo)
 #else
 typedef __m256 vwreal;
 #define VWLANES 8
@@ -106,6 +113,8 @@ typedef __m256 vwreal;
 #define VW_LT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
 #define VW_LE(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
 #define VW_MASK _mm256_movemask_ps
+#define VW_NEQ(a, b) _mm256_cmp_ps(a, b, _CMP_NEQ_UQ)
+#define VW_LOAD2(lo, hi) _mm256_loadu2_m128(hi, lo)
 #endif
 #else
 typedef vreal vwreal;
@@ -126,6 +135,7 @@ typedef vreal vwreal;
 #define VW_LT V_LT
 #define VW_LE V_LE
 #define VW_MASK V_MASK
+#define VW_NEQ V_NEQ
 #endif
 #endif
 

@@ -15,8 +15,10 @@
  *   walk:  the 3D-DDA of Amanatides & Woo 1987, in double, crossing
  *          an empty block in one step (macro-regions, Devillers 1989);
  *          a cell's quads through the sign test four triangles at a
- *          time (mesh_lanes_reject_soa), the survivors through the full
- *          test; elsewhere (double, no SSE2) one triangle at a time;
+ *          time (mesh_lanes_reject_soa; with AVX two quads, eight
+ *          triangles, at a time: mesh_wide_reject_soa2), the survivors
+ *          through the full test; elsewhere (double, no SSE2) one
+ *          triangle at a time;
  *   tables: both grids as accel.h's accel_ops_t (grid_accels, at the
  *          end), which accel.c calls without naming this file.
  * Tests: tests/test_grid.c, tests/test_accel.c
@@ -922,6 +924,15 @@ void grid_free(grid_t *g)
 
 /* --- the walk (Amanatides & Woo 1987) ------------------------------------- */
 
+/* The per-axis loops of the walk's set-up unrolled where the compiler
+ * takes the hint (gcc's -O2 kept them as loops): callgrind, camera rays
+ * at 1e6, 1,733 -> 1,634 instructions a ray (chapters/ch07/README.md). */
+#if defined(__GNUC__) || defined(__clang__)
+#define GRID_UNROLL3 _Pragma("GCC unroll 3")
+#else
+#define GRID_UNROLL3
+#endif
+
 /* The walk's slack, 256 u (see the top of the file). */
 #define WALK_SLACK (256 * (double)REAL_UNIT_ROUNDOFF)
 
@@ -930,12 +941,16 @@ typedef struct {
     double o[3], d[3], inv_d[3];
     double t0, t1;  /* the query interval widened by the slack */
     double bias;    /* WALK_SLACK diag / |d| */
+#if GRID_QUADS && MESH_WIDE
+    mesh_wide_ray_t wr; /* for two quads at once (where there are quads) */
+#endif
 } walk_t;
 
 /* The part [*t0, *t1] of [lo, hi] (ray interval) inside the box. */
 static bool slab(const walk_t *w, const double min[3], const double max[3],
                  double lo, double hi, double *t0, double *t1)
 {
+    GRID_UNROLL3
     for (int a = 0; a < 3; a++) {
         double tn = (min[a] - w->o[a]) * w->inv_d[a];
         double tf = (max[a] - w->o[a]) * w->inv_d[a];
@@ -960,6 +975,7 @@ static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
 {
     const ray_t *r = q->r;
     double len2 = 0;
+    GRID_UNROLL3
     for (int a = 0; a < 3; a++) {
         w->o[a] = (double)r->o[a];
         w->d[a] = (double)r->d[a];
@@ -970,6 +986,10 @@ static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
     double tmin = (double)q->tmin, tmax = (double)q->tmax;
     w->t0 = tmin - WALK_SLACK * fabs(tmin) - w->bias;
     w->t1 = tmax + WALK_SLACK * fabs(tmax) + w->bias;
+#if GRID_QUADS && MESH_WIDE
+    if (g->quads)
+        mesh_wide_ray_prepare(&w->wr, &q->mr);
+#endif
 }
 
 /* Where the walk may stop once the nearest hit so far is at tmax: a cell
@@ -1003,7 +1023,12 @@ static double plane_t(const grid_node_t *nd, const walk_t *w, int a, long p)
  * blk and bit the current block and the cell's bit in its word, dblk and
  * dbit their steps; steps the cells and empty blocks visited. */
 typedef struct {
-    double t[3], dt[3], tb[3], db[3];
+    struct {
+        double t, dt, tb, db; /* per axis, not four arrays: the compiler
+                                 then keeps tx, ty, tz apart in registers
+                                 (adjacent, it packed two in a vector and
+                                 unpacked them at every step) */
+    } ax[3];
     int lc[3], lb[3], sg[3], ix[3], dbit[3];
     long dblk[3];
     long blk;
@@ -1058,8 +1083,8 @@ static inline int nearest_axis(double tx, double ty, double tz, double *t)
 static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
                            const uint64_t *bmask, dda_t *s, double tend)
 {
-    double tx = s->tb[0], ty = s->tb[1], tz = s->tb[2];
-    const double dx = s->db[0], dy = s->db[1], dz = s->db[2];
+    double tx = s->ax[0].tb, ty = s->ax[1].tb, tz = s->ax[2].tb;
+    const double dx = s->ax[0].db, dy = s->ax[1].db, dz = s->ax[2].db;
     const long bx = s->dblk[0], by = s->dblk[1], bz = s->dblk[2];
     int lx = s->lb[0], ly = s->lb[1], lz = s->lb[2];
     int a = 0;      /* the axis of the last step */
@@ -1107,25 +1132,26 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
     s->lb[0] = lx;
     s->lb[1] = ly;
     s->lb[2] = lz;
-    s->tb[0] = tx;
-    s->tb[1] = ty;
-    s->tb[2] = tz;
+    s->ax[0].tb = tx;
+    s->ax[1].tb = ty;
+    s->ax[2].tb = tz;
     /* Enter the block at tin through its face on axis a: on a and on the
      * other axes whose block changed, the block's first cell, t from
      * plane_t(); then, on every axis but a, on past the cell planes the
      * ray crossed before tin, as the cell DDA would have. */
     s->bit = 0;
+    GRID_UNROLL3
     for (int b = 0; b < 3; b++) {
         int sg = s->sg[b];
         if (sg != 0 && (b == a || (moved >> b & 1))) {
             long bc = sg > 0 ? nd->nb[b] - 1 - s->lb[b] : s->lb[b];
             s->lc[b] = entry_lc(nd, s, b);
-            s->t[b] = plane_t(nd, w, b,
-                              GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
+            s->ax[b].t = plane_t(
+                nd, w, b, GRID_BLOCK * bc + (sg > 0 ? 1 : GRID_BLOCK - 1));
         }
         if (b != a)
-            while (s->lc[b] > 0 && s->t[b] < tin) {
-                s->t[b] += s->dt[b];
+            while (s->lc[b] > 0 && s->ax[b].t < tin) {
+                s->ax[b].t += s->ax[b].dt;
                 s->lc[b]--;
             }
         s->bit += local_cell(nd, s, b) * bit_stride[b];
@@ -1136,33 +1162,72 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
 
-/* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
- * quad's triangles at once (mesh_lanes_reject_soa), then, for each lane it
- * cannot reject, the mailbox and the full test. The same answers as
- * primset_test() on each triangle: a lane is rejected only where
- * mesh_ray_intersect() returns false at that very test, with the same
- * bits (mesh.h), the mailbox only keeps a triangle from being tested
- * twice, and the nearest-hit rule does not depend on the order. A
- * triangle the sign test rejects is not entered in the mailbox (nor
- * counted in q->tests): in the next cell it is rejected again, as
- * cheaply. Returns true when a shadow query found a hit. */
-static bool test_quads(const primset_t *ps, primset_query_t *q,
-                       const grid_quad_t *qd, uint32_t nq, bool shadow)
+/* The number of the lowest set bit of x (x != 0): TZCNT/BSF where the
+ * compiler offers it. */
+static inline int lowest_bit(unsigned x)
 {
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(x);
+#else
+    int j = 0;
+    for (; !(x & 1); x >>= 1)
+        j++;
+    return j;
+#endif
+}
+
+/* The full test of the lanes `left` of the quads qd (lane j in quad
+ * j / MESH_BATCH), which the sign test could not reject, through the
+ * mailbox. Returns true when a shadow query found a hit. */
+static inline bool test_lanes(const primset_t *ps, primset_query_t *q,
+                              const grid_quad_t *qd, unsigned left,
+                              bool shadow)
+{
+    /* one turn per lane kept (usually one or two of eight), not per lane */
+    for (; left; left &= left - 1) {
+        int j = lowest_bit(left);
+        uint32_t ref = qd[j / MESH_BATCH].ref[j % MESH_BATCH];
+        if (ref == GRID_QUAD_PAD) /* padding is last */
+            break;
+        if (!primset_seen(q, ref) && primset_test_tri(ps, q, ref) && shadow)
+            return true;
+    }
+    return false;
+}
+
+/* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
+ * quad's triangles at once (mesh_lanes_reject_soa; where the widest
+ * vectors hold two quads, AVX, two quads at once with
+ * mesh_wide_reject_soa2), then, for each lane it cannot reject, the
+ * mailbox and the full test. The same answers as primset_test() on each
+ * triangle: a lane is rejected only where mesh_ray_intersect() returns
+ * false at that very test, with the same bits (mesh.h), the mailbox only
+ * keeps a triangle from being tested twice, and the nearest-hit rule does
+ * not depend on the order. A triangle the sign test rejects is not
+ * entered in the mailbox (nor counted in q->tests): in the next cell it
+ * is rejected again, as cheaply. Returns true when a shadow query found a
+ * hit. */
+static bool test_quads(const primset_t *ps, const walk_t *w,
+                       primset_query_t *q, const grid_quad_t *qd, uint32_t nq,
+                       bool shadow)
+{
+    (void)w;
 #if GRID_QUADS
-    for (uint32_t i = 0; i < nq; i++) {
+    uint32_t i = 0;
+#if MESH_WIDE
+    for (; i + 1 < nq; i += 2) {
+        unsigned left = ~mesh_wide_reject_soa2(qd[i].c, qd[i + 1].c, &q->mr,
+                                               &w->wr) &
+                        ((1u << (2 * MESH_BATCH)) - 1);
+        if (left && test_lanes(ps, q, qd + i, left, shadow))
+            return true;
+    }
+#endif
+    for (; i < nq; i++) {
         unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q->mr) &
                         ((1u << MESH_BATCH) - 1);
-        for (int j = 0; left; j++, left >>= 1) {
-            uint32_t ref = qd[i].ref[j];
-            if (!(left & 1))
-                continue;
-            if (ref == GRID_QUAD_PAD) /* padding is last */
-                break;
-            if (!primset_seen(q, ref) && primset_test_tri(ps, q, ref) &&
-                shadow)
-                return true;
-        }
+        if (left && test_lanes(ps, q, qd + i, left, shadow))
+            return true;
     }
 #else
     (void)ps;
@@ -1245,13 +1310,22 @@ static bool test_cell(const grid_t *g, const walk_t *w, primset_query_t *q,
     return nb && test_batch(ps, q, qb, rb, nb, shadow);
 }
 
+/* Kept out of walk()'s loop, where compilers allow: inlined, its
+ * registers pushed the walk's state (lc, bit, steps) onto the stack. */
+#if defined(__GNUC__) || defined(__clang__)
+#define GRID_NOINLINE __attribute__((noinline))
+#else
+#define GRID_NOINLINE
+#endif
+
 /* Test non-empty cell f: its quads, then its other items. */
-static bool test_full(const grid_t *g, const walk_t *w, primset_query_t *q,
-                      uint32_t f, bool shadow)
+static GRID_NOINLINE bool test_full(const grid_t *g, const walk_t *w,
+                                    primset_query_t *q, uint32_t f,
+                                    bool shadow)
 {
     if (GRID_QUADS && g->quads) {
         uint32_t a = g->qstart[f], b = g->qstart[f + 1] & ~GRID_MORE;
-        if (test_quads(g->ps, q, g->quads + (a & ~GRID_MORE),
+        if (test_quads(g->ps, w, q, g->quads + (a & ~GRID_MORE),
                        b - (a & ~GRID_MORE), shadow))
             return true;
         if (!(a & GRID_MORE))
@@ -1315,37 +1389,40 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
     s.blk = 0;
     s.bit = 0;
     s.steps = 1;
+    GRID_UNROLL3
     for (int a = 0; a < 3; a++) {
         int ix = cell_of(nd, a, w->o[a] + t0 * w->d[a]);
         int sg = !isfinite(w->inv_d[a]) ? 0 : w->d[a] > 0 ? 1
                                            : w->d[a] < 0 ? -1 : 0;
-        int loc = ix % GRID_BLOCK, bl = ix / GRID_BLOCK;
+        /* ix >= 0: unsigned, so that % and / are a mask and a shift */
+        int loc = (int)((unsigned)ix % GRID_BLOCK);
+        int bl = (int)((unsigned)ix / GRID_BLOCK);
         s.ix[a] = ix;
         s.sg[a] = sg;
         if (sg > 0) {
             s.lb[a] = nd->nb[a] - 1 - bl;
             s.lc[a] = entry_lc(nd, &s, a) - loc;
-            s.t[a] = plane_t(nd, w, a, ix + 1);
-            s.dt[a] = nd->w[a] * w->inv_d[a];
-            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * (bl + 1));
+            s.ax[a].t = plane_t(nd, w, a, ix + 1);
+            s.ax[a].dt = nd->w[a] * w->inv_d[a];
+            s.ax[a].tb = plane_t(nd, w, a, (long)GRID_BLOCK * (bl + 1));
         } else if (sg < 0) {
             s.lc[a] = loc;
             s.lb[a] = bl;
-            s.t[a] = plane_t(nd, w, a, ix);
-            s.dt[a] = -nd->w[a] * w->inv_d[a];
-            s.tb[a] = plane_t(nd, w, a, (long)GRID_BLOCK * bl);
+            s.ax[a].t = plane_t(nd, w, a, ix);
+            s.ax[a].dt = -nd->w[a] * w->inv_d[a];
+            s.ax[a].tb = plane_t(nd, w, a, (long)GRID_BLOCK * bl);
         } else {
             s.lc[a] = s.lb[a] = 0;
-            s.t[a] = s.tb[a] = (double)INFINITY;
-            s.dt[a] = 0;
+            s.ax[a].t = s.ax[a].tb = (double)INFINITY;
+            s.ax[a].dt = 0;
         }
-        s.db[a] = GRID_BLOCK * s.dt[a];
+        s.ax[a].db = GRID_BLOCK * s.ax[a].dt;
         s.dbit[a] = sg * bit_stride[a];
         s.dblk[a] = sg * bstride[a];
         s.blk += bl * bstride[a];
         s.bit += loc * bit_stride[a];
     }
-    const double dtx = s.dt[0], dty = s.dt[1], dtz = s.dt[2];
+    const double dtx = s.ax[0].dt, dty = s.ax[1].dt, dtz = s.ax[2].dt;
     const int dbx = s.dbit[0], dby = s.dbit[1], dbz = s.dbit[2];
     double tend = walk_end(w, q, t1);
     bool hit = false;
@@ -1354,7 +1431,7 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         goto done;
     for (;;) {
         /* the hot state in scalars, which the compiler keeps in registers */
-        double tx = s.t[0], ty = s.t[1], tz = s.t[2];
+        double tx = s.ax[0].t, ty = s.ax[1].t, tz = s.ax[2].t;
         int lx = s.lc[0], ly = s.lc[1], lz = s.lc[2];
         long steps = s.steps;
         int bit = s.bit;
@@ -1399,9 +1476,9 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
             steps++;
         }
         /* out of the block, into the next one or out of the grid */
-        s.t[0] = tx;
-        s.t[1] = ty;
-        s.t[2] = tz;
+        s.ax[0].t = tx;
+        s.ax[1].t = ty;
+        s.ax[2].t = tz;
         s.lc[0] = lx;
         s.lc[1] = ly;
         s.lc[2] = lz;
@@ -1414,8 +1491,8 @@ static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
         s.lc[a] = entry_lc(nd, &s, a);
         s.bit = bit - (GRID_BLOCK - 1) * s.dbit[a];
         s.blk += s.dblk[a];
-        s.t[a] += s.dt[a];
-        s.tb[a] += s.db[a];
+        s.ax[a].t += s.ax[a].dt;
+        s.ax[a].tb += s.ax[a].db;
         mask = bmask[s.blk];
         if (mask == 0 && !(mask = skip_empty(nd, w, bmask, &s, tend)))
             goto done;

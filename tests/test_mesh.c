@@ -131,7 +131,8 @@ static void batch_corner(real *p, pcg32_t *g, int kind)
                                                       : (real)INFINITY;
 }
 
-/* The batch sign test (SSE2 where there is SSE2) gives the plain lane
+/* The batch sign test (SSE2 where there is SSE2; two blocks of lanes at
+ * once where there is AVX) gives the plain lane
  * loop's mask bit for bit, and rejects a lane only where the watertight
  * test misses it: random triangles, triangles on a quarter grid, edge-on
  * ones (the ray lies in their plane), degenerate ones (a repeated corner,
@@ -143,6 +144,7 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
     pcg32_t g;
     pcg32_seed(&g, 62, 3);
     long cases = 0, rejected = 0, kept = 0, hits = 0, soa_cases = 0;
+    long wide_cases = 0;
     for (int i = 0; i < 50000; i++) {
         real q[MESH_BATCH][9];
         for (int j = 0; j < MESH_BATCH; j++) {
@@ -192,6 +194,10 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
             vec_scale(r.d, r.d, REAL_C(1e9));
         mesh_ray_t mr;
         mesh_ray_prepare(&mr, &r);
+#if MESH_WIDE
+        mesh_wide_ray_t wr;
+        mesh_wide_ray_prepare(&wr, &mr);
+#endif
         const real *qp[MESH_BATCH];
         for (int j = 0; j < MESH_BATCH; j++)
             qp[j] = q[j];
@@ -208,6 +214,22 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
         ck_assert_msg(ms == mp, "case %d: side by side %x, plain lanes %x", i,
                       ms, mp);
         soa_cases++;
+#if MESH_WIDE
+        /* two such blocks at once (AVX): the second holds the lanes in
+         * reverse order, so its mask is the plain mask reversed */
+        real rev[9 * MESH_BATCH];
+        unsigned mrev = 0;
+        for (int j = 0; j < MESH_BATCH; j++) {
+            for (int k = 0; k < 9; k++)
+                rev[k * MESH_BATCH + j] = q[MESH_BATCH - 1 - j][k];
+            mrev |= (mp >> (MESH_BATCH - 1 - j) & 1) << j;
+        }
+        unsigned mw = mesh_wide_reject_soa2(soa, rev, &mr, &wr);
+        ck_assert_msg(mw == (mp | mrev << MESH_BATCH),
+                      "case %d: two blocks %x, plain lanes %x and %x", i, mw,
+                      mp, mrev);
+        wide_cases++;
+#endif
 #endif
         for (int j = 0; j < MESH_BATCH; j++) {
             real t, b[3];
@@ -232,6 +254,9 @@ START_TEST(batch_sign_test_matches_the_plain_lanes_and_never_rejects_a_hit)
     test_report_cases("batch_sign_test_matches_the_plain_lanes_and_never_"
                       "rejects_a_hit (corners side by side)",
                       soa_cases);
+    test_report_cases("batch_sign_test_matches_the_plain_lanes_and_never_"
+                      "rejects_a_hit (two blocks side by side, AVX)",
+                      wide_cases);
 }
 END_TEST
 
