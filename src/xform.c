@@ -892,5 +892,8 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     set_culling(sh);
     set_faces(sh);
     obj->nprims = inner->nprims;
+    /* the world point and frame are written from the inner surface()'s
+     * (surface_point(), then surface_frame() or the face table) */
+    obj->surface_fills = inner->surface_fills;
     return obj;
 }
