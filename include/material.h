@@ -71,6 +71,9 @@ struct material {
                        (the Cornell box's walls), for which eval, pdf and
                        sample take a shortcut with the same answers, bit
                        for bit (material.c); false takes the general way */
+    bool transmits; /* set by material_init: rho_t or rho_dt is not black,
+                       so light from behind the surface can reach the
+                       viewer (the integrator asks at every vertex) */
 };
 typedef struct material material_t;
 

@@ -84,11 +84,12 @@ real integrator_mis_weight(real a, real b)
     return 1 / (1 + r * r);
 }
 
-/* Whether light from behind the surface can scatter toward the viewer. */
+/* Whether light from behind the surface can scatter toward the viewer:
+ * rho_t or rho_dt not black, as material_init() found once (the params
+ * are those it was given). */
 static bool transmits(const material_t *m)
 {
-    const material_params *p = &m->params;
-    return !rad_is_black(p->rho_t) || !rad_is_black(p->rho_dt);
+    return m->transmits;
 }
 
 static void draw2(real u[2], pcg32_t *g)

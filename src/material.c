@@ -59,6 +59,7 @@ static void make_black(material_t *m)
     material_params_default(&m->params);
     m->ncomp = 0;
     m->lambert = false;
+    m->transmits = false; /* the default parameters are black */
 }
 
 svet_status material_init(material_t *m, const material_params *p,
@@ -105,6 +106,7 @@ svet_status material_init(material_t *m, const material_params *p,
     add(m, &t);
     add(m, &dt);
     m->lambert = m->ncomp == 1 && m->comp[0].kind == BRDF_LAMBERT;
+    m->transmits = !is_black(p->rho_t) || !is_black(p->rho_dt);
     if (err)
         svet_error_clear(err);
     return SVET_OK;
