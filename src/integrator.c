@@ -68,6 +68,7 @@ void integrator_init(integrator_t *it, const scene_t *s,
     memset(it, 0, sizeof *it);
     it->scene = s;
     it->lights = lights && lights->n > 0 ? lights : NULL;
+    it->env = it->lights ? lightset_environment(it->lights) : -1;
     it->tracer = tracer;
     it->mode = s->render.integrator;
     it->max_depth = s->render.max_depth;
@@ -198,7 +199,7 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
     int max_depth = it->mode == SCENE_INTEGRATOR_DIRECT
                         ? (it->max_depth < 1 ? it->max_depth : 1)
                         : it->max_depth;
-    const int env = it->lights ? lightset_environment(it->lights) : -1;
+    const int env = it->env;
 
     RADIANCE L = rad_grey(0), beta = rad_grey(1);
     ray_t r = *camera;
