@@ -28,6 +28,8 @@ typedef struct {
     RADIANCE intensity;    /* point light, W/sr */
     const scene_emission_t *emission; /* area light: radiance, sidedness,
                                          the emitting object */
+    real area;             /* area light: its object's area(), asked once
+                              by lightset_build for light_pdf() */
     RADIANCE radiance;     /* environment */
     real power;            /* luminance of the emitted power (W), used to
                               choose among lights */

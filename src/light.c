@@ -64,6 +64,7 @@ svet_status lightset_build(lightset_t *ls, const scene_t *s, svet_error *err)
         /* Lambertian emitter: Phi = pi L A per emitting side */
         real sides = l->emission->two_sided ? 2 : 1;
         real area = o->ops->area(o);
+        l->area = area;
         l->power = isfinite(area)
                        ? luminance_power(l->emission->radiance,
                                          sides * REAL_PI * area)
@@ -230,7 +231,6 @@ real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
     case LIGHT_POINT:
         return 0;
     case LIGHT_AREA: {
-        const COBJECT *o = l->emission->obj;
         real cos_l = -SVECTOR3(wi, ng);
         if (!l->emission->two_sided && cos_l <= 0)
             return 0;
@@ -238,7 +238,7 @@ real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
         VECTOR3 d;
         vec_sub(d, p, pp->cross_point);
         real d2 = vec_length2(d);
-        real area = o->ops->area(o);
+        real area = l->area; /* o->ops->area(o), as lightset_build asked */
         if (!(cos_l > 0) || !(area > 0) || !isfinite(area))
             return 0;
         /* uniform area sampling: p_A = 1/A (every app. D primitive) */
