@@ -802,18 +802,20 @@ START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
 }
 END_TEST
 
-START_TEST(transmits_flag_says_whether_rho_t_or_rho_dt_has_a_nonzero_channel)
+START_TEST(transmits_and_specular_flags_say_what_the_material_holds)
 {
-    /* material_t.transmits, set once by material_init, stands in for the
-     * integrator's test of rho_t and rho_dt at every vertex: checked here
-     * channel by channel (x != 0, so -0 is black) on materials built from
-     * channels 0, -0, the smallest subnormal, tiny and ordinary values;
-     * a material that fails to build is black and does not transmit. */
+    /* material_t.transmits and .specular, set once by material_init,
+     * stand in for what the integrator asked at every vertex. transmits
+     * (rho_t or rho_dt not black) is checked channel by channel (x != 0,
+     * so -0 is black) on materials built from channels 0, -0, the
+     * smallest subnormal, tiny and ordinary values, with and without a
+     * diffuse and a mirror part; a material that fails to build is black
+     * and does not transmit. */
     pcg32_t g;
     pcg32_seed(&g, 4242, 17);
     const real pick[] = { 0, REAL_C(-0.0), REAL_TRUE_MIN, REAL_C(1e-30),
                           REAL_C(0.1), REAL_C(0.3) };
-    long cases = 0;
+    long cases = 0, specular = 0;
     for (int i = 0; i < 50000; i++, cases++) {
         material_params p;
         material_params_default(&p);
@@ -827,6 +829,8 @@ START_TEST(transmits_flag_says_whether_rho_t_or_rho_dt_has_a_nonzero_channel)
         }
         if (pcg32_next(&g) % 2)
             p.rho_d = rad_make(REAL_C(0.2), REAL_C(0.3), REAL_C(0.1));
+        if (pcg32_next(&g) % 2)
+            p.rho_s = rad_make(REAL_C(0.3), 0, REAL_C(0.2));
         if (pcg32_next(&g) % 4 == 0)
             p.eta = REAL_C(1.5);
         material_t m;
@@ -834,9 +838,17 @@ START_TEST(transmits_flag_says_whether_rho_t_or_rho_dt_has_a_nonzero_channel)
             ck_assert(m.transmits == any);
         else
             ck_assert(!m.transmits);
+        /* material_is_specular(), found once by material_init, against
+         * its definition: at least one component, every one a delta */
+        bool all = m.ncomp > 0;
+        for (int k = 0; k < m.ncomp; k++)
+            all = all && brdf_is_delta(&m.comp[k]);
+        ck_assert(material_is_specular(&m) == all);
+        specular += all;
     }
+    ck_assert(specular > 100 && specular < cases - 100);
     test_report_cases(
-        "transmits_flag_says_whether_rho_t_or_rho_dt_has_a_nonzero_channel",
+        "transmits_and_specular_flags_say_what_the_material_holds",
         cases);
 }
 END_TEST
@@ -858,7 +870,7 @@ Suite *test_suite(void)
     tcase_add_test(t, mixed_materials_sample_wi_with_their_pdf);
     tcase_add_test(t, a_wrong_mixture_pdf_fails_the_chi2_test);
     tcase_add_test(t, lambert_shortcut_answers_as_the_general_way_bit_for_bit);
-    tcase_add_test(t, transmits_flag_says_whether_rho_t_or_rho_dt_has_a_nonzero_channel);
+    tcase_add_test(t, transmits_and_specular_flags_say_what_the_material_holds);
     suite_add_tcase(s, t);
     return s;
 }
