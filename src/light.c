@@ -96,31 +96,7 @@ void lightset_free(lightset_t *ls)
     memset(ls, 0, sizeof *ls);
 }
 
-real lightset_pmf(const lightset_t *ls, int i)
-{
-    if (i < 0 || i >= ls->n)
-        return 0;
-    return ls->cdf[i + 1] - ls->cdf[i];
-}
 
-const light_t *lightset_pick(const lightset_t *ls, real u, real *pmf)
-{
-    if (ls->n == 0) {
-        *pmf = 0;
-        return NULL;
-    }
-    /* the first i with cdf[i+1] > u, skipping lights of zero probability */
-    int lo = 0, hi = ls->n - 1;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (ls->cdf[mid + 1] > u)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    *pmf = lightset_pmf(ls, lo);
-    return &ls->lights[lo];
-}
 
 int lightset_find_area(const lightset_t *ls, const COBJECT *obj)
 {
