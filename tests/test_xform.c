@@ -580,6 +580,20 @@ START_TEST(the_culling_sphere_never_turns_away_a_hit)
 }
 END_TEST
 
+/* Box i of a random series: corners in [-2, 2]^3, extents 0.01 to 2.01,
+ * every third one thin along one axis (2^-15 to 1), and a scale s3 of
+ * 2^-20 to 2^20 per axis for the map. */
+static void random_box(pcg32_t *g, int i, VECTOR3 lo, VECTOR3 hi, VECTOR3 s3)
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = 4 * pcg32_real(g) - 2;
+        hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(g);
+        s3[k] = ldexp(REAL_C(1.0), (int)pcg32_bounded(g, 41) - 20);
+    }
+    if (i % 3 == 1)
+        hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(g, 16));
+}
+
 START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 {
     /* A transformed box's surface() takes the world normals, derivatives
@@ -593,13 +607,7 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
     long n = 0;
     for (int i = 0; i < 300; i++) {
         VECTOR3 lo, hi, s3;
-        for (int k = 0; k < 3; k++) {
-            lo[k] = 4 * pcg32_real(&g) - 2;
-            hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(&g);
-            s3[k] = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 41) - 20);
-        }
-        if (i % 3 == 1)
-            hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 16));
+        random_box(&g, i, lo, hi, s3);
         xform_t x = random_xform(&g);
         if (i % 2)
             x = xform_compose(x, xform_scale(s3));
@@ -668,13 +676,7 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
     long n = 0, turned = 0;
     for (int i = 0; i < 300; i++) {
         VECTOR3 lo, hi, s3;
-        for (int k = 0; k < 3; k++) {
-            lo[k] = 4 * pcg32_real(&g) - 2;
-            hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(&g);
-            s3[k] = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 41) - 20);
-        }
-        if (i % 3 == 1)
-            hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 16));
+        random_box(&g, i, lo, hi, s3);
         VECTOR3 ax = { 0, 0, 1 };
         xform_t x = i % 4 == 3 ? xform_rotate(ax, 90) : random_xform(&g);
         if (i % 2)
