@@ -167,6 +167,13 @@ bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
 bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
                          real tmax, const COBJECT *const skip[2]);
 
+/* Whether a query takes ray r over (tmin, tmax) at all: all six
+ * coordinates finite, d nonzero, tmin < tmax (a query answers "no hit"
+ * otherwise). accel_ray_ok_plain is the same test without SIMD, for
+ * tests. These functions can't fail. */
+bool accel_ray_ok(const ray_t *r, real tmin, real tmax);
+bool accel_ray_ok_plain(const ray_t *r, real tmin, real tmax);
+
 /* Work done by one query, for the heat maps of ch. 7. */
 typedef struct {
     long cells; /* grid cells visited, at every level */

@@ -114,6 +114,13 @@ struct cobject {
     const struct light *light;
     const struct texture *texture;
     const struct medium *inside, *outside; /* on the -ng and +ng sides */
+    /* surface() writes every field its contract names (cross_point,
+     * p_error, ng, u, v, n, st, dpds, dpdt, prim) at every hit, reading
+     * none of them first, so cobject_fill() need not clear the PATHPOINT
+     * before it: set by the constructors that promise it (parallelogram,
+     * box, a transformed object whose inner one promises it), false
+     * otherwise. tests/test_cobject.c checks each promise. */
+    bool surface_fills;
 };
 
 /* Initialise the fields every object has: ops, shape, nprims = 1, id = -1,
@@ -132,7 +139,8 @@ bool cobject_intersect(const COBJECT *obj, const ray_t *r, real tmin,
 /* Complete the PATHPOINT of a hit: the primitive's surface(), then the
  * book's fields that depend on the ray: r_dist = t |d|, out = -d/|d|,
  * bout = out . n > 0, IntersectObj; in, bin, intensity and nextpoint are
- * cleared for the integrator to set. */
+ * cleared for the integrator to set. The rest of pp is cleared before
+ * surface() runs unless obj->surface_fills. This function can't fail. */
 void cobject_fill(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                   PATHPOINT *pp);
 

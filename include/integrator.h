@@ -39,6 +39,8 @@ tracer_t tracer_brute(const scene_t *s);
 typedef struct {
     const scene_t *scene;
     const lightset_t *lights;   /* NULL or empty when the scene has none */
+    int env;                    /* lightset_environment(lights), found once
+                                   by integrator_init (-1: none) */
     tracer_t tracer;
     scene_integrator mode;      /* path, direct, bsdf, ao */
     int max_depth;              /* scattering events (scene.h) */
@@ -54,7 +56,8 @@ typedef struct {
 } integrator_stats_t;
 
 /* Set up from a scene's render settings. `lights` may be NULL when the
- * scene has none. This function can't fail. */
+ * scene has none; it must not change while `it` is in use (its
+ * environment light is looked up here once). This function can't fail. */
 void integrator_init(integrator_t *it, const scene_t *s,
                      const lightset_t *lights, tracer_t tracer);
 

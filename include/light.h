@@ -28,6 +28,8 @@ typedef struct {
     RADIANCE intensity;    /* point light, W/sr */
     const scene_emission_t *emission; /* area light: radiance, sidedness,
                                          the emitting object */
+    real area;             /* area light: its object's area(), asked once
+                              by lightset_build for light_pdf() */
     RADIANCE radiance;     /* environment */
     real power;            /* luminance of the emitted power (W), used to
                               choose among lights */
@@ -63,12 +65,38 @@ typedef struct {
 svet_status lightset_build(lightset_t *ls, const scene_t *s, svet_error *err);
 void lightset_free(lightset_t *ls);
 
+/* The probability lightset_pick gives the light at index i (0 for an
+ * index out of range). Inline, as lightset_pick: the integrator picks a
+ * light at every vertex. This function can't fail. */
+static inline real lightset_pmf(const lightset_t *ls, int i)
+{
+    if (i < 0 || i >= ls->n)
+        return 0;
+    return ls->cdf[i + 1] - ls->cdf[i];
+}
+
 /* Choose a light with probability proportional to its power (uniformly if
  * all powers are 0) using u in [0,1); *pmf receives that probability.
  * NULL for an empty set. This function can't fail. */
-const light_t *lightset_pick(const lightset_t *ls, real u, real *pmf);
-/* The probability lightset_pick gives the light at index i. */
-real lightset_pmf(const lightset_t *ls, int i);
+static inline const light_t *lightset_pick(const lightset_t *ls, real u,
+                                           real *pmf)
+{
+    if (ls->n == 0) {
+        *pmf = 0;
+        return NULL;
+    }
+    /* the first i with cdf[i+1] > u, skipping lights of zero probability */
+    int lo = 0, hi = ls->n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (ls->cdf[mid + 1] > u)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    *pmf = lightset_pmf(ls, lo);
+    return &ls->lights[lo];
+}
 /* The index of the area light of emitting object obj, or -1. */
 int lightset_find_area(const lightset_t *ls, const COBJECT *obj);
 /* The index of the environment light, or -1. */

@@ -71,6 +71,10 @@ struct material {
                        (the Cornell box's walls), for which eval, pdf and
                        sample take a shortcut with the same answers, bit
                        for bit (material.c); false takes the general way */
+    bool specular;  /* set by material_init: material_is_specular() */
+    bool transmits; /* set by material_init: rho_t or rho_dt is not black,
+                       so light from behind the surface can reach the
+                       viewer (the integrator asks at every vertex) */
 };
 typedef struct material material_t;
 
@@ -152,7 +156,11 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
 real material_pdf(const material_t *m, const VECTOR3 wi, const VECTOR3 wo);
 
 /* True if every component is a delta (mirror, glass): light sampling is
- * useless there. False for a black material. This function can't fail. */
-bool material_is_specular(const material_t *m);
+ * useless there. False for a black material. Found once by material_init
+ * (the integrator asks at every vertex). This function can't fail. */
+static inline bool material_is_specular(const material_t *m)
+{
+    return m->specular;
+}
 
 #endif

@@ -190,6 +190,13 @@ static inline bool xform_sphere_misses(const xform_sphere_t *sh,
 bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
                               real tmin, real tmax, hit_t *hit);
 
+/* xform_intersect_unculled() without its shortcut for a box's slab that
+ * the ray starts beyond and moves away from (leaves_box() in xform.c):
+ * the same answers, bit for bit. For tests. This function can't fail. */
+bool xform_intersect_unseparated(const COBJECT *obj, int prim,
+                                 const ray_t *r, real tmin, real tmax,
+                                 hit_t *hit);
+
 /* The surface() of an object from xform_new the general way: the inner
  * primitive's normals, derivatives and frame mapped to the world at every
  * hit. surface() gives the same bits; for a box it takes them from a

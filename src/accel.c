@@ -10,8 +10,10 @@
 #include "accel.h"
 #include "parallelogram.h"
 #include "primset.h"
+#include "simd.h"
 #include "xform.h"
 
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,9 +50,12 @@ typedef struct {
         const COBJECT *obj; /* NULL: empty */
         int slot;
     } slot_of[2 * PARALLELOGRAM_BATCH_MAX];
-    uint32_t *others;    /* the items not in the batch, in order */
+    uint32_t *others;    /* the items neither in the batch nor in spheres,
+                            in order */
     uint32_t nothers;
-    xform_sphere_t *spheres;
+    xform_sphere_t *spheres; /* the transformed objects' culling spheres */
+    uint32_t *sphere_item;   /* the item of each sphere */
+    uint32_t nspheres;
 } brute_t;
 
 struct accel {
@@ -164,6 +169,7 @@ static void brute_free(brute_t *b)
     free(b->others);
     parallelogram_batch_free(b->batch);
     free(b->spheres);
+    free(b->sphere_item);
     free(b);
 }
 
@@ -206,8 +212,9 @@ static brute_t *brute_new(const primset_t *ps)
         b->items = malloc(n * sizeof *b->items);
         b->others = malloc(n * sizeof *b->others);
         b->spheres = malloc(n * sizeof *b->spheres);
+        b->sphere_item = malloc(n * sizeof *b->sphere_item);
     }
-    if (!b || !b->items || !b->others || !b->spheres) {
+    if (!b || !b->items || !b->others || !b->spheres || !b->sphere_item) {
         brute_free(b);
         return NULL;
     }
@@ -232,10 +239,13 @@ static brute_t *brute_new(const primset_t *ps)
         }
         if (xform_culling_sphere(it->obj, &b->spheres[nsph])) {
             it->kind = ITEM_SPHERE;
-            it->slot = nsph++;
+            it->slot = nsph;
+            b->sphere_item[nsph++] = i;
+            continue;
         }
         b->others[b->nothers++] = i;
     }
+    b->nspheres = (uint32_t)nsph;
     b->batch = parallelogram_batch_new(para, npara);
     if (!b->batch) {
         brute_free(b);
@@ -320,13 +330,55 @@ void accel_free(accel_t *a)
  * nonzero exactly when the sum of |d_i| is positive (a sum of
  * nonnegative numbers is no smaller than each); a NaN tmin or tmax makes
  * tmin < tmax false. */
-static bool ray_ok(const ray_t *r, real tmin, real tmax)
+static inline bool ray_ok_plain(const ray_t *r, real tmin, real tmax)
 {
     real f = ((r->o[X] - r->o[X]) + (r->o[Y] - r->o[Y])) +
              ((r->o[Z] - r->o[Z]) + (r->d[X] - r->d[X])) +
              ((r->d[Y] - r->d[Y]) + (r->d[Z] - r->d[Z]));
     return f == 0 && fabs(r->d[X]) + fabs(r->d[Y]) + fabs(r->d[Z]) > 0 &&
            tmin < tmax;
+}
+
+#ifdef SIMD_REAL
+/* The same answer with SSE2, on the six coordinates read as vectors
+ * (o and d are adjacent in ray_t): the lanes of x - x are 0 where x is
+ * finite and NaN elsewhere, and 0 <= lane fails only for NaN; a finite d
+ * is nonzero exactly when some |d_i| > 0. */
+_Static_assert(offsetof(ray_t, d) == 3 * sizeof(real),
+               "ray_t: d follows o without padding");
+static inline bool ray_ok(const ray_t *r, real tmin, real tmax)
+{
+    const real *c = r->o; /* o[0..2], then d[0..2] */
+    const vreal zero = V_SET1(0), sign = V_SET1(-REAL_C(0.0));
+#ifdef SVET_DOUBLE
+    vreal a = V_LOAD(c), b = V_LOAD(c + 2), e = V_LOAD(c + 4); /* o0 o1, o2 d0, d1 d2 */
+    vreal f = V_ADD(V_ADD(V_SUB(a, a), V_SUB(b, b)), V_SUB(e, e));
+    bool finite = V_MASK(V_LE(f, zero)) == 3;
+    bool nonzero = ((V_MASK(V_GT(V_ANDNOT(sign, b), zero)) & 2) |
+                    V_MASK(V_GT(V_ANDNOT(sign, e), zero))) != 0;
+#else
+    vreal a = V_LOAD(c), b = V_LOAD(c + 2); /* o0 o1 o2 d0, o2 d0 d1 d2 */
+    vreal f = V_ADD(V_SUB(a, a), V_SUB(b, b));
+    bool finite = V_MASK(V_LE(f, zero)) == 15;
+    bool nonzero = (V_MASK(V_GT(V_ANDNOT(sign, b), zero)) & 14) != 0;
+#endif
+    return finite && nonzero && tmin < tmax;
+}
+#else
+static inline bool ray_ok(const ray_t *r, real tmin, real tmax)
+{
+    return ray_ok_plain(r, tmin, tmax);
+}
+#endif
+
+bool accel_ray_ok(const ray_t *r, real tmin, real tmax)
+{
+    return ray_ok(r, tmin, tmax);
+}
+
+bool accel_ray_ok_plain(const ray_t *r, real tmin, real tmax)
+{
+    return ray_ok_plain(r, tmin, tmax);
 }
 
 /* Brute force, and the unbounded primitives of a structure: refs
@@ -401,8 +453,9 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
 /* The fast brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
  * test skipped here is one whose intersect() would have answered "no
- * hit" at its first step. The order differs (the rest first, then the
- * parallelograms that pass the batch's rejections), which primset.h's
+ * hit" at its first step. The order differs (the transformed objects
+ * with a culling sphere, the rest, then the parallelograms that pass the
+ * batch's rejections), which primset.h's
  * nearest-hit rule makes irrelevant: ties go to the earlier primitive
  * whatever the order. So the answer is primset_test's bit for bit
  * (tests/test_accel.c compares them). A shadow ray (q->shadow) stops at
@@ -416,22 +469,25 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
      * block ends before any wall is looked at. */
     xform_sphere_ray_t rs; /* the spheres' per-ray values, made once */
     xform_sphere_ray(r, &rs);
+    /* xf_intersect() culls by its sphere only for tmin >= 0 */
+    const bool cull = q->tmin >= 0;
+    for (uint32_t k = 0; k < b->nspheres; k++) {
+        if (cull && xform_sphere_misses_ray(&b->spheres[k], r, &rs))
+            continue;
+        uint32_t i = b->sphere_item[k];
+        hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
+        if (xform_intersect_unculled(b->items[i].obj, b->items[i].prim, r,
+                                     q->tmin, q->tmax_tie, &hh) &&
+            brute_found(q, ps, i, &hh))
+            return true;
+    }
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
         const brute_item_t *it = &b->items[i];
-        if (it->kind == ITEM_SPHERE && q->tmin >= 0 &&
-            xform_sphere_misses_ray(&b->spheres[it->slot], r, &rs))
-            continue;
         hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
-        bool hit;
-        if (it->kind == ITEM_SPHERE) {
-            hit = xform_intersect_unculled(it->obj, it->prim, r, q->tmin,
-                                           q->tmax_tie, &hh);
-        } else {
-            hit = it->obj->ops->intersect(it->obj, it->prim, r, q->tmin,
-                                          q->tmax_tie, &hh);
-        }
-        if (hit && brute_found(q, ps, i, &hh))
+        if (it->obj->ops->intersect(it->obj, it->prim, r, q->tmin,
+                                    q->tmax_tie, &hh) &&
+            brute_found(q, ps, i, &hh))
             return true;
     }
     /* the parallelograms in q->skip are left out of the batch */
@@ -551,7 +607,7 @@ void accel_get_stats(const accel_t *a, accel_stats_t *s)
     if (a->brute)
         s->bytes += sizeof *a->brute + (size_t)a->brute->n *
                     (sizeof *a->brute->items + sizeof *a->brute->others +
-                     sizeof *a->brute->spheres);
+                     sizeof *a->brute->spheres + sizeof *a->brute->sphere_item);
     s->prims = (long)a->ps.nrefs;
     s->unbounded = (long)(a->ps.nrefs - a->ps.nbounded);
 }

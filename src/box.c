@@ -226,6 +226,7 @@ COBJECT *box_new(const VECTOR3 min, const VECTOR3 max, svet_error *err)
     COBJECT *obj = shape_alloc(&box_ops, sizeof(box_shape), err);
     if (!obj)
         return NULL;
+    obj->surface_fills = true; /* box_surface() and face_fill() write all */
     box_shape *s = obj->shape;
     vec_copy(s->min, min);
     vec_copy(s->max, max);

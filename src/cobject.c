@@ -43,7 +43,16 @@ bool cobject_intersect(const COBJECT *obj, const ray_t *r, real tmin,
 void cobject_fill(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                   PATHPOINT *pp)
 {
-    memset(pp, 0, sizeof *pp);
+    if (obj->surface_fills) {
+        /* surface() writes the rest (COBJECT.surface_fills): clear only
+         * what it leaves, to the values the memset gives */
+        vec_set(pp->in, 0, 0, 0);
+        pp->bin = false;
+        pp->intensity = (RADIANCE){ 0, 0, 0 };
+        pp->nextpoint = NULL;
+    } else {
+        memset(pp, 0, sizeof *pp);
+    }
     pp->prim = hit->prim; /* surface() may refine it, e.g. to a box face */
     obj->ops->surface(obj, r, hit, pp);
     real len = vec_length(r->d);

@@ -68,6 +68,7 @@ void integrator_init(integrator_t *it, const scene_t *s,
     memset(it, 0, sizeof *it);
     it->scene = s;
     it->lights = lights && lights->n > 0 ? lights : NULL;
+    it->env = it->lights ? lightset_environment(it->lights) : -1;
     it->tracer = tracer;
     it->mode = s->render.integrator;
     it->max_depth = s->render.max_depth;
@@ -84,11 +85,12 @@ real integrator_mis_weight(real a, real b)
     return 1 / (1 + r * r);
 }
 
-/* Whether light from behind the surface can scatter toward the viewer. */
+/* Whether light from behind the surface can scatter toward the viewer:
+ * rho_t or rho_dt not black, as material_init() found once (the params
+ * are those it was given). */
 static bool transmits(const material_t *m)
 {
-    const material_params *p = &m->params;
-    return !rad_is_black(p->rho_t) || !rad_is_black(p->rho_dt);
+    return m->transmits;
 }
 
 static void draw2(real u[2], pcg32_t *g)
@@ -197,7 +199,7 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
     int max_depth = it->mode == SCENE_INTEGRATOR_DIRECT
                         ? (it->max_depth < 1 ? it->max_depth : 1)
                         : it->max_depth;
-    const int env = it->lights ? lightset_environment(it->lights) : -1;
+    const int env = it->env;
 
     RADIANCE L = rad_grey(0), beta = rad_grey(1);
     ray_t r = *camera;

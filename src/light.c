@@ -64,6 +64,7 @@ svet_status lightset_build(lightset_t *ls, const scene_t *s, svet_error *err)
         /* Lambertian emitter: Phi = pi L A per emitting side */
         real sides = l->emission->two_sided ? 2 : 1;
         real area = o->ops->area(o);
+        l->area = area;
         l->power = isfinite(area)
                        ? luminance_power(l->emission->radiance,
                                          sides * REAL_PI * area)
@@ -95,31 +96,7 @@ void lightset_free(lightset_t *ls)
     memset(ls, 0, sizeof *ls);
 }
 
-real lightset_pmf(const lightset_t *ls, int i)
-{
-    if (i < 0 || i >= ls->n)
-        return 0;
-    return ls->cdf[i + 1] - ls->cdf[i];
-}
 
-const light_t *lightset_pick(const lightset_t *ls, real u, real *pmf)
-{
-    if (ls->n == 0) {
-        *pmf = 0;
-        return NULL;
-    }
-    /* the first i with cdf[i+1] > u, skipping lights of zero probability */
-    int lo = 0, hi = ls->n - 1;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (ls->cdf[mid + 1] > u)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    *pmf = lightset_pmf(ls, lo);
-    return &ls->lights[lo];
-}
 
 int lightset_find_area(const lightset_t *ls, const COBJECT *obj)
 {
@@ -230,7 +207,6 @@ real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
     case LIGHT_POINT:
         return 0;
     case LIGHT_AREA: {
-        const COBJECT *o = l->emission->obj;
         real cos_l = -SVECTOR3(wi, ng);
         if (!l->emission->two_sided && cos_l <= 0)
             return 0;
@@ -238,7 +214,7 @@ real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
         VECTOR3 d;
         vec_sub(d, p, pp->cross_point);
         real d2 = vec_length2(d);
-        real area = o->ops->area(o);
+        real area = l->area; /* o->ops->area(o), as lightset_build asked */
         if (!(cos_l > 0) || !(area > 0) || !isfinite(area))
             return 0;
         /* uniform area sampling: p_A = 1/A (every app. D primitive) */

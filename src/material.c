@@ -54,11 +54,23 @@ static void add(material_t *m, const brdf_t *b)
         m->comp[m->ncomp++] = *b;
 }
 
+/* material_is_specular()'s answer, for material_init: every component a
+ * delta, and at least one. */
+static bool all_delta(const material_t *m)
+{
+    for (int k = 0; k < m->ncomp; k++)
+        if (!brdf_is_delta(&m->comp[k]))
+            return false;
+    return m->ncomp > 0;
+}
+
 static void make_black(material_t *m)
 {
     material_params_default(&m->params);
     m->ncomp = 0;
     m->lambert = false;
+    m->transmits = false; /* the default parameters are black */
+    m->specular = false;  /* no component */
 }
 
 svet_status material_init(material_t *m, const material_params *p,
@@ -105,6 +117,8 @@ svet_status material_init(material_t *m, const material_params *p,
     add(m, &t);
     add(m, &dt);
     m->lambert = m->ncomp == 1 && m->comp[0].kind == BRDF_LAMBERT;
+    m->transmits = !is_black(p->rho_t) || !is_black(p->rho_dt);
+    m->specular = all_delta(m);
     if (err)
         svet_error_clear(err);
     return SVET_OK;
@@ -329,12 +343,4 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
     return true;
 }
 
-bool material_is_specular(const material_t *m)
-{
-    if (m->lambert) /* one Lambert lobe, not a delta */
-        return false;
-    for (int k = 0; k < m->ncomp; k++)
-        if (!brdf_is_delta(&m->comp[k]))
-            return false;
-    return m->ncomp > 0;
-}
+

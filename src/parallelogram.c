@@ -681,6 +681,7 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
     COBJECT *obj = shape_alloc(&parallelogram_ops, sizeof(para_shape), err);
     if (!obj)
         return NULL;
+    obj->surface_fills = true; /* para_surface() writes every field */
     para_shape *sh = obj->shape;
     vec_copy(sh->c[0], c0);
     vec_copy(sh->c[1], c1);

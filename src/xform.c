@@ -297,6 +297,9 @@ typedef struct {
     struct {
         VECTOR3 ng, n, u, v, dpds, dpdt;
     } face[6];
+    /* the box's own bounds (its bounds(), the min and max its intersect()
+     * tests against), for leaves_box(); set with the face table */
+    VECTOR3 box_min, box_max;
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -347,13 +350,42 @@ static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
     return f == 0 && (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
-bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
-                              real tmin, real tmax, hit_t *hit)
+/* True when the object-space ray ro of a transformed box (sh->nfaces = 6)
+ * starts beyond one of the box's slabs and does not move back toward it:
+ * then box.c's intersect() on this very ray reports no hit for tmin >= 0.
+ * The argument needs no rounding bound, for it looks at the numbers that
+ * intersect() sees: with o_k > max_k and d_k > 0, its slab's exit
+ * t1 = (max_k - o_k) / d_k is a negative number (a difference of two
+ * distinct floats is not 0) over a positive one, so <= 0, and its push
+ * t1 + 2 gamma(3) |t1| stays <= 0 (2 gamma(3) < 1; a -0 becomes +0): the
+ * exit hi <= 0, and a hit needs the entry lo <= hi or hi itself in
+ * (tmin, tmax) with tmin >= 0. With d_k = 0 its slab() answers "never"
+ * (o_k outside the slab). The same with o_k < min_k and d_k <= 0. This
+ * turns away a ray that leaves the box from its surface (the origin
+ * spawned outside the face, the direction outward), which always passes
+ * the culling sphere, and many that pass beside it, for the price of six
+ * comparisons instead of the six divisions of the slab test.
+ * tests/test_xform.c compares with xform_intersect_unseparated(). */
+static inline bool leaves_box(const xf_shape *sh, const ray_t *ro)
+{
+    return (ro->o[X] > sh->box_max[X] && ro->d[X] >= 0) ||
+           (ro->o[X] < sh->box_min[X] && ro->d[X] <= 0) ||
+           (ro->o[Y] > sh->box_max[Y] && ro->d[Y] >= 0) ||
+           (ro->o[Y] < sh->box_min[Y] && ro->d[Y] <= 0) ||
+           (ro->o[Z] > sh->box_max[Z] && ro->d[Z] >= 0) ||
+           (ro->o[Z] < sh->box_min[Z] && ro->d[Z] <= 0);
+}
+
+static inline bool intersect_unculled(const COBJECT *obj, int prim,
+                                      const ray_t *r, real tmin, real tmax,
+                                      hit_t *hit, bool separate)
 {
     const xf_shape *sh = obj->shape;
     ray_t ro;
     int k;
     if (!object_ray(sh, r, &ro, &k))
+        return false;
+    if (separate && sh->nfaces && tmin >= 0 && leaves_box(sh, &ro))
         return false;
     /* an affine map keeps t; only the power-of-two scaling of d moves it.
      * h zeroed: the inner primitive may leave part of its scratch b unset,
@@ -368,6 +400,19 @@ bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
     *hit = h;
     hit->t = t;
     return true;
+}
+
+bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
+                              real tmin, real tmax, hit_t *hit)
+{
+    return intersect_unculled(obj, prim, r, tmin, tmax, hit, true);
+}
+
+bool xform_intersect_unseparated(const COBJECT *obj, int prim,
+                                 const ray_t *r, real tmin, real tmax,
+                                 hit_t *hit)
+{
+    return intersect_unculled(obj, prim, r, tmin, tmax, hit, false);
 }
 
 static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
@@ -531,6 +576,10 @@ static void set_faces(xf_shape *sh)
         vec_copy(sh->face[f].dpds, pp.dpds);
         vec_copy(sh->face[f].dpdt, pp.dpdt);
     }
+    bbox_t bb;
+    sh->inner->ops->bounds(sh->inner, -1, &bb);
+    vec_copy(sh->box_min, bb.min);
+    vec_copy(sh->box_max, bb.max);
     sh->nfaces = 6;
 }
 
@@ -892,5 +941,8 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     set_culling(sh);
     set_faces(sh);
     obj->nprims = inner->nprims;
+    /* the world point and frame are written from the inner surface()'s
+     * (surface_point(), then surface_frame() or the face table) */
+    obj->surface_fills = inner->surface_fills;
     return obj;
 }

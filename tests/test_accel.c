@@ -929,6 +929,52 @@ START_TEST(skipping_the_planes_a_ray_leaves_or_aims_at_changes_no_answer)
 }
 END_TEST
 
+START_TEST(query_ray_check_accepts_exactly_finite_rays_with_a_direction)
+{
+    /* Every query first checks its ray (accel_ray_ok: with SSE2 as
+     * vectors, else the plain sums): against the definition, coordinate
+     * by coordinate with isfinite() and d_i != 0, and against the plain
+     * version, on rays whose six coordinates and tmin, tmax are drawn
+     * from zeros of both signs, the smallest subnormal, ordinary values,
+     * the largest real, infinities and NaN. */
+    const real pick[] = { 0, REAL_C(-0.0), REAL_TRUE_MIN, -REAL_TRUE_MIN,
+                          1, REAL_C(-2.5), REAL_MAX, -REAL_MAX,
+                          (real)INFINITY, -(real)INFINITY, (real)NAN };
+    const int np = (int)(sizeof pick / sizeof pick[0]);
+    pcg32_t g;
+    pcg32_seed(&g, 123, 456);
+    long cases = 0, ok = 0;
+    for (int i = 0; i < 400000; i++, cases++) {
+        ray_t r;
+        for (int k = 0; k < 3; k++) {
+            /* mostly ordinary coordinates, so that every single special
+             * one is met alone */
+            r.o[k] = pcg32_next(&g) % 4 ? pcg32_real(&g) - REAL_C(0.5)
+                                       : pick[pcg32_bounded(&g, (uint32_t)np)];
+            r.d[k] = pcg32_next(&g) % 4 ? pcg32_real(&g) - REAL_C(0.5)
+                                       : pick[pcg32_bounded(&g, (uint32_t)np)];
+        }
+        if (pcg32_next(&g) % 8 == 0)
+            vec_set(r.d, 0, 0, 0);
+        real tmin = pcg32_next(&g) % 8 ? 0 : pick[pcg32_bounded(&g, (uint32_t)np)];
+        real tmax = pcg32_next(&g) % 8 ? (real)INFINITY
+                                       : pick[pcg32_bounded(&g, (uint32_t)np)];
+        bool finite = true, nonzero = false;
+        for (int k = 0; k < 3; k++) {
+            finite = finite && isfinite(r.o[k]) && isfinite(r.d[k]);
+            nonzero = nonzero || r.d[k] != 0;
+        }
+        bool want = finite && nonzero && tmin < tmax;
+        ck_assert(accel_ray_ok(&r, tmin, tmax) == want);
+        ck_assert(accel_ray_ok_plain(&r, tmin, tmax) == want);
+        ok += want;
+    }
+    ck_assert(ok > cases / 10 && ok < cases - cases / 10);
+    test_report_cases("query_ray_check_accepts_exactly_finite_rays_with_a_"
+                      "direction", cases);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("accel");
@@ -942,6 +988,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, queries_from_two_threads_match_one);
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
     tcase_add_test(tc, no_structures_means_brute_force_and_refused_grids);
+    tcase_add_test(tc, query_ray_check_accepts_exactly_finite_rays_with_a_direction);
     tcase_add_test(tc,
                    fast_brute_force_answers_bit_for_bit_what_primset_test_answers);
     tcase_add_test(tc,

@@ -802,6 +802,57 @@ START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
 }
 END_TEST
 
+START_TEST(transmits_and_specular_flags_say_what_the_material_holds)
+{
+    /* material_t.transmits and .specular, set once by material_init,
+     * stand in for what the integrator asked at every vertex. transmits
+     * (rho_t or rho_dt not black) is checked channel by channel (x != 0,
+     * so -0 is black) on materials built from channels 0, -0, the
+     * smallest subnormal, tiny and ordinary values, with and without a
+     * diffuse and a mirror part; a material that fails to build is black
+     * and does not transmit. */
+    pcg32_t g;
+    pcg32_seed(&g, 4242, 17);
+    const real pick[] = { 0, REAL_C(-0.0), REAL_TRUE_MIN, REAL_C(1e-30),
+                          REAL_C(0.1), REAL_C(0.3) };
+    long cases = 0, specular = 0;
+    for (int i = 0; i < 50000; i++, cases++) {
+        material_params p;
+        material_params_default(&p);
+        real *ch[6] = { &p.rho_t.r, &p.rho_t.g, &p.rho_t.b,
+                        &p.rho_dt.r, &p.rho_dt.g, &p.rho_dt.b };
+        bool any = false;
+        for (int k = 0; k < 6; k++) {
+            /* mostly zeros, so that one nonzero channel is common */
+            *ch[k] = pcg32_next(&g) % 3 ? 0 : pick[pcg32_bounded(&g, 6)];
+            any = any || *ch[k] != 0;
+        }
+        if (pcg32_next(&g) % 2)
+            p.rho_d = rad_make(REAL_C(0.2), REAL_C(0.3), REAL_C(0.1));
+        if (pcg32_next(&g) % 2)
+            p.rho_s = rad_make(REAL_C(0.3), 0, REAL_C(0.2));
+        if (pcg32_next(&g) % 4 == 0)
+            p.eta = REAL_C(1.5);
+        material_t m;
+        if (material_init(&m, &p, NULL) == SVET_OK)
+            ck_assert(m.transmits == any);
+        else
+            ck_assert(!m.transmits);
+        /* material_is_specular(), found once by material_init, against
+         * its definition: at least one component, every one a delta */
+        bool all = m.ncomp > 0;
+        for (int k = 0; k < m.ncomp; k++)
+            all = all && brdf_is_delta(&m.comp[k]);
+        ck_assert(material_is_specular(&m) == all);
+        specular += all;
+    }
+    ck_assert(specular > 100 && specular < cases - 100);
+    test_report_cases(
+        "transmits_and_specular_flags_say_what_the_material_holds",
+        cases);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("material (" REAL_NAME ")");
@@ -819,6 +870,7 @@ Suite *test_suite(void)
     tcase_add_test(t, mixed_materials_sample_wi_with_their_pdf);
     tcase_add_test(t, a_wrong_mixture_pdf_fails_the_chi2_test);
     tcase_add_test(t, lambert_shortcut_answers_as_the_general_way_bit_for_bit);
+    tcase_add_test(t, transmits_and_specular_flags_say_what_the_material_holds);
     suite_add_tcase(s, t);
     return s;
 }

@@ -580,6 +580,20 @@ START_TEST(the_culling_sphere_never_turns_away_a_hit)
 }
 END_TEST
 
+/* Box i of a random series: corners in [-2, 2]^3, extents 0.01 to 2.01,
+ * every third one thin along one axis (2^-15 to 1), and a scale s3 of
+ * 2^-20 to 2^20 per axis for the map. */
+static void random_box(pcg32_t *g, int i, VECTOR3 lo, VECTOR3 hi, VECTOR3 s3)
+{
+    for (int k = 0; k < 3; k++) {
+        lo[k] = 4 * pcg32_real(g) - 2;
+        hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(g);
+        s3[k] = ldexp(REAL_C(1.0), (int)pcg32_bounded(g, 41) - 20);
+    }
+    if (i % 3 == 1)
+        hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(g, 16));
+}
+
 START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 {
     /* A transformed box's surface() takes the world normals, derivatives
@@ -593,13 +607,7 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
     long n = 0;
     for (int i = 0; i < 300; i++) {
         VECTOR3 lo, hi, s3;
-        for (int k = 0; k < 3; k++) {
-            lo[k] = 4 * pcg32_real(&g) - 2;
-            hi[k] = lo[k] + REAL_C(0.01) + 2 * pcg32_real(&g);
-            s3[k] = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 41) - 20);
-        }
-        if (i % 3 == 1)
-            hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 16));
+        random_box(&g, i, lo, hi, s3);
         xform_t x = random_xform(&g);
         if (i % 2)
             x = xform_compose(x, xform_scale(s3));
@@ -647,6 +655,98 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
     ck_assert(n > 50000);
     test_report_cases("box_face_table_completes_hits_as_the_general_way_bit_"
                       "for_bit", n);
+}
+END_TEST
+
+START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
+{
+    /* xform_intersect_unculled() turns away, for a transformed box, a ray
+     * whose object-space origin lies beyond a slab and whose direction
+     * does not point back (leaves_box() in xform.c); the full slab test
+     * (xform_intersect_unseparated) must give the same answer and the
+     * same hit bytes. Rays: through random points of the box from far
+     * away, spawned from the hits outward (cosine-weighted and grazing,
+     * as the integrator spawns them) and inward, from random points in
+     * and around the box, world directions along the axes (zero object
+     * components under quarter turns), tmin 0, -1 or tiny, tmax infinite
+     * or short; random maps (mirrors included), thin boxes, scales 2^-20
+     * to 2^20. */
+    pcg32_t g;
+    pcg32_seed(&g, 91, 92);
+    long n = 0, turned = 0;
+    for (int i = 0; i < 300; i++) {
+        VECTOR3 lo, hi, s3;
+        random_box(&g, i, lo, hi, s3);
+        VECTOR3 ax = { 0, 0, 1 };
+        xform_t x = i % 4 == 3 ? xform_rotate(ax, 90) : random_xform(&g);
+        if (i % 2)
+            x = xform_compose(x, xform_scale(s3));
+        svet_error err;
+        COBJECT *o = xform_new(box_new(lo, hi, &err), &x, &err);
+        if (!o)
+            continue; /* a map singular to working precision */
+        const xform_t *xf = xform_of(o);
+        for (int j = 0; j < 1000; j++) {
+            VECTOR3 q, p, dir;
+            for (int k = 0; k < 3; k++)
+                q[k] = lo[k] + (3 * pcg32_real(&g) - 1) * (hi[k] - lo[k]);
+            xform_point(xf, p, q);
+            geomcheck_random_dir(dir, &g);
+            if (j % 7 == 0) { /* along a world axis */
+                int a = (int)pcg32_bounded(&g, 3);
+                vec_set(dir, 0, 0, 0);
+                dir[a] = pcg32_next(&g) % 2 ? 1 : -1;
+            }
+            ray_t r;
+            if (j % 2) { /* from far away through p */
+                real dist = 4 * shape_max_abs(p) + 1;
+                vec_add_scaled(r.o, p, dist, dir);
+                vec_neg(r.d, dir);
+            } else { /* from p itself */
+                vec_copy(r.o, p);
+                vec_copy(r.d, dir);
+            }
+            for (int pass = 0; pass < 3; pass++) {
+                const real tmins[3] = { 0, -1, REAL_C(1e-6) };
+                real tmin = tmins[pcg32_bounded(&g, 3)];
+                real tmax = pcg32_next(&g) % 4 ? (real)INFINITY
+                                               : 4 * pcg32_real(&g);
+                hit_t h1, h2;
+                memset(&h1, 0x5a, sizeof h1);
+                memset(&h2, 0x5a, sizeof h2);
+                bool a = xform_intersect_unculled(o, 0, &r, tmin, tmax, &h1);
+                bool b = xform_intersect_unseparated(o, 0, &r, tmin, tmax, &h2);
+                ck_assert(a == b);
+                ck_assert(memcmp(&h1, &h2, sizeof h1) == 0);
+                n++;
+                turned += !a;
+                /* then a ray spawned from the hit, outward or inward */
+                hit_t h = { 0, 0, { 0, 0, 0 } };
+                if (!o->ops->intersect(o, 0, &r, 0, (real)INFINITY, &h))
+                    break;
+                PATHPOINT pp;
+                memset(&pp, 0, sizeof pp);
+                cobject_fill(o, &r, &h, &pp);
+                VECTOR3 w;
+                if (pcg32_next(&g) % 3 == 0) {
+                    /* grazing: nearly in the face's plane */
+                    vec_add_scaled(w, pp.u, ldexp(REAL_C(1.0),
+                                                  -(int)pcg32_bounded(&g, 20)),
+                                   pp.ng);
+                } else {
+                    geomcheck_random_hemisphere(w, pp.ng, &g);
+                }
+                if (pcg32_next(&g) % 4 == 0)
+                    vec_neg(w, w); /* into the box */
+                ray_spawn(&r, pp.cross_point, pp.p_error, pp.ng, w);
+            }
+        }
+        cobject_free(o);
+    }
+    ck_assert(n > 200000);
+    ck_assert(turned > n / 10);
+    test_report_cases("leaving_a_box_slab_answers_as_the_full_test_bit_for_bit",
+                      n);
 }
 END_TEST
 
@@ -808,6 +908,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, the_culling_sphere_never_turns_away_a_hit);
     tcase_add_test(tc,
                    box_face_table_completes_hits_as_the_general_way_bit_for_bit);
+    tcase_add_test(tc, leaving_a_box_slab_answers_as_the_full_test_bit_for_bit);
     tcase_add_test(tc, transformed_spawned_rays_never_rehit_at_any_scale);
     tcase_add_test(tc, transformed_sampled_points_are_hit_at_any_scale);
     tcase_add_test(tc, transformed_shadow_rays_between_points_miss_at_any_scale);
