@@ -18,12 +18,13 @@
 #include "primset.h"
 
 /* Cells per axis = about k N^(1/3) over the box's aspect (N primitives):
- * k^3 N cells in all. k measured by bench/bench_grid.c (`--tune`) on the
- * sphere grids of 1e4 to 1e6 triangles: 2 is best or within the noise of
- * the best for both camera and random rays; once empty blocks cost one
- * step, a finer grid (2.5, 3) tests fewer triangles but walks more cells
- * and did not win at 1e6 (chapters/ch07/README.md has the table). */
-#define GRID_K_DEFAULT 2.0
+ * k^3 N cells in all. k measured by bench/bench_grid.c (`--tune`, and the
+ * benchmark run with each k) on the sphere grids of 1e4 to 1e6 triangles:
+ * with eight triangles to one sign test (the quads, AVX), 1.5 is at or
+ * above 2 everywhere (5% on camera rays at 1e6, a fifth less memory);
+ * 1 gains a little more on camera rays and loses 6% on random ones
+ * (chapters/ch07/README.md has the tables). */
+#define GRID_K_DEFAULT 1.5
 /* Hierarchical grid (Jevans & Wyvill 1989): the top level is the uniform
  * grid (k = HGRID_K_DEFAULT); a cell with more than HGRID_LEAF_DEFAULT
  * primitives gets a child grid of HGRID_CHILD_K_DEFAULT n^(1/3) cells per
