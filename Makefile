@@ -233,7 +233,7 @@ count-render: $(BUILD)/svet
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
-	sh tools/tradeoffs.sh
+	SVET_FLAGS="$(OPT) $(ARCH)" sh tools/tradeoffs.sh
 
 # --- install ---------------------------------------------------------------
 install: all

@@ -177,7 +177,7 @@ progressive render with $( [ "$threads" = 0 ] && echo "every core" || echo "$thr
 $times seconds of rendering.
 
 Machine: $cpu, $(nproc) cores; $(${CC:-cc} --version | head -n 1); float and
-double builds with the Makefile's flags. Measured $(date -u +%Y-%m-%d) in
+double builds with the Makefile's flags (${SVET_FLAGS:-see the Makefile}). Measured $(date -u +%Y-%m-%d) in
 $(( (t1 - t0) / 60 )) min $(( (t1 - t0) % 60 )) s, load average $load0 at the start and
 $load1 at the end: **on a shared machine the times are noisy** (a load
 above the core count slows every series, not always equally); a quiet
