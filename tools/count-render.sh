@@ -2,7 +2,9 @@
 # count-render.sh - `make count-render`: instructions per camera sample of
 # the Cornell box (bench/results/render.md's table), counted by valgrind's
 # callgrind over render_pass only, so the count does not depend on the
-# machine's load. Needs valgrind (apt-get install valgrind).
+# machine's load. Needs valgrind (apt-get install valgrind). Counted with
+# the Makefile's -march=native; valgrind 3.19 does not run AVX-512 code,
+# so on such a CPU count a build made with `make ARCH=-march=x86-64-v3`.
 # usage: tools/count-render.sh SVET_BINARY [SCENE]
 set -eu
 svet=$1
