@@ -407,7 +407,9 @@ typedef struct {
     real tmin, tmax, tmax_tie;
     bool shadow, found;
     uint32_t best;  /* the item of the nearest hit so far */
-    hit_t hit;
+    hit_t *hit;     /* its hit, written straight into the caller's (which
+                       is left untouched until a hit is found); NULL for a
+                       shadow ray, which never reaches brute_found()'s copy */
     const COBJECT *skip[2]; /* parallelograms the ray cannot meet */
 } brute_search_t;
 
@@ -421,7 +423,7 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
         return false;
     q->found = true;
     q->best = i;
-    q->hit = *hh;
+    *q->hit = *hh;
     q->tmax = hh->t;
     q->tmax_tie = real_next_up(hh->t); /* as primset_test() */
     return false;
@@ -514,31 +516,33 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
 
 /* Start a search of (tmin, tmax). */
 static void brute_search_init(brute_search_t *q, real tmin, real tmax,
-                              bool shadow, const COBJECT *const skip[2])
+                              hit_t *hit, const COBJECT *const skip[2])
 {
+    q->hit = hit;
     q->skip[0] = skip ? skip[0] : NULL;
     q->skip[1] = skip ? skip[1] : NULL;
     q->tmin = tmin;
     q->tmax = q->tmax_tie = tmax;
-    q->shadow = shadow;
+    q->shadow = !hit;
     q->found = false;
     q->best = 0;
 }
 
+/* The nearest hit, written into *hit and *obj (untouched on a miss):
+ * the one query behind accel_intersect*() and accel_trace(). */
 static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
-                    const COBJECT *const skip[2], accel_hit_t *h,
-                    accel_counters_t *c)
+                    const COBJECT *const skip[2], hit_t *hit,
+                    const COBJECT **obj, accel_counters_t *c)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
     if (a->brute && !c) {
         brute_search_t q;
-        brute_search_init(&q, tmin, tmax, false, skip);
+        brute_search_init(&q, tmin, tmax, hit, skip);
         if (!brute_run(a->brute, &a->ps, r, &q))
             return false;
-        h->obj = a->brute->items[q.best].obj;
-        h->hit = q.hit;
-        h->hit.prim = a->brute->items[q.best].prim;
+        *obj = a->brute->items[q.best].obj;
+        hit->prim = a->brute->items[q.best].prim;
         return true;
     }
     primset_query_t q;
@@ -550,28 +554,35 @@ static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
     }
     if (!q.found)
         return false;
-    h->obj = primset_query_finish(&a->ps, &q);
-    h->hit = q.hit;
+    *obj = primset_query_finish(&a->ps, &q);
+    *hit = q.hit;
     return true;
 }
 
 bool accel_intersect(const accel_t *a, const ray_t *r, real tmin, real tmax,
                      accel_hit_t *h)
 {
-    return nearest(a, r, tmin, tmax, NULL, h, NULL);
+    return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, NULL);
 }
 
 bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
                           real tmax, const COBJECT *const skip[2],
                           accel_hit_t *h)
 {
-    return nearest(a, r, tmin, tmax, skip, h, NULL);
+    return nearest(a, r, tmin, tmax, skip, &h->hit, &h->obj, NULL);
+}
+
+bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
+                      real tmax, const COBJECT *const skip[2], hit_t *hit,
+                      const COBJECT **obj)
+{
+    return nearest(a, r, tmin, tmax, skip, hit, obj, NULL);
 }
 
 bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
                              real tmax, accel_hit_t *h, accel_counters_t *c)
 {
-    return nearest(a, r, tmin, tmax, NULL, h, c);
+    return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, c);
 }
 
 bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
@@ -586,7 +597,7 @@ bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
         return false;
     if (a->brute) {
         brute_search_t q;
-        brute_search_init(&q, tmin, tmax, true, skip);
+        brute_search_init(&q, tmin, tmax, NULL, skip);
         return brute_run(a->brute, &a->ps, r, &q);
     }
     primset_query_t q;
