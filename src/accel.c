@@ -50,6 +50,7 @@ typedef struct {
         const COBJECT *obj; /* NULL: empty */
         int slot;
     } slot_of[2 * PARALLELOGRAM_BATCH_MAX];
+    uint64_t slot_mul; /* slot_hash()'s multiplier, chosen by set_slots() */
     uint32_t *others;    /* the items neither in the batch nor in spheres,
                             in order */
     uint32_t nothers;
@@ -175,11 +176,54 @@ static void brute_free(brute_t *b)
 
 #define SLOT_TABLE (2 * PARALLELOGRAM_BATCH_MAX)
 
-/* Where the search for obj in brute_t.slot_of starts. */
-static uint32_t slot_hash(const COBJECT *obj)
+/* Where the search for obj in brute_t.slot_of starts: the top 7 bits of
+ * its address times an odd multiplier (SLOT_TABLE = 128 entries). */
+static uint32_t slot_hash(uint64_t mul, const COBJECT *obj)
 {
-    uint64_t h = (uint64_t)(uintptr_t)obj * UINT64_C(0x9e3779b97f4a7c15);
-    return (uint32_t)(h >> 57); /* 7 bits: SLOT_TABLE = 128 entries */
+    return (uint32_t)(((uint64_t)(uintptr_t)obj * mul) >> 57);
+}
+
+/* Fill slot_of with the n objects of the batch (obj[k] has bit k; of an
+ * object listed twice, the later bit). Only the speed of slot_bit()
+ * depends on the multiplier, never its answer (open addressing finds
+ * every object wherever it lands, and reaches an empty entry for any
+ * other, the table being at most half full). Objects allocated one
+ * after another lie a fixed stride apart, and for some strides the
+ * golden-ratio multiplier puts them in neighbouring entries, a cluster
+ * that lengthens the probes of the objects a query skips and of those
+ * outside the table (five of the Cornell box's six parallelograms,
+ * 0x120 bytes apart, went to entries 113 to 117): so up to 32
+ * multipliers are tried, and the first that gives every object an entry
+ * of its own with empty entries on both sides is kept (else the one
+ * with the fewest collisions). */
+static void set_slots(brute_t *b, const COBJECT *const *obj, int n)
+{
+    uint64_t best = 0;
+    int best_bad = n + 1;
+    for (uint64_t k = 0; k < 32 && best_bad > 0; k++) {
+        uint64_t mul = UINT64_C(0x9e3779b97f4a7c15) +
+                       2 * k * UINT64_C(0x2545f4914f6cdd1d); /* odd */
+        unsigned char used[SLOT_TABLE] = { 0 };
+        int bad = 0;
+        for (int i = 0; i < n; i++)
+            used[slot_hash(mul, obj[i])]++;
+        for (int h = 0; h < SLOT_TABLE; h++)
+            if (used[h] && (used[h] > 1 || used[(h + 1) % SLOT_TABLE] ||
+                            used[(h + SLOT_TABLE - 1) % SLOT_TABLE]))
+                bad += used[h];
+        if (bad < best_bad) {
+            best_bad = bad;
+            best = mul;
+        }
+    }
+    b->slot_mul = best;
+    for (int i = 0; i < n; i++) {
+        uint32_t h = slot_hash(best, obj[i]);
+        while (b->slot_of[h].obj && b->slot_of[h].obj != obj[i])
+            h = (h + 1) % SLOT_TABLE;
+        b->slot_of[h].obj = obj[i];
+        b->slot_of[h].slot = i;
+    }
 }
 
 /* The batch's bit of obj, or 0 when obj is none of its parallelograms
@@ -188,7 +232,8 @@ static uint64_t slot_bit(const brute_t *b, const COBJECT *obj)
 {
     if (!obj)
         return 0;
-    for (uint32_t h = slot_hash(obj);; h = (h + 1) % SLOT_TABLE) {
+    for (uint32_t h = slot_hash(b->slot_mul, obj);;
+         h = (h + 1) % SLOT_TABLE) {
         if (b->slot_of[h].obj == obj)
             return (uint64_t)1 << b->slot_of[h].slot;
         if (!b->slot_of[h].obj)
@@ -229,11 +274,6 @@ static brute_t *brute_new(const primset_t *ps)
             it->kind = ITEM_PARALLELOGRAM;
             it->slot = npara;
             b->para[npara] = i;
-            uint32_t h = slot_hash(it->obj);
-            while (b->slot_of[h].obj && b->slot_of[h].obj != it->obj)
-                h = (h + 1) % SLOT_TABLE;
-            b->slot_of[h].obj = it->obj;
-            b->slot_of[h].slot = npara;
             para[npara++] = it->obj;
             continue;
         }
@@ -246,6 +286,7 @@ static brute_t *brute_new(const primset_t *ps)
         b->others[b->nothers++] = i;
     }
     b->nspheres = (uint32_t)nsph;
+    set_slots(b, para, npara);
     b->batch = parallelogram_batch_new(para, npara);
     if (!b->batch) {
         brute_free(b);
@@ -414,8 +455,8 @@ typedef struct {
 } brute_search_t;
 
 /* A hit hh of item i: is the search over (a shadow ray's first hit)? */
-static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
-                        const hit_t *hh)
+static inline bool brute_found(brute_search_t *q, const primset_t *ps,
+                               uint32_t i, const hit_t *hh)
 {
     if (q->shadow)
         return true;
