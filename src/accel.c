@@ -454,6 +454,20 @@ typedef struct {
     const COBJECT *skip[2]; /* parallelograms the ray cannot meet */
 } brute_search_t;
 
+/* The number of the lowest set bit of x (x != 0): TZCNT/BSF where the
+ * compiler offers it (as grid.c's lowest_bit()). */
+static inline int lowest_bit64(uint64_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctzll(x);
+#else
+    int j = 0;
+    for (; !(x & 1); x >>= 1)
+        j++;
+    return j;
+#endif
+}
+
 /* A hit hh of item i: is the search over (a shadow ray's first hit)? */
 static inline bool brute_found(brute_search_t *q, const primset_t *ps,
                                uint32_t i, const hit_t *hh)
@@ -540,10 +554,8 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
     if (maybe) {
         triangle_ray_t pr;
         triangle_ray_prepare(&pr, r);
-        for (int slot = 0; maybe; slot++, maybe >>= 1) {
-            if (!(maybe & 1))
-                continue;
-            uint32_t i = b->para[slot];
+        for (; maybe; maybe &= maybe - 1) { /* lowest bit first */
+            uint32_t i = b->para[lowest_bit64(maybe)];
             hit_t hh = { 0, 0, { 0, 0, 0 } };
             if (parallelogram_intersect_prepared(b->items[i].obj,
                                                  b->items[i].prim, &pr,
