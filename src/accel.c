@@ -507,6 +507,19 @@ static inline bool brute_found(brute_search_t *q, const primset_t *ps,
  * included, that the skipped parallelogram's own test never reports a
  * hit and that the answers are those of the query without skip. */
 
+/* The exact test of sphere k's object (its sphere let the ray through),
+ * with brute_found()'s answer. */
+static inline bool sphere_item_test(const brute_t *b, const primset_t *ps,
+                                    const ray_t *r, brute_search_t *q,
+                                    uint32_t k)
+{
+    uint32_t i = b->sphere_item[k];
+    hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
+    return xform_intersect_unculled(b->items[i].obj, b->items[i].prim, r,
+                                    q->tmin, q->tmax_tie, &hh) &&
+           brute_found(q, ps, i, &hh);
+}
+
 /* The fast brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
  * test skipped here is one whose intersect() would have answered "no
@@ -526,17 +539,17 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
      * block ends before any wall is looked at. */
     xform_sphere_ray_t rs; /* the spheres' per-ray values, made once */
     xform_sphere_ray(r, &rs);
-    /* xf_intersect() culls by its sphere only for tmin >= 0 */
-    const bool cull = q->tmin >= 0;
-    for (uint32_t k = 0; k < b->nspheres; k++) {
-        if (cull && xform_sphere_misses_ray(&b->spheres[k], r, &rs))
-            continue;
-        uint32_t i = b->sphere_item[k];
-        hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
-        if (xform_intersect_unculled(b->items[i].obj, b->items[i].prim, r,
-                                     q->tmin, q->tmax_tie, &hh) &&
-            brute_found(q, ps, i, &hh))
-            return true;
+    /* xf_intersect() culls by its sphere only for tmin >= 0: the two
+     * cases as two loops, so that the loop does not test tmin again */
+    if (q->tmin >= 0) {
+        for (uint32_t k = 0; k < b->nspheres; k++)
+            if (!xform_sphere_misses_ray(&b->spheres[k], r, &rs) &&
+                sphere_item_test(b, ps, r, q, k))
+                return true;
+    } else {
+        for (uint32_t k = 0; k < b->nspheres; k++)
+            if (sphere_item_test(b, ps, r, q, k))
+                return true;
     }
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
