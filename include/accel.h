@@ -167,6 +167,14 @@ bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
 bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
                          real tmax, const COBJECT *const skip[2]);
 
+/* accel_intersect_skip() answering into the caller's hit and object
+ * directly, in the shape of integrator.h's tracer_t.intersect (render.c's
+ * tracer), with no accel_hit_t in between: the same answer, bit for bit;
+ * *hit and *obj are untouched on a miss. This function can't fail. */
+bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
+                      real tmax, const COBJECT *const skip[2], hit_t *hit,
+                      const COBJECT **obj);
+
 /* Whether a query takes ray r over (tmin, tmax) at all: all six
  * coordinates finite, d nonzero, tmin < tmax (a query answers "no hit"
  * otherwise). accel_ray_ok_plain is the same test without SIMD, for

@@ -107,7 +107,9 @@ int lightset_environment(const lightset_t *ls);
  * scatter light arriving from behind (transmission): an environment is
  * then sampled over the whole sphere, else over the hemisphere of pp.out.
  * Returns false when the sample carries nothing (the back of a one-sided
- * emitter, a degenerate configuration). This function can't fail. */
+ * emitter, a degenerate configuration); *s is then unspecified. On true
+ * every field of *s is set (p, n and p_error zero where they mean
+ * nothing). This function can't fail. */
 bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
                   const real u[2], light_sample_t *s);
 

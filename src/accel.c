@@ -50,6 +50,7 @@ typedef struct {
         const COBJECT *obj; /* NULL: empty */
         int slot;
     } slot_of[2 * PARALLELOGRAM_BATCH_MAX];
+    uint64_t slot_mul; /* slot_hash()'s multiplier, chosen by set_slots() */
     uint32_t *others;    /* the items neither in the batch nor in spheres,
                             in order */
     uint32_t nothers;
@@ -175,11 +176,54 @@ static void brute_free(brute_t *b)
 
 #define SLOT_TABLE (2 * PARALLELOGRAM_BATCH_MAX)
 
-/* Where the search for obj in brute_t.slot_of starts. */
-static uint32_t slot_hash(const COBJECT *obj)
+/* Where the search for obj in brute_t.slot_of starts: the top 7 bits of
+ * its address times an odd multiplier (SLOT_TABLE = 128 entries). */
+static uint32_t slot_hash(uint64_t mul, const COBJECT *obj)
 {
-    uint64_t h = (uint64_t)(uintptr_t)obj * UINT64_C(0x9e3779b97f4a7c15);
-    return (uint32_t)(h >> 57); /* 7 bits: SLOT_TABLE = 128 entries */
+    return (uint32_t)(((uint64_t)(uintptr_t)obj * mul) >> 57);
+}
+
+/* Fill slot_of with the n objects of the batch (obj[k] has bit k; of an
+ * object listed twice, the later bit). Only the speed of slot_bit()
+ * depends on the multiplier, never its answer (open addressing finds
+ * every object wherever it lands, and reaches an empty entry for any
+ * other, the table being at most half full). Objects allocated one
+ * after another lie a fixed stride apart, and for some strides the
+ * golden-ratio multiplier puts them in neighbouring entries, a cluster
+ * that lengthens the probes of the objects a query skips and of those
+ * outside the table (five of the Cornell box's six parallelograms,
+ * 0x120 bytes apart, went to entries 113 to 117): so up to 32
+ * multipliers are tried, and the first that gives every object an entry
+ * of its own with empty entries on both sides is kept (else the one
+ * with the fewest collisions). */
+static void set_slots(brute_t *b, const COBJECT *const *obj, int n)
+{
+    uint64_t best = 0;
+    int best_bad = n + 1;
+    for (uint64_t k = 0; k < 32 && best_bad > 0; k++) {
+        uint64_t mul = UINT64_C(0x9e3779b97f4a7c15) +
+                       2 * k * UINT64_C(0x2545f4914f6cdd1d); /* odd */
+        unsigned char used[SLOT_TABLE] = { 0 };
+        int bad = 0;
+        for (int i = 0; i < n; i++)
+            used[slot_hash(mul, obj[i])]++;
+        for (int h = 0; h < SLOT_TABLE; h++)
+            if (used[h] && (used[h] > 1 || used[(h + 1) % SLOT_TABLE] ||
+                            used[(h + SLOT_TABLE - 1) % SLOT_TABLE]))
+                bad += used[h];
+        if (bad < best_bad) {
+            best_bad = bad;
+            best = mul;
+        }
+    }
+    b->slot_mul = best;
+    for (int i = 0; i < n; i++) {
+        uint32_t h = slot_hash(best, obj[i]);
+        while (b->slot_of[h].obj && b->slot_of[h].obj != obj[i])
+            h = (h + 1) % SLOT_TABLE;
+        b->slot_of[h].obj = obj[i];
+        b->slot_of[h].slot = i;
+    }
 }
 
 /* The batch's bit of obj, or 0 when obj is none of its parallelograms
@@ -188,7 +232,8 @@ static uint64_t slot_bit(const brute_t *b, const COBJECT *obj)
 {
     if (!obj)
         return 0;
-    for (uint32_t h = slot_hash(obj);; h = (h + 1) % SLOT_TABLE) {
+    for (uint32_t h = slot_hash(b->slot_mul, obj);;
+         h = (h + 1) % SLOT_TABLE) {
         if (b->slot_of[h].obj == obj)
             return (uint64_t)1 << b->slot_of[h].slot;
         if (!b->slot_of[h].obj)
@@ -229,11 +274,6 @@ static brute_t *brute_new(const primset_t *ps)
             it->kind = ITEM_PARALLELOGRAM;
             it->slot = npara;
             b->para[npara] = i;
-            uint32_t h = slot_hash(it->obj);
-            while (b->slot_of[h].obj && b->slot_of[h].obj != it->obj)
-                h = (h + 1) % SLOT_TABLE;
-            b->slot_of[h].obj = it->obj;
-            b->slot_of[h].slot = npara;
             para[npara++] = it->obj;
             continue;
         }
@@ -246,6 +286,7 @@ static brute_t *brute_new(const primset_t *ps)
         b->others[b->nothers++] = i;
     }
     b->nspheres = (uint32_t)nsph;
+    set_slots(b, para, npara);
     b->batch = parallelogram_batch_new(para, npara);
     if (!b->batch) {
         brute_free(b);
@@ -407,13 +448,29 @@ typedef struct {
     real tmin, tmax, tmax_tie;
     bool shadow, found;
     uint32_t best;  /* the item of the nearest hit so far */
-    hit_t hit;
+    hit_t *hit;     /* its hit, written straight into the caller's (which
+                       is left untouched until a hit is found); NULL for a
+                       shadow ray, which never reaches brute_found()'s copy */
     const COBJECT *skip[2]; /* parallelograms the ray cannot meet */
 } brute_search_t;
 
+/* The number of the lowest set bit of x (x != 0): TZCNT/BSF where the
+ * compiler offers it (as grid.c's lowest_bit()). */
+static inline int lowest_bit64(uint64_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctzll(x);
+#else
+    int j = 0;
+    for (; !(x & 1); x >>= 1)
+        j++;
+    return j;
+#endif
+}
+
 /* A hit hh of item i: is the search over (a shadow ray's first hit)? */
-static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
-                        const hit_t *hh)
+static inline bool brute_found(brute_search_t *q, const primset_t *ps,
+                               uint32_t i, const hit_t *hh)
 {
     if (q->shadow)
         return true;
@@ -421,7 +478,7 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
         return false;
     q->found = true;
     q->best = i;
-    q->hit = *hh;
+    *q->hit = *hh;
     q->tmax = hh->t;
     q->tmax_tie = real_next_up(hh->t); /* as primset_test() */
     return false;
@@ -450,6 +507,19 @@ static bool brute_found(brute_search_t *q, const primset_t *ps, uint32_t i,
  * included, that the skipped parallelogram's own test never reports a
  * hit and that the answers are those of the query without skip. */
 
+/* The exact test of sphere k's object (its sphere let the ray through),
+ * with brute_found()'s answer. */
+static inline bool sphere_item_test(const brute_t *b, const primset_t *ps,
+                                    const ray_t *r, brute_search_t *q,
+                                    uint32_t k)
+{
+    uint32_t i = b->sphere_item[k];
+    hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
+    return xform_intersect_unculled(b->items[i].obj, b->items[i].prim, r,
+                                    q->tmin, q->tmax_tie, &hh) &&
+           brute_found(q, ps, i, &hh);
+}
+
 /* The fast brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
  * test skipped here is one whose intersect() would have answered "no
@@ -469,17 +539,17 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
      * block ends before any wall is looked at. */
     xform_sphere_ray_t rs; /* the spheres' per-ray values, made once */
     xform_sphere_ray(r, &rs);
-    /* xf_intersect() culls by its sphere only for tmin >= 0 */
-    const bool cull = q->tmin >= 0;
-    for (uint32_t k = 0; k < b->nspheres; k++) {
-        if (cull && xform_sphere_misses_ray(&b->spheres[k], r, &rs))
-            continue;
-        uint32_t i = b->sphere_item[k];
-        hit_t hh = { 0, 0, { 0, 0, 0 } }; /* zeroed, as primset_test */
-        if (xform_intersect_unculled(b->items[i].obj, b->items[i].prim, r,
-                                     q->tmin, q->tmax_tie, &hh) &&
-            brute_found(q, ps, i, &hh))
-            return true;
+    /* xf_intersect() culls by its sphere only for tmin >= 0: the two
+     * cases as two loops, so that the loop does not test tmin again */
+    if (q->tmin >= 0) {
+        for (uint32_t k = 0; k < b->nspheres; k++)
+            if (!xform_sphere_misses_ray(&b->spheres[k], r, &rs) &&
+                sphere_item_test(b, ps, r, q, k))
+                return true;
+    } else {
+        for (uint32_t k = 0; k < b->nspheres; k++)
+            if (sphere_item_test(b, ps, r, q, k))
+                return true;
     }
     for (uint32_t k = 0; k < b->nothers; k++) {
         uint32_t i = b->others[k];
@@ -497,10 +567,8 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
     if (maybe) {
         triangle_ray_t pr;
         triangle_ray_prepare(&pr, r);
-        for (int slot = 0; maybe; slot++, maybe >>= 1) {
-            if (!(maybe & 1))
-                continue;
-            uint32_t i = b->para[slot];
+        for (; maybe; maybe &= maybe - 1) { /* lowest bit first */
+            uint32_t i = b->para[lowest_bit64(maybe)];
             hit_t hh = { 0, 0, { 0, 0, 0 } };
             if (parallelogram_intersect_prepared(b->items[i].obj,
                                                  b->items[i].prim, &pr,
@@ -514,31 +582,33 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
 
 /* Start a search of (tmin, tmax). */
 static void brute_search_init(brute_search_t *q, real tmin, real tmax,
-                              bool shadow, const COBJECT *const skip[2])
+                              hit_t *hit, const COBJECT *const skip[2])
 {
+    q->hit = hit;
     q->skip[0] = skip ? skip[0] : NULL;
     q->skip[1] = skip ? skip[1] : NULL;
     q->tmin = tmin;
     q->tmax = q->tmax_tie = tmax;
-    q->shadow = shadow;
+    q->shadow = !hit;
     q->found = false;
     q->best = 0;
 }
 
+/* The nearest hit, written into *hit and *obj (untouched on a miss):
+ * the one query behind accel_intersect*() and accel_trace(). */
 static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
-                    const COBJECT *const skip[2], accel_hit_t *h,
-                    accel_counters_t *c)
+                    const COBJECT *const skip[2], hit_t *hit,
+                    const COBJECT **obj, accel_counters_t *c)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
     if (a->brute && !c) {
         brute_search_t q;
-        brute_search_init(&q, tmin, tmax, false, skip);
+        brute_search_init(&q, tmin, tmax, hit, skip);
         if (!brute_run(a->brute, &a->ps, r, &q))
             return false;
-        h->obj = a->brute->items[q.best].obj;
-        h->hit = q.hit;
-        h->hit.prim = a->brute->items[q.best].prim;
+        *obj = a->brute->items[q.best].obj;
+        hit->prim = a->brute->items[q.best].prim;
         return true;
     }
     primset_query_t q;
@@ -550,28 +620,35 @@ static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
     }
     if (!q.found)
         return false;
-    h->obj = primset_query_finish(&a->ps, &q);
-    h->hit = q.hit;
+    *obj = primset_query_finish(&a->ps, &q);
+    *hit = q.hit;
     return true;
 }
 
 bool accel_intersect(const accel_t *a, const ray_t *r, real tmin, real tmax,
                      accel_hit_t *h)
 {
-    return nearest(a, r, tmin, tmax, NULL, h, NULL);
+    return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, NULL);
 }
 
 bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
                           real tmax, const COBJECT *const skip[2],
                           accel_hit_t *h)
 {
-    return nearest(a, r, tmin, tmax, skip, h, NULL);
+    return nearest(a, r, tmin, tmax, skip, &h->hit, &h->obj, NULL);
+}
+
+bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
+                      real tmax, const COBJECT *const skip[2], hit_t *hit,
+                      const COBJECT **obj)
+{
+    return nearest(a, r, tmin, tmax, skip, hit, obj, NULL);
 }
 
 bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
                              real tmax, accel_hit_t *h, accel_counters_t *c)
 {
-    return nearest(a, r, tmin, tmax, NULL, h, c);
+    return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, c);
 }
 
 bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
@@ -586,7 +663,7 @@ bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
         return false;
     if (a->brute) {
         brute_search_t q;
-        brute_search_init(&q, tmin, tmax, true, skip);
+        brute_search_init(&q, tmin, tmax, NULL, skip);
         return brute_run(a->brute, &a->ps, r, &q);
     }
     primset_query_t q;

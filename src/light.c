@@ -136,7 +136,8 @@ static real env_pdf(const PATHPOINT *pp, bool two_sided, const VECTOR3 wi)
 bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
                   const real u[2], light_sample_t *s)
 {
-    memset(s, 0, sizeof *s);
+    /* every field is set on a true return below (what a memset of *s
+     * first gave, without writing the fields twice) */
     switch (l->kind) {
     case LIGHT_POINT: {
         VECTOR3 d;
@@ -147,8 +148,10 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
         s->Li = rad_scale(l->intensity, 1 / d2); /* inverse-square law */
         s->pdf = 1;
         s->delta = true;
+        s->infinite = false;
         vec_copy(s->p, l->position);
         vec_copy(s->n, s->wi); /* any normal: p has no error to offset */
+        vec_set(s->p_error, 0, 0, 0);
         return true;
     }
     case LIGHT_AREA: {
@@ -170,6 +173,8 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
         if (!isfinite(s->pdf))
             return false;
         s->Li = l->emission->radiance;
+        s->delta = false;
+        s->infinite = false;
         vec_copy(s->p, cs.p);
         vec_copy(s->n, cs.n);
         vec_copy(s->p_error, cs.p_error);
@@ -193,7 +198,11 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
         if (!(s->pdf > 0))
             return false;
         s->Li = l->radiance;
+        s->delta = false;
         s->infinite = true;
+        vec_set(s->p, 0, 0, 0);
+        vec_set(s->n, 0, 0, 0);
+        vec_set(s->p_error, 0, 0, 0);
         return true;
     }
     }

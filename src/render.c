@@ -19,12 +19,7 @@ static bool accel_trace(const void *ctx, const ray_t *r, real tmin, real tmax,
                         const COBJECT *const skip[2], hit_t *hit,
                         const COBJECT **obj)
 {
-    accel_hit_t h;
-    if (!accel_intersect_skip(ctx, r, tmin, tmax, skip, &h))
-        return false;
-    *hit = h.hit;
-    *obj = h.obj;
-    return true;
+    return accel_trace_skip(ctx, r, tmin, tmax, skip, hit, obj);
 }
 
 static bool accel_shadow(const void *ctx, const ray_t *r, real tmin,
