@@ -399,26 +399,66 @@ static void tune(void)
     }
 }
 
+static int usage(const char *why, const char *arg)
+{
+    fprintf(stderr,
+            "bench_grid: %s%s%s\nusage: bench_grid [--quick] [--only "
+            "1000|10000|100000|1000000|stadium] [FILE.obj]\n"
+            "       bench_grid --tune\n",
+            why, arg ? ": " : "", arg ? arg : "");
+    return 2;
+}
+
+/* --only's argument: one of the sphere sizes, or "stadium". */
+static bool only_ok(const char *a, const long *sizes, int n)
+{
+    if (strcmp(a, "stadium") == 0)
+        return true;
+    char *end;
+    long v = strtol(a, &end, 10);
+    for (int i = 0; *a && !*end && i < n; i++)
+        if (v == sizes[i])
+            return true;
+    return false;
+}
+
 int main(int argc, char **argv)
 {
     const char *objfile = NULL;
     const char *only = NULL; /* one sphere size, or "stadium" */
-    bool quick = false;
+    bool quick = false, tuning = false;
+    const long sizes[] = { 1000, 10000, 100000, 1000000 };
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--tune") == 0) {
-            machine(argc, argv);
-            tune();
-            return 0;
+            tuning = true;
         } else if (strcmp(argv[i], "--quick") == 0) {
             quick = true;
             g_cam = 128;
             g_rays = 1L << 14;
-        } else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+        } else if (strcmp(argv[i], "--only") == 0) {
+            if (i + 1 == argc)
+                return usage("--only needs a size or stadium", NULL);
             only = argv[++i];
+            if (!only_ok(only, sizes, 4))
+                return usage("--only takes a sphere size or stadium", only);
+        } else if (argv[i][0] == '-') {
+            return usage("unknown option", argv[i]);
+        } else if (objfile) {
+            return usage("one OBJ file at most", argv[i]);
         } else {
             objfile = argv[i];
         }
     }
+    if (tuning) {
+        if (argc != 2)
+            return usage("--tune takes no other argument", NULL);
+        machine(argc, argv);
+        tune();
+        return 0;
+    }
+    if (objfile && only)
+        return usage("--only is for the built-in scenes, not an OBJ file",
+                     NULL);
     if (objfile) {
         /* read first: a file that cannot be read gives its file:line error
          * alone, and no table */
@@ -446,8 +486,7 @@ int main(int argc, char **argv)
     }
     machine(argc, argv);
     print_header();
-    long sizes[] = { 1000, 10000, 100000, 1000000 };
-    int nsizes = quick ? 2 : 4;
+    int nsizes = quick && !only ? 2 : 4;
     size_t mesh_mem = 0;
     long mesh_tris = 0;
     for (int i = 0; i < nsizes; i++) {
