@@ -8,6 +8,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "accel.h"
+#include "bits.h"
 #include "parallelogram.h"
 #include "primset.h"
 #include "simd.h"
@@ -454,20 +455,6 @@ typedef struct {
     const COBJECT *skip[2]; /* parallelograms the ray cannot meet */
 } brute_search_t;
 
-/* The number of the lowest set bit of x (x != 0): TZCNT/BSF where the
- * compiler offers it (as grid.c's lowest_bit()). */
-static inline int lowest_bit64(uint64_t x)
-{
-#if defined(__GNUC__) || defined(__clang__)
-    return __builtin_ctzll(x);
-#else
-    int j = 0;
-    for (; !(x & 1); x >>= 1)
-        j++;
-    return j;
-#endif
-}
-
 /* A hit hh of item i: is the search over (a shadow ray's first hit)? */
 static inline bool brute_found(brute_search_t *q, const primset_t *ps,
                                uint32_t i, const hit_t *hh)
@@ -568,7 +555,7 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
         triangle_ray_t pr;
         triangle_ray_prepare(&pr, r);
         for (; maybe; maybe &= maybe - 1) { /* lowest bit first */
-            uint32_t i = b->para[lowest_bit64(maybe)];
+            uint32_t i = b->para[bits_lowest(maybe)];
             hit_t hh = { 0, 0, { 0, 0, 0 } };
             if (parallelogram_intersect_prepared(b->items[i].obj,
                                                  b->items[i].prim, &pr,

@@ -40,6 +40,7 @@
  * simply goes on until a cell's exit passes it.
  */
 #include "grid.h"
+#include "bits.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -614,27 +615,11 @@ static long node_blocks(const grid_node_t *nd)
     return (long)nd->nb[0] * nd->nb[1] * nd->nb[2];
 }
 
-/* The number of bits set in x: the POPCNT instruction where the compiler
- * targets it (-march=native on this machine), else a portable popcount
- * (plain x86-64 has no such instruction). */
-static inline int bits_set(uint64_t x)
-{
-#if defined(__POPCNT__) && (defined(__GNUC__) || defined(__clang__))
-    return __builtin_popcountll(x);
-#else
-    x = x - ((x >> 1) & UINT64_C(0x5555555555555555));
-    x = (x & UINT64_C(0x3333333333333333)) +
-        ((x >> 2) & UINT64_C(0x3333333333333333));
-    x = (x + (x >> 4)) & UINT64_C(0x0f0f0f0f0f0f0f0f);
-    return (int)((x * UINT64_C(0x0101010101010101)) >> 56);
-#endif
-}
-
 /* The non-empty cell of bit `bit` (set) of a block: base its bbase, mask
  * its bmask. */
 static inline uint32_t full_cell(uint32_t base, uint64_t mask, int bit)
 {
-    return base + (uint32_t)bits_set(mask & ((UINT64_C(1) << bit) - 1));
+    return base + (uint32_t)bits_count(mask & ((UINT64_C(1) << bit) - 1));
 }
 
 /* Is item it a mesh triangle kept in the grid's quads? */
@@ -1162,20 +1147,6 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
 
-/* The number of the lowest set bit of x (x != 0): TZCNT/BSF where the
- * compiler offers it. */
-static inline int lowest_bit(unsigned x)
-{
-#if defined(__GNUC__) || defined(__clang__)
-    return __builtin_ctz(x);
-#else
-    int j = 0;
-    for (; !(x & 1); x >>= 1)
-        j++;
-    return j;
-#endif
-}
-
 /* The full test of the lanes `left` of the quads qd (lane j in quad
  * j / MESH_BATCH), which the sign test could not reject, through the
  * mailbox. Returns true when a shadow query found a hit. */
@@ -1185,7 +1156,7 @@ static inline bool test_lanes(const primset_t *ps, primset_query_t *q,
 {
     /* one turn per lane kept (usually one or two of eight), not per lane */
     for (; left; left &= left - 1) {
-        int j = lowest_bit(left);
+        int j = bits_lowest(left);
         uint32_t ref = qd[j / MESH_BATCH].ref[j % MESH_BATCH];
         if (ref == GRID_QUAD_PAD) /* padding is last */
             break;
