@@ -43,15 +43,16 @@ typedef struct {
     uint32_t n;
     parallelogram_batch_t *batch;
     uint32_t para[PARALLELOGRAM_BATCH_MAX]; /* the item of each bit */
-    /* The bit of each parallelogram's object, found by its address: open
-     * addressing over SLOT_TABLE entries, at least twice the batch's
-     * size, so that a query finds the bits of its skip in a probe or
-     * two rather than a walk over the batch. */
-    struct {
-        const COBJECT *obj; /* NULL: empty */
-        int slot;
-    } slot_of[2 * PARALLELOGRAM_BATCH_MAX];
-    uint64_t slot_mul; /* slot_hash()'s multiplier, chosen by set_slots() */
+    /* The batch's bits of each object, found by its index in the scene
+     * (COBJECT.id) when objs_by_id[id] is that object: 0 for an object
+     * that is no parallelogram of the batch. An object without such an
+     * index (one made outside a scene, as tests make them) is looked for
+     * among para_obj instead. */
+    const COBJECT **objs_by_id;
+    uint64_t *bits_by_id;
+    int nid;
+    const COBJECT *para_obj[PARALLELOGRAM_BATCH_MAX];
+    int npara;
     uint32_t *others;    /* the items neither in the batch nor in spheres,
                             in order */
     uint32_t nothers;
@@ -172,74 +173,48 @@ static void brute_free(brute_t *b)
     parallelogram_batch_free(b->batch);
     free(b->spheres);
     free(b->sphere_item);
+    free(b->objs_by_id);
+    free(b->bits_by_id);
     free(b);
 }
 
-#define SLOT_TABLE (2 * PARALLELOGRAM_BATCH_MAX)
-
-/* Where the search for obj in brute_t.slot_of starts: the top 7 bits of
- * its address times an odd multiplier (SLOT_TABLE = 128 entries). */
-static uint32_t slot_hash(uint64_t mul, const COBJECT *obj)
-{
-    return (uint32_t)(((uint64_t)(uintptr_t)obj * mul) >> 57);
-}
-
-/* Fill slot_of with the n objects of the batch (obj[k] has bit k; of an
- * object listed twice, the later bit). Only the speed of slot_bit()
- * depends on the multiplier, never its answer (open addressing finds
- * every object wherever it lands, and reaches an empty entry for any
- * other, the table being at most half full). Objects allocated one
- * after another lie a fixed stride apart, and for some strides the
- * golden-ratio multiplier puts them in neighbouring entries, a cluster
- * that lengthens the probes of the objects a query skips and of those
- * outside the table (five of the Cornell box's six parallelograms,
- * 0x120 bytes apart, went to entries 113 to 117): so up to 32
- * multipliers are tried, and the first that gives every object an entry
- * of its own with empty entries on both sides is kept (else the one
- * with the fewest collisions). */
-static void set_slots(brute_t *b, const COBJECT *const *obj, int n)
-{
-    uint64_t best = 0;
-    int best_bad = n + 1;
-    for (uint64_t k = 0; k < 32 && best_bad > 0; k++) {
-        uint64_t mul = UINT64_C(0x9e3779b97f4a7c15) +
-                       2 * k * UINT64_C(0x2545f4914f6cdd1d); /* odd */
-        unsigned char used[SLOT_TABLE] = { 0 };
-        int bad = 0;
-        for (int i = 0; i < n; i++)
-            used[slot_hash(mul, obj[i])]++;
-        for (int h = 0; h < SLOT_TABLE; h++)
-            if (used[h] && (used[h] > 1 || used[(h + 1) % SLOT_TABLE] ||
-                            used[(h + SLOT_TABLE - 1) % SLOT_TABLE]))
-                bad += used[h];
-        if (bad < best_bad) {
-            best_bad = bad;
-            best = mul;
-        }
-    }
-    b->slot_mul = best;
-    for (int i = 0; i < n; i++) {
-        uint32_t h = slot_hash(best, obj[i]);
-        while (b->slot_of[h].obj && b->slot_of[h].obj != obj[i])
-            h = (h + 1) % SLOT_TABLE;
-        b->slot_of[h].obj = obj[i];
-        b->slot_of[h].slot = i;
-    }
-}
-
-/* The batch's bit of obj, or 0 when obj is none of its parallelograms
- * (NULL included). */
-static uint64_t slot_bit(const brute_t *b, const COBJECT *obj)
+/* The batch's bits of obj (more than one if it is listed more than
+ * once), or 0 when obj is none of its parallelograms (NULL included): a
+ * lookup by the object's index in its scene, which every object of a
+ * rendered scene has, else a look at each parallelogram of the batch. */
+static uint64_t batch_bits(const brute_t *b, const COBJECT *obj)
 {
     if (!obj)
         return 0;
-    for (uint32_t h = slot_hash(b->slot_mul, obj);;
-         h = (h + 1) % SLOT_TABLE) {
-        if (b->slot_of[h].obj == obj)
-            return (uint64_t)1 << b->slot_of[h].slot;
-        if (!b->slot_of[h].obj)
-            return 0;
+    if (obj->id >= 0 && obj->id < b->nid && b->objs_by_id[obj->id] == obj)
+        return b->bits_by_id[obj->id];
+    uint64_t m = 0;
+    for (int k = 0; k < b->npara; k++)
+        if (b->para_obj[k] == obj)
+            m |= (uint64_t)1 << k;
+    return m;
+}
+
+/* Fill objs_by_id and bits_by_id from the items (brute_new()); false
+ * when memory runs out. */
+static bool index_by_id(brute_t *b, const primset_t *ps)
+{
+    b->nid = ps->nobjs;
+    b->objs_by_id = calloc((size_t)b->nid + 1, sizeof *b->objs_by_id);
+    b->bits_by_id = calloc((size_t)b->nid + 1, sizeof *b->bits_by_id);
+    if (!b->objs_by_id || !b->bits_by_id)
+        return false;
+    for (int i = 0; i < ps->nobjs; i++) {
+        const COBJECT *o = ps->objs[i];
+        if (o && o->id >= 0 && o->id < b->nid && !b->objs_by_id[o->id])
+            b->objs_by_id[o->id] = o;
     }
+    for (int k = 0; k < b->npara; k++) {
+        const COBJECT *o = b->para_obj[k];
+        if (o->id >= 0 && o->id < b->nid && b->objs_by_id[o->id] == o)
+            b->bits_by_id[o->id] |= (uint64_t)1 << k;
+    }
+    return true;
 }
 
 /* The fast brute force over ps, or NULL when ps has mesh triangles (they
@@ -252,7 +227,7 @@ static brute_t *brute_new(const primset_t *ps)
         return NULL;
     brute_t *b = calloc(1, sizeof *b);
     size_t n = (size_t)ps->nrefs + 1;
-    const COBJECT *para[PARALLELOGRAM_BATCH_MAX];
+    const COBJECT **para = b ? b->para_obj : NULL;
     int npara = 0, nsph = 0;
     if (b) {
         b->items = malloc(n * sizeof *b->items);
@@ -287,9 +262,9 @@ static brute_t *brute_new(const primset_t *ps)
         b->others[b->nothers++] = i;
     }
     b->nspheres = (uint32_t)nsph;
-    set_slots(b, para, npara);
+    b->npara = npara;
     b->batch = parallelogram_batch_new(para, npara);
-    if (!b->batch) {
+    if (!b->batch || !index_by_id(b, ps)) {
         brute_free(b);
         return NULL;
     }
@@ -548,7 +523,7 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
             return true;
     }
     /* the parallelograms in q->skip are left out of the batch */
-    uint64_t want = ~(slot_bit(b, q->skip[0]) | slot_bit(b, q->skip[1]));
+    uint64_t want = ~(batch_bits(b, q->skip[0]) | batch_bits(b, q->skip[1]));
     uint64_t maybe = parallelogram_batch_cull(b->batch, r, q->tmin,
                                               q->tmax_tie, want);
     if (maybe) {

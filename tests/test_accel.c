@@ -906,9 +906,17 @@ START_TEST(skipping_the_planes_a_ray_leaves_or_aims_at_changes_no_answer)
     pcg32_t g;
     pcg32_seed(&g, 91, 3);
     long rays = 0;
-    scene_t_ s = { 0 };
-    cornell_box(&s, false);
-    rays += skip_rays(&s, &g, 200000, REAL_C(0.33)); /* inside the box */
+    /* inside the box: once with the objects numbered as a scene numbers
+     * them (COBJECT.id, which brute force looks the skipped ones up by),
+     * once unnumbered (id -1, looked for in the batch), once with the
+     * numbers reversed, so that an object's id names another object */
+    for (int pass = 0; pass < 3; pass++) {
+        scene_t_ s = { 0 };
+        cornell_box(&s, false);
+        for (int i = 0; i < s.n; i++)
+            s.objs[i]->id = pass == 0 ? i : pass == 1 ? -1 : s.n - 1 - i;
+        rays += skip_rays(&s, &g, 70000, REAL_C(0.33));
+    }
     /* parallelograms of every orientation and size, at several scales */
     for (int sc = 0; sc < 12; sc++) {
         scene_t_ p = { 0 };
