@@ -1498,6 +1498,379 @@ bool grid_occluded(const grid_t *g, primset_query_t *q)
     return query(g, q, true);
 }
 
+/* --- packets of coherent rays (Wald et al. 2006) -------------------------- */
+
+/* Rays a packet's arrays hold: GRID_PACKET_MAX, a multiple of 4 (the
+ * vector loop of packet_cell_rays()). */
+#define PK_N GRID_PACKET_MAX
+
+/* A packet on its walk. Distances along the major axis k are measured
+ * from the common origin in the rays' direction: s = (x_k - o_k) sg, so
+ * ray i is at s = t |d_k| and there at o_u + s mu[i] on axis u (the same
+ * for v). Every per-ray array is padded to a multiple of 4 with rays that
+ * are nowhere (s0 = +inf, s1 = -inf). */
+typedef struct {
+    int k, u, v;           /* the major axis and the other two */
+    double sg;             /* +1 or -1: the rays' direction on k */
+    double o[3];           /* the common origin */
+    double margin;         /* how far every test is widened (ps->pad) */
+    int n;                 /* rays, rounded up to a multiple of 4 */
+    uint64_t live;         /* rays still walking */
+    double S0, S1;         /* the union of the live rays' [s0, s1] */
+    double mlo[2], mhi[2]; /* the live rays' extreme mu (0) and mv (1) */
+    double s0[PK_N], s1[PK_N];   /* ray i's part of the grid (widened) */
+    double mu[PK_N], mv[PK_N];   /* d_u / |d_k|, d_v / |d_k| */
+    double iad[PK_N];            /* 1 / |d_k| */
+    double tol[PK_N];            /* margin (|mu| + |mv|): pk_slice() */
+    double tend[PK_N], t1[PK_N]; /* walk_end(), and the walk's t1 */
+    /* ray i's box on (u, v) within the current slice, relative to o,
+     * widened; empty (+inf, -inf) where the ray is not in the slice */
+    double ul[PK_N], uh[PK_N], vl[PK_N], vh[PK_N];
+} packet_t;
+
+static inline double pk_min(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static inline double pk_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+/* The s of plane pl (x_k = min_k + pl w_k) of nd: times iad[i], the t at
+ * which ray i crosses it, the bits plane_t() gives (sg |1/d| = 1/d). */
+static inline double pk_plane_s(const grid_node_t *nd, const packet_t *p,
+                                long pl)
+{
+    return (nd->min[p->k] + (double)pl * nd->w[p->k] - p->o[p->k]) * p->sg;
+}
+
+/* S0, S1 and the extreme slopes over the live rays. */
+static void pk_bounds(packet_t *p)
+{
+    p->S0 = (double)INFINITY;
+    p->S1 = -(double)INFINITY;
+    p->mlo[0] = p->mlo[1] = (double)INFINITY;
+    p->mhi[0] = p->mhi[1] = -(double)INFINITY;
+    for (uint64_t m = p->live; m; m &= m - 1) {
+        int i = bits_lowest(m);
+        p->S0 = pk_min(p->S0, p->s0[i]);
+        p->S1 = pk_max(p->S1, p->s1[i]);
+        p->mlo[0] = pk_min(p->mlo[0], p->mu[i]);
+        p->mhi[0] = pk_max(p->mhi[0], p->mu[i]);
+        p->mlo[1] = pk_min(p->mlo[1], p->mv[i]);
+        p->mhi[1] = pk_max(p->mhi[1], p->mv[i]);
+    }
+}
+
+/* The cells [*c0, *c1] on axis u (j = 0) or v (j = 1) that the live
+ * rays' points with s in [a, b] may lie in: {s m} for s in [a, b] and m
+ * in [mlo, mhi] lies between the least and the greatest of the four
+ * corner products (rounding is monotone, so every ray's own product
+ * lies between them too), widened by twice the margin. */
+static void pk_range(const grid_node_t *nd, const packet_t *p, int j,
+                     double a, double b, int *c0, int *c1)
+{
+    int ax = j ? p->v : p->u;
+    double aa = a * p->mlo[j], ab = a * p->mhi[j];
+    double ba = b * p->mlo[j], bb = b * p->mhi[j];
+    double lo = pk_min(pk_min(aa, ab), pk_min(ba, bb));
+    double hi = pk_max(pk_max(aa, ab), pk_max(ba, bb));
+    *c0 = cell_of(nd, ax, p->o[ax] + lo - 2 * p->margin);
+    *c1 = cell_of(nd, ax, p->o[ax] + hi + 2 * p->margin);
+}
+
+/* Each ray's box on (u, v) within the slice [a, b] of s: its segment
+ * there runs from s = max(a, s0) to min(b, s1), and u = s mu is linear
+ * in s, so the ends bound it. Written as plain loops over arrays, which
+ * the compiler turns into vector code. */
+static void pk_slice_boxes(packet_t *p, double a, double b)
+{
+    const double inf = (double)INFINITY, mg = p->margin;
+    for (int i = 0; i < p->n; i++) {
+        double sa = pk_max(a, p->s0[i]), sb = pk_min(b, p->s1[i]);
+        double ua = sa * p->mu[i], ub = sb * p->mu[i];
+        double va = sa * p->mv[i], vb = sb * p->mv[i];
+        bool in = sa <= sb;
+        p->ul[i] = in ? pk_min(ua, ub) - mg : inf;
+        p->uh[i] = in ? pk_max(ua, ub) + mg : -inf;
+        p->vl[i] = in ? pk_min(va, vb) - mg : inf;
+        p->vh[i] = in ? pk_max(va, vb) + mg : -inf;
+    }
+}
+
+/* The rays whose slice box overlaps the cell [u0, u1] x [v0, v1]
+ * (relative to o): a superset of the rays whose segment in the slice
+ * meets the cell, the cell's own extent along k being the slice's. */
+static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
+                                    double v0, double v1)
+{
+    uint64_t m = 0;
+#ifdef __AVX__
+    const __m256d a = _mm256_set1_pd(u0), b = _mm256_set1_pd(u1);
+    const __m256d c = _mm256_set1_pd(v0), d = _mm256_set1_pd(v1);
+    for (int i = 0; i < p->n; i += 4) {
+        __m256d x = _mm256_and_pd(
+            _mm256_cmp_pd(_mm256_loadu_pd(p->ul + i), b, _CMP_LE_OQ),
+            _mm256_cmp_pd(_mm256_loadu_pd(p->uh + i), a, _CMP_GE_OQ));
+        __m256d y = _mm256_and_pd(
+            _mm256_cmp_pd(_mm256_loadu_pd(p->vl + i), d, _CMP_LE_OQ),
+            _mm256_cmp_pd(_mm256_loadu_pd(p->vh + i), c, _CMP_GE_OQ));
+        m |= (uint64_t)_mm256_movemask_pd(_mm256_and_pd(x, y)) << i;
+    }
+#else
+    for (int i = 0; i < p->n; i++)
+        m |= (uint64_t)(p->ul[i] <= u1 && p->uh[i] >= u0 && p->vl[i] <= v1 &&
+                        p->vh[i] >= v0)
+             << i;
+#endif
+    return m;
+}
+
+/* Take ray i out of the walk. */
+static void pk_drop(packet_t *p, int i)
+{
+    p->live &= ~(UINT64_C(1) << i);
+    p->s0[i] = (double)INFINITY;
+    p->s1[i] = -(double)INFINITY;
+}
+
+/* After the slices up to far plane s = b are done: every live ray whose
+ * crossing of that plane lies past its walk_end() is finished -- the
+ * single walk's stopping rule, with the slice's far plane for the cell's
+ * exit. Returns true when a ray was dropped. */
+static bool pk_stop(packet_t *p, double b)
+{
+    uint64_t drop = 0;
+    for (int i = 0; i < p->n; i++)
+        drop |= (uint64_t)!(b * p->iad[i] <= p->tend[i]) << i;
+    drop &= p->live;
+    for (uint64_t m = drop; m; m &= m - 1)
+        pk_drop(p, bits_lowest(m));
+    if (drop)
+        pk_bounds(p);
+    return drop != 0;
+}
+
+/* The bits of a block's word whose cell has coordinate lo .. hi (within
+ * the block, 0 to GRID_BLOCK - 1) on axis a. */
+static inline uint64_t pk_axis_bits(int a, int lo, int hi)
+{
+    const uint64_t layers = UINT64_C(0x0001000100010001);
+    if (a == 0) /* bit x + 4 y + 16 z */
+        return layers * (0x1111u * ((2u << hi) - (1u << lo)));
+    if (a == 1)
+        return layers * ((UINT64_C(1) << 4 * (hi + 1)) -
+                         (UINT64_C(1) << 4 * lo));
+    return (~UINT64_C(0) >> (48 - 16 * hi)) & (~UINT64_C(0) << 16 * lo);
+}
+
+/* Walk slice j of the top level (s from a to b): each non-empty cell the
+ * frustum may cross (found block by block from the words, the empty ones
+ * never looked at), tested for the rays that may pass through it: those
+ * whose box in the slice overlaps the cell (pk_cell_rays) and whose line
+ * on (u, v) meets it. Every ray's line on (u, v) runs through the origin
+ * (the common origin is at u = v = 0), along (mu, mv): f(P) = mv P_u - mu
+ * P_v is zero on it, and the line meets a rectangle when f takes both
+ * signs over its corners; the rectangle widened by the margin moves f by
+ * at most margin (|mu| + |mv|). With the box, the segment test of 2D
+ * separating axes: exact, but for the margins. */
+static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
+                     primset_query_t *q, int j, double a, double b)
+{
+    const grid_node_t *nd = &g->nodes[0];
+    const int k = p->k, u = p->u, v = p->v;
+    int u0, u1, v0, v1;
+    pk_range(nd, p, 0, pk_max(a, p->S0), pk_min(b, p->S1), &u0, &u1);
+    pk_range(nd, p, 1, pk_max(a, p->S0), pk_min(b, p->S1), &v0, &v1);
+    pk_slice_boxes(p, a, b);
+    const long stride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
+    const uint64_t *bm = g->bmask + nd->bfirst;
+    const uint32_t *bb = g->bbase + nd->bfirst;
+    long bk = (long)(j / GRID_BLOCK) * stride[k];
+    int jk = j % GRID_BLOCK;
+    uint64_t kbits = pk_axis_bits(k, jk, jk);
+    for (int bv = v0 / GRID_BLOCK; bv <= v1 / GRID_BLOCK; bv++) {
+        int vlo = bv == v0 / GRID_BLOCK ? v0 % GRID_BLOCK : 0;
+        int vhi = bv == v1 / GRID_BLOCK ? v1 % GRID_BLOCK : GRID_BLOCK - 1;
+        uint64_t vbits = kbits & pk_axis_bits(v, vlo, vhi);
+        for (int bu = u0 / GRID_BLOCK; bu <= u1 / GRID_BLOCK; bu++) {
+            int ulo = bu == u0 / GRID_BLOCK ? u0 % GRID_BLOCK : 0;
+            int uhi = bu == u1 / GRID_BLOCK ? u1 % GRID_BLOCK : GRID_BLOCK - 1;
+            long blk = bk + bv * stride[v] + bu * stride[u];
+            uint64_t word = bm[blk];
+            uint64_t cells = word & vbits & pk_axis_bits(u, ulo, uhi);
+            for (; cells; cells &= cells - 1) {
+                int bit = bits_lowest(cells);
+                int cu = bu * GRID_BLOCK + bit / bit_stride[u] % GRID_BLOCK;
+                int cv = bv * GRID_BLOCK + bit / bit_stride[v] % GRID_BLOCK;
+                double lu = nd->min[u] + cu * nd->w[u] - p->o[u];
+                double hu = nd->min[u] + (cu + 1) * nd->w[u] - p->o[u];
+                double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
+                double hv = nd->min[v] + (cv + 1) * nd->w[v] - p->o[v];
+                uint64_t rays = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
+                uint32_t f = UINT32_MAX;
+                for (; rays; rays &= rays - 1) {
+                    int i = bits_lowest(rays);
+                    double mu = p->mu[i], mv = p->mv[i];
+                    double fa = mv * lu, fb = mv * hu;
+                    double ga = mu * lv, gb = mu * hv;
+                    double tol = p->tol[i];
+                    if (pk_min(fa, fb) - pk_max(ga, gb) > tol ||
+                        pk_max(fa, fb) - pk_min(ga, gb) < -tol)
+                        continue;
+                    if (f == UINT32_MAX)
+                        f = full_cell(bb[blk], word, bit);
+                    test_full(g, &w[i], &q[i], f, false);
+                    q[i].cells++;
+                    p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
+                }
+            }
+        }
+    }
+}
+
+/* Is any cell of the blocks the frustum may cross in the block slab bj
+ * (s from a to b) non-empty? */
+static bool pk_slab_full(const grid_t *g, const packet_t *p, int bj,
+                         double a, double b)
+{
+    const grid_node_t *nd = &g->nodes[0];
+    int u0, u1, v0, v1;
+    pk_range(nd, p, 0, a, b, &u0, &u1);
+    pk_range(nd, p, 1, a, b, &v0, &v1);
+    long stride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
+    const uint64_t *bm = g->bmask + nd->bfirst + (long)bj * stride[p->k];
+    for (int bv = v0 / GRID_BLOCK; bv <= v1 / GRID_BLOCK; bv++)
+        for (int bu = u0 / GRID_BLOCK; bu <= u1 / GRID_BLOCK; bu++)
+            if (bm[bv * stride[p->v] + bu * stride[p->u]])
+                return true;
+    return false;
+}
+
+/* One packet of n <= GRID_PACKET_MAX rays (grid_intersect_packet()).
+ *
+ * Why each ray gets grid_intersect()'s answer. Both answers are the
+ * nearest hit of the primitives tested (the rule of primset_keep(), which
+ * does not depend on the order of the tests), and both test with the same
+ * per-ray code (test_full(): the quads' sign test, the full test, the
+ * mailbox, child grids walked by walk()), so the same primitive gives the
+ * same t and bits. The single walk's answer is brute force's because it
+ * tests every primitive a hit beating the best could come from (grid.c's
+ * top): such a hit lies in a cell the ray passes through before its exit
+ * passes walk_end(). Here each ray tests a superset of those cells: (1)
+ * the slices are walked in the rays' order along k, and a ray is dropped
+ * only after a slice whose far plane it crosses past its walk_end(), the
+ * single walk's rule with the slice's far plane as the exit (the same
+ * bits as plane_t()); (2) within a slice, every cell the ray's segment
+ * meets is in the frustum's range (pk_range(): the corner products bound
+ * every ray's own, and the range is widened by twice the margin) and
+ * passes pk_cell_rays() (the ray's box in the slice, widened by the
+ * margin, overlaps it); (3) each ray's segment is its part of the grid's
+ * box over the walk's widened (t0, t1), widened again by the margin along
+ * k. The margin is ps->pad, the padding every primitive's cells have
+ * (2^-20 of the scene), far above the double rounding of these few
+ * operations, so the rounding only ever adds cells. A packet's rays all
+ * move one way on k (the sign test of the caller), so no ray needs a
+ * slice before one the walk has passed. */
+static void packet(const grid_t *g, primset_query_t *q, int n)
+{
+    const grid_node_t *nd = &g->nodes[0];
+    double sum[3] = { 0, 0, 0 };
+    for (int i = 0; i < n; i++)
+        for (int a = 0; a < 3; a++)
+            sum[a] += (double)q[i].r->d[a];
+    packet_t p;
+    p.k = fabs(sum[0]) >= fabs(sum[1])
+              ? (fabs(sum[0]) >= fabs(sum[2]) ? 0 : 2)
+              : (fabs(sum[1]) >= fabs(sum[2]) ? 1 : 2);
+    p.u = p.k == 2 ? 0 : p.k + 1;
+    p.v = p.u == 2 ? 0 : p.u + 1;
+    p.sg = sum[p.k] < 0 ? -1 : 1;
+    const real *o = q[0].r->o;
+    for (int a = 0; a < 3; a++)
+        p.o[a] = (double)o[a];
+    p.margin = g->ps->pad;
+    p.n = (n + 3) / 4 * 4;
+    p.live = 0;
+    walk_t w[PK_N];
+    const int k = p.k, u = p.u, v = p.v;
+    for (int i = 0; i < p.n; i++) {
+        p.s0[i] = (double)INFINITY;
+        p.s1[i] = -(double)INFINITY;
+        p.mu[i] = p.mv[i] = p.iad[i] = p.tol[i] = p.tend[i] = p.t1[i] = 0;
+        if (i >= n)
+            continue;
+        const ray_t *r = q[i].r;
+        double dk = (double)r->d[k] * p.sg;
+        bool ok = r->o[0] == o[0] && r->o[1] == o[1] && r->o[2] == o[2] &&
+                  isfinite(o[0]) && isfinite(o[1]) && isfinite(o[2]) &&
+                  dk > 0 && isfinite(dk) && dk >= fabs((double)r->d[u]) &&
+                  dk >= fabs((double)r->d[v]);
+        if (!ok) {
+            grid_intersect(g, &q[i]);
+            continue;
+        }
+        walk_init(&w[i], g, &q[i]);
+        double t0, t1;
+        if (!(w[i].t0 <= w[i].t1) ||
+            !slab(&w[i], nd->min, nd->max, w[i].t0, w[i].t1, &t0, &t1))
+            continue; /* misses the grid: q[i] as query() leaves it */
+        p.iad[i] = 1 / dk;
+        p.mu[i] = (double)r->d[u] / dk;
+        p.mv[i] = (double)r->d[v] / dk;
+        p.tol[i] = p.margin * (fabs(p.mu[i]) + fabs(p.mv[i]));
+        p.s0[i] = t0 * dk - p.margin;
+        p.s1[i] = t1 * dk + p.margin;
+        p.t1[i] = t1;
+        p.tend[i] = walk_end(&w[i], &q[i], t1);
+        p.live |= UINT64_C(1) << i;
+    }
+    if (!p.live)
+        return;
+    pk_bounds(&p);
+    const int res = nd->res[k], step = p.sg > 0 ? 1 : -1;
+    int j = cell_of(nd, k, p.o[k] + p.sg * p.S0);
+    while (p.live && j >= 0 && j < res) {
+        /* the block slab of j: its slices from j on, in the rays' order */
+        int bj = j / GRID_BLOCK;
+        int jend = step > 0 ? bj * GRID_BLOCK + GRID_BLOCK - 1 : bj * GRID_BLOCK;
+        if (jend >= res)
+            jend = res - 1;
+        double a = pk_plane_s(nd, &p, step > 0 ? j : j + 1);
+        double b = pk_plane_s(nd, &p, step > 0 ? jend + 1 : jend);
+        if (a > p.S1)
+            break;
+        if (pk_slab_full(g, &p, bj, pk_max(a, p.S0), pk_min(b, p.S1))) {
+            for (; p.live; j += step) {
+                double sa = pk_plane_s(nd, &p, step > 0 ? j : j + 1);
+                double sb = pk_plane_s(nd, &p, step > 0 ? j + 1 : j);
+                pk_slice(g, &p, w, q, j, sa, sb);
+                pk_stop(&p, sb);
+                if (j == jend)
+                    break;
+            }
+        } else {
+            pk_stop(&p, b);
+        }
+        j = jend + step;
+    }
+}
+
+void grid_intersect_packet(const grid_t *g, primset_query_t *q, int n)
+{
+    if (g->ncells == 0 || g->ps->nbounded == 0)
+        return;
+    for (int i = 0; i < n; i += GRID_PACKET_MAX) {
+        int m = n - i < GRID_PACKET_MAX ? n - i : GRID_PACKET_MAX;
+        if (m == 1)
+            grid_intersect(g, &q[i]);
+        else
+            packet(g, q + i, m);
+    }
+}
+
 /* --- the grids as acceleration structures (accel.h) ---------------------- */
 
 /* accel_params_t's numbers over the defaults: the uniform grid's when
