@@ -1518,9 +1518,11 @@ typedef struct {
     uint64_t live;         /* rays still walking */
     double S0, S1;         /* the union of the live rays' [s0, s1] */
     double mlo[2], mhi[2]; /* the live rays' extreme mu (0) and mv (1) */
-    double s0[PK_N], s1[PK_N];   /* ray i's part of the grid (widened) */
+    double s0[PK_N], s1[PK_N];   /* ray i's part of the grid (widened):
+                                    from its entry to its exit or, once
+                                    it has a hit, to its walk_end() */
     double mu[PK_N], mv[PK_N];   /* d_u / |d_k|, d_v / |d_k| */
-    double iad[PK_N];            /* 1 / |d_k| */
+    double iad[PK_N], adk[PK_N]; /* 1 / |d_k|, |d_k| */
     double tol[PK_N];            /* margin (|mu| + |mv|): pk_slice() */
     double tend[PK_N], t1[PK_N]; /* walk_end(), and the walk's t1 */
     /* ray i's box on (u, v) within the current slice, relative to o,
@@ -1581,23 +1583,52 @@ static void pk_range(const grid_node_t *nd, const packet_t *p, int j,
     *c1 = cell_of(nd, ax, p->o[ax] + hi + 2 * p->margin);
 }
 
-/* Each ray's box on (u, v) within the slice [a, b] of s: its segment
+/* Ray i's box on (u, v) within the slice [a, b] of s: its segment
  * there runs from s = max(a, s0) to min(b, s1), and u = s mu is linear
- * in s, so the ends bound it. Written as plain loops over arrays, which
- * the compiler turns into vector code. */
-static void pk_slice_boxes(packet_t *p, double a, double b)
+ * in s, so the ends bound it. */
+static void pk_box(packet_t *p, int i, double a, double b)
 {
     const double inf = (double)INFINITY, mg = p->margin;
-    for (int i = 0; i < p->n; i++) {
-        double sa = pk_max(a, p->s0[i]), sb = pk_min(b, p->s1[i]);
-        double ua = sa * p->mu[i], ub = sb * p->mu[i];
-        double va = sa * p->mv[i], vb = sb * p->mv[i];
-        bool in = sa <= sb;
-        p->ul[i] = in ? pk_min(ua, ub) - mg : inf;
-        p->uh[i] = in ? pk_max(ua, ub) + mg : -inf;
-        p->vl[i] = in ? pk_min(va, vb) - mg : inf;
-        p->vh[i] = in ? pk_max(va, vb) + mg : -inf;
+    double sa = pk_max(a, p->s0[i]), sb = pk_min(b, p->s1[i]);
+    double ua = sa * p->mu[i], ub = sb * p->mu[i];
+    double va = sa * p->mv[i], vb = sb * p->mv[i];
+    bool in = sa <= sb;
+    p->ul[i] = in ? pk_min(ua, ub) - mg : inf;
+    p->uh[i] = in ? pk_max(ua, ub) + mg : -inf;
+    p->vl[i] = in ? pk_min(va, vb) - mg : inf;
+    p->vh[i] = in ? pk_max(va, vb) + mg : -inf;
+}
+
+/* pk_box() of every ray (with AVX four rays at a time, the same
+ * operations: max, min and selects are exact). */
+static void pk_slice_boxes(packet_t *p, double a, double b)
+{
+#ifdef __AVX__
+    const double inf = (double)INFINITY, mg = p->margin;
+    const __m256d va = _mm256_set1_pd(a), vb = _mm256_set1_pd(b);
+    const __m256d vmg = _mm256_set1_pd(mg), pinf = _mm256_set1_pd(inf);
+    const __m256d ninf = _mm256_set1_pd(-inf);
+    for (int i = 0; i < p->n; i += 4) {
+        __m256d sa = _mm256_max_pd(va, _mm256_loadu_pd(p->s0 + i));
+        __m256d sb = _mm256_min_pd(vb, _mm256_loadu_pd(p->s1 + i));
+        __m256d in = _mm256_cmp_pd(sa, sb, _CMP_LE_OQ);
+        __m256d mu = _mm256_loadu_pd(p->mu + i);
+        __m256d mv = _mm256_loadu_pd(p->mv + i);
+        __m256d ua = _mm256_mul_pd(sa, mu), ub = _mm256_mul_pd(sb, mu);
+        __m256d xa = _mm256_mul_pd(sa, mv), xb = _mm256_mul_pd(sb, mv);
+        _mm256_storeu_pd(p->ul + i, _mm256_blendv_pd(pinf,
+            _mm256_sub_pd(_mm256_min_pd(ua, ub), vmg), in));
+        _mm256_storeu_pd(p->uh + i, _mm256_blendv_pd(ninf,
+            _mm256_add_pd(_mm256_max_pd(ua, ub), vmg), in));
+        _mm256_storeu_pd(p->vl + i, _mm256_blendv_pd(pinf,
+            _mm256_sub_pd(_mm256_min_pd(xa, xb), vmg), in));
+        _mm256_storeu_pd(p->vh + i, _mm256_blendv_pd(ninf,
+            _mm256_add_pd(_mm256_max_pd(xa, xb), vmg), in));
     }
+#else
+    for (int i = 0; i < p->n; i++)
+        pk_box(p, i, a, b);
+#endif
 }
 
 /* The rays whose slice box overlaps the cell [u0, u1] x [v0, v1]
@@ -1628,6 +1659,57 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
     return m;
 }
 
+/* Test non-empty cell f for the packet's rays `rays`: test_full() of
+ * each, with the loops turned inside out where the cell has quads: each
+ * pair of quads (or quad) taken once and the rays run through it, so that
+ * the cell's quads are found and a call made once a cell, not once a ray.
+ * The same per-ray tests (mesh_wide_reject_soa2, mesh_lanes_reject_soa,
+ * test_lanes, test_cell: the same bits and the same mailbox), in another
+ * order, which the nearest-hit rule does not see. */
+static void pk_test_cell(const grid_t *g, const walk_t *w,
+                         primset_query_t *q, uint32_t f, uint64_t rays)
+{
+#if GRID_QUADS
+    if (g->quads) {
+        const primset_t *ps = g->ps;
+        uint32_t a = g->qstart[f], e = g->qstart[f + 1] & ~GRID_MORE;
+        const grid_quad_t *qd = g->quads + (a & ~GRID_MORE);
+        uint32_t nq = e - (a & ~GRID_MORE), i = 0;
+#if MESH_WIDE
+        for (; i + 1 < nq; i += 2)
+            for (uint64_t m = rays; m; m &= m - 1) {
+                int r = bits_lowest(m);
+                unsigned left = ~mesh_wide_reject_soa2(qd[i].c, qd[i + 1].c,
+                                                       &q[r].mr, &w[r].wr) &
+                                ((1u << (2 * MESH_BATCH)) - 1);
+                if (left)
+                    test_lanes(ps, &q[r], qd + i, left, false);
+            }
+#endif
+        for (; i < nq; i++)
+            for (uint64_t m = rays; m; m &= m - 1) {
+                int r = bits_lowest(m);
+                unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q[r].mr) &
+                                ((1u << MESH_BATCH) - 1);
+                if (left)
+                    test_lanes(ps, &q[r], qd + i, left, false);
+            }
+        if (!(a & GRID_MORE))
+            return;
+        for (uint64_t m = rays; m; m &= m - 1) {
+            int r = bits_lowest(m);
+            test_cell(g, &w[r], &q[r], g->items + g->cstart[f],
+                      g->cstart[f + 1] - g->cstart[f], false);
+        }
+        return;
+    }
+#endif
+    for (uint64_t m = rays; m; m &= m - 1) {
+        int r = bits_lowest(m);
+        test_full(g, &w[r], &q[r], f, false);
+    }
+}
+
 /* Take ray i out of the walk. */
 static void pk_drop(packet_t *p, int i)
 {
@@ -1643,8 +1725,17 @@ static void pk_drop(packet_t *p, int i)
 static bool pk_stop(packet_t *p, double b)
 {
     uint64_t drop = 0;
+#ifdef __AVX__
+    const __m256d vb = _mm256_set1_pd(b);
+    for (int i = 0; i < p->n; i += 4)
+        drop |= (uint64_t)_mm256_movemask_pd(_mm256_cmp_pd(
+                    _mm256_mul_pd(vb, _mm256_loadu_pd(p->iad + i)),
+                    _mm256_loadu_pd(p->tend + i), _CMP_NLE_UQ))
+                << i;
+#else
     for (int i = 0; i < p->n; i++)
         drop |= (uint64_t)!(b * p->iad[i] <= p->tend[i]) << i;
+#endif
     drop &= p->live;
     for (uint64_t m = drop; m; m &= m - 1)
         pk_drop(p, bits_lowest(m));
@@ -1710,21 +1801,30 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
                 double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
                 double hv = nd->min[v] + (cv + 1) * nd->w[v] - p->o[v];
                 uint64_t rays = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
-                uint32_t f = UINT32_MAX;
+                uint64_t in = 0;
                 for (; rays; rays &= rays - 1) {
                     int i = bits_lowest(rays);
                     double mu = p->mu[i], mv = p->mv[i];
                     double fa = mv * lu, fb = mv * hu;
                     double ga = mu * lv, gb = mu * hv;
                     double tol = p->tol[i];
-                    if (pk_min(fa, fb) - pk_max(ga, gb) > tol ||
-                        pk_max(fa, fb) - pk_min(ga, gb) < -tol)
-                        continue;
-                    if (f == UINT32_MAX)
-                        f = full_cell(bb[blk], word, bit);
-                    test_full(g, &w[i], &q[i], f, false);
+                    if (!(pk_min(fa, fb) - pk_max(ga, gb) > tol ||
+                          pk_max(fa, fb) - pk_min(ga, gb) < -tol))
+                        in |= UINT64_C(1) << i;
+                }
+                if (!in)
+                    continue;
+                pk_test_cell(g, w, q, full_cell(bb[blk], word, bit), in);
+                for (; in; in &= in - 1) {
+                    int i = bits_lowest(in);
                     q[i].cells++;
-                    p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
+                    if (q[i].found) {
+                        /* the ray's segment now ends at its walk_end():
+                         * beyond it no cell can hold a better hit */
+                        p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
+                        p->s1[i] = p->tend[i] * p->adk[i] + p->margin;
+                        pk_box(p, i, a, b);
+                    }
                 }
             }
         }
@@ -1799,7 +1899,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     for (int i = 0; i < p.n; i++) {
         p.s0[i] = (double)INFINITY;
         p.s1[i] = -(double)INFINITY;
-        p.mu[i] = p.mv[i] = p.iad[i] = p.tol[i] = p.tend[i] = p.t1[i] = 0;
+        p.mu[i] = p.mv[i] = p.iad[i] = p.adk[i] = p.tol[i] = p.tend[i] = p.t1[i] = 0;
         if (i >= n)
             continue;
         const ray_t *r = q[i].r;
@@ -1818,6 +1918,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
             !slab(&w[i], nd->min, nd->max, w[i].t0, w[i].t1, &t0, &t1))
             continue; /* misses the grid: q[i] as query() leaves it */
         p.iad[i] = 1 / dk;
+        p.adk[i] = dk;
         p.mu[i] = (double)r->d[u] / dk;
         p.mv[i] = (double)r->d[v] / dk;
         p.tol[i] = p.margin * (fabs(p.mu[i]) + fabs(p.mv[i]));
