@@ -1528,6 +1528,7 @@ typedef struct {
     /* ray i's box on (u, v) within the current slice, relative to o,
      * widened; empty (+inf, -inf) where the ray is not in the slice */
     double ul[PK_N], uh[PK_N], vl[PK_N], vh[PK_N];
+    double box[4];         /* their union: least ul, greatest uh, vl, vh */
 } packet_t;
 
 static inline double pk_min(double a, double b)
@@ -1608,6 +1609,7 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
     const __m256d va = _mm256_set1_pd(a), vb = _mm256_set1_pd(b);
     const __m256d vmg = _mm256_set1_pd(mg), pinf = _mm256_set1_pd(inf);
     const __m256d ninf = _mm256_set1_pd(-inf);
+    __m256d lo_u = pinf, hi_u = ninf, lo_v = pinf, hi_v = ninf;
     for (int i = 0; i < p->n; i += 4) {
         __m256d sa = _mm256_max_pd(va, _mm256_loadu_pd(p->s0 + i));
         __m256d sb = _mm256_min_pd(vb, _mm256_loadu_pd(p->s1 + i));
@@ -1616,18 +1618,42 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
         __m256d mv = _mm256_loadu_pd(p->mv + i);
         __m256d ua = _mm256_mul_pd(sa, mu), ub = _mm256_mul_pd(sb, mu);
         __m256d xa = _mm256_mul_pd(sa, mv), xb = _mm256_mul_pd(sb, mv);
-        _mm256_storeu_pd(p->ul + i, _mm256_blendv_pd(pinf,
-            _mm256_sub_pd(_mm256_min_pd(ua, ub), vmg), in));
-        _mm256_storeu_pd(p->uh + i, _mm256_blendv_pd(ninf,
-            _mm256_add_pd(_mm256_max_pd(ua, ub), vmg), in));
-        _mm256_storeu_pd(p->vl + i, _mm256_blendv_pd(pinf,
-            _mm256_sub_pd(_mm256_min_pd(xa, xb), vmg), in));
-        _mm256_storeu_pd(p->vh + i, _mm256_blendv_pd(ninf,
-            _mm256_add_pd(_mm256_max_pd(xa, xb), vmg), in));
+        __m256d ul = _mm256_blendv_pd(pinf,
+            _mm256_sub_pd(_mm256_min_pd(ua, ub), vmg), in);
+        __m256d uh = _mm256_blendv_pd(ninf,
+            _mm256_add_pd(_mm256_max_pd(ua, ub), vmg), in);
+        __m256d vl = _mm256_blendv_pd(pinf,
+            _mm256_sub_pd(_mm256_min_pd(xa, xb), vmg), in);
+        _mm256_storeu_pd(p->ul + i, ul);
+        _mm256_storeu_pd(p->uh + i, uh);
+        _mm256_storeu_pd(p->vl + i, vl);
+        __m256d vh = _mm256_blendv_pd(ninf,
+            _mm256_add_pd(_mm256_max_pd(xa, xb), vmg), in);
+        _mm256_storeu_pd(p->vh + i, vh);
+        lo_u = _mm256_min_pd(lo_u, ul);
+        hi_u = _mm256_max_pd(hi_u, uh);
+        lo_v = _mm256_min_pd(lo_v, vl);
+        hi_v = _mm256_max_pd(hi_v, vh);
+    }
+    double x[4][4];
+    _mm256_storeu_pd(x[0], lo_u);
+    _mm256_storeu_pd(x[1], hi_u);
+    _mm256_storeu_pd(x[2], lo_v);
+    _mm256_storeu_pd(x[3], hi_v);
+    for (int c = 0; c < 4; c++) {
+        double (*f)(double, double) = c % 2 ? pk_max : pk_min;
+        p->box[c] = f(f(x[c][0], x[c][1]), f(x[c][2], x[c][3]));
     }
 #else
-    for (int i = 0; i < p->n; i++)
+    p->box[0] = p->box[2] = (double)INFINITY;
+    p->box[1] = p->box[3] = -(double)INFINITY;
+    for (int i = 0; i < p->n; i++) {
         pk_box(p, i, a, b);
+        p->box[0] = pk_min(p->box[0], p->ul[i]);
+        p->box[1] = pk_max(p->box[1], p->uh[i]);
+        p->box[2] = pk_min(p->box[2], p->vl[i]);
+        p->box[3] = pk_max(p->box[3], p->vh[i]);
+    }
 #endif
 }
 
@@ -1757,96 +1783,126 @@ static inline uint64_t pk_axis_bits(int a, int lo, int hi)
     return (~UINT64_C(0) >> (48 - 16 * hi)) & (~UINT64_C(0) << 16 * lo);
 }
 
-/* Walk slice j of the top level (s from a to b): each non-empty cell the
- * frustum may cross (found block by block from the words, the empty ones
- * never looked at), tested for the rays that may pass through it: those
- * whose box in the slice overlaps the cell (pk_cell_rays) and whose line
- * on (u, v) meets it. Every ray's line on (u, v) runs through the origin
- * (the common origin is at u = v = 0), along (mu, mv): f(P) = mv P_u - mu
- * P_v is zero on it, and the line meets a rectangle when f takes both
- * signs over its corners; the rectangle widened by the margin moves f by
- * at most margin (|mu| + |mv|). With the box, the segment test of 2D
- * separating axes: exact, but for the margins. */
-static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
-                     primset_query_t *q, int j, double a, double b)
+/* A block the frustum may cross in a block slab, and the bits of its
+ * cells in the frustum's range on u and v that hold something. */
+typedef struct {
+    long blk;
+    int bu, bv;
+    uint64_t cells;
+} pk_block_t;
+
+/* At most this many blocks a slab: a wider frustum is walked ray by ray. */
+#define PK_BLOCKS 64
+
+/* The blocks of block slab bj (s from a to b) that the frustum may cross
+ * and that hold something in its range, into out[]; returns how many, or
+ * -1 when the range spans more than PK_BLOCKS blocks. */
+static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
+                          double a, double b, pk_block_t *out)
 {
     const grid_node_t *nd = &g->nodes[0];
-    const int k = p->k, u = p->u, v = p->v;
+    const int u = p->u, v = p->v;
     int u0, u1, v0, v1;
-    pk_range(nd, p, 0, pk_max(a, p->S0), pk_min(b, p->S1), &u0, &u1);
-    pk_range(nd, p, 1, pk_max(a, p->S0), pk_min(b, p->S1), &v0, &v1);
-    pk_slice_boxes(p, a, b);
+    pk_range(nd, p, 0, a, b, &u0, &u1);
+    pk_range(nd, p, 1, a, b, &v0, &v1);
     const long stride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
+    const int bu0 = u0 / GRID_BLOCK, bu1 = u1 / GRID_BLOCK;
+    const int bv0 = v0 / GRID_BLOCK, bv1 = v1 / GRID_BLOCK;
+    if ((bu1 - bu0 + 1) * (bv1 - bv0 + 1) > PK_BLOCKS)
+        return -1;
+    const uint64_t *bm = g->bmask + nd->bfirst;
+    long bk = (long)bj * stride[p->k];
+    int n = 0;
+    for (int bv = bv0; bv <= bv1; bv++) {
+        uint64_t vbits = pk_axis_bits(
+            v, bv == bv0 ? v0 % GRID_BLOCK : 0,
+            bv == bv1 ? v1 % GRID_BLOCK : GRID_BLOCK - 1);
+        for (int bu = bu0; bu <= bu1; bu++) {
+            long blk = bk + bv * stride[v] + bu * stride[u];
+            uint64_t c = bm[blk] & vbits &
+                         pk_axis_bits(u, bu == bu0 ? u0 % GRID_BLOCK : 0,
+                                      bu == bu1 ? u1 % GRID_BLOCK
+                                                : GRID_BLOCK - 1);
+            if (c) {
+                out[n].blk = blk;
+                out[n].bu = bu;
+                out[n].bv = bv;
+                out[n++].cells = c;
+            }
+        }
+    }
+    return n;
+}
+
+/* Walk slice j (s from a to b) over the slab's blocks blks[0 .. nb): each
+ * non-empty cell of the slice in the frustum's range, tested for the rays
+ * that may pass through it: those whose box in the slice overlaps the
+ * cell (pk_cell_rays) and whose line on (u, v) meets it. Every ray's line
+ * on (u, v) runs through the origin (the common origin is at u = v = 0),
+ * along (mu, mv): f(P) = mv P_u - mu P_v is zero on it, and the line
+ * meets a rectangle when f takes both signs over its corners; the
+ * rectangle widened by the margin moves f by at most margin (|mu| +
+ * |mv|). With the box, the segment test of 2D separating axes: exact,
+ * but for the margins. The rays' boxes are made only for a slice with
+ * something in it. */
+static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
+                     primset_query_t *q, int j, double a, double b,
+                     const pk_block_t *blks, int nb)
+{
+    const grid_node_t *nd = &g->nodes[0];
+    const int u = p->u, v = p->v;
     const uint64_t *bm = g->bmask + nd->bfirst;
     const uint32_t *bb = g->bbase + nd->bfirst;
-    long bk = (long)(j / GRID_BLOCK) * stride[k];
-    int jk = j % GRID_BLOCK;
-    uint64_t kbits = pk_axis_bits(k, jk, jk);
-    for (int bv = v0 / GRID_BLOCK; bv <= v1 / GRID_BLOCK; bv++) {
-        int vlo = bv == v0 / GRID_BLOCK ? v0 % GRID_BLOCK : 0;
-        int vhi = bv == v1 / GRID_BLOCK ? v1 % GRID_BLOCK : GRID_BLOCK - 1;
-        uint64_t vbits = kbits & pk_axis_bits(v, vlo, vhi);
-        for (int bu = u0 / GRID_BLOCK; bu <= u1 / GRID_BLOCK; bu++) {
-            int ulo = bu == u0 / GRID_BLOCK ? u0 % GRID_BLOCK : 0;
-            int uhi = bu == u1 / GRID_BLOCK ? u1 % GRID_BLOCK : GRID_BLOCK - 1;
-            long blk = bk + bv * stride[v] + bu * stride[u];
-            uint64_t word = bm[blk];
-            uint64_t cells = word & vbits & pk_axis_bits(u, ulo, uhi);
-            for (; cells; cells &= cells - 1) {
-                int bit = bits_lowest(cells);
-                int cu = bu * GRID_BLOCK + bit / bit_stride[u] % GRID_BLOCK;
-                int cv = bv * GRID_BLOCK + bit / bit_stride[v] % GRID_BLOCK;
-                double lu = nd->min[u] + cu * nd->w[u] - p->o[u];
-                double hu = nd->min[u] + (cu + 1) * nd->w[u] - p->o[u];
-                double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
-                double hv = nd->min[v] + (cv + 1) * nd->w[v] - p->o[v];
-                uint64_t rays = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
-                uint64_t in = 0;
-                for (; rays; rays &= rays - 1) {
-                    int i = bits_lowest(rays);
-                    double mu = p->mu[i], mv = p->mv[i];
-                    double fa = mv * lu, fb = mv * hu;
-                    double ga = mu * lv, gb = mu * hv;
-                    double tol = p->tol[i];
-                    if (!(pk_min(fa, fb) - pk_max(ga, gb) > tol ||
-                          pk_max(fa, fb) - pk_min(ga, gb) < -tol))
-                        in |= UINT64_C(1) << i;
-                }
-                if (!in)
-                    continue;
-                pk_test_cell(g, w, q, full_cell(bb[blk], word, bit), in);
-                for (; in; in &= in - 1) {
-                    int i = bits_lowest(in);
-                    q[i].cells++;
-                    if (q[i].found) {
-                        /* the ray's segment now ends at its walk_end():
-                         * beyond it no cell can hold a better hit */
-                        p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
-                        p->s1[i] = p->tend[i] * p->adk[i] + p->margin;
-                        pk_box(p, i, a, b);
-                    }
+    uint64_t kbits = pk_axis_bits(p->k, j % GRID_BLOCK, j % GRID_BLOCK);
+    bool boxes = false;
+    for (int x = 0; x < nb; x++) {
+        uint64_t cells = blks[x].cells & kbits;
+        if (!cells)
+            continue;
+        if (!boxes) {
+            pk_slice_boxes(p, a, b);
+            boxes = true;
+        }
+        long blk = blks[x].blk;
+        for (; cells; cells &= cells - 1) {
+            int bit = bits_lowest(cells);
+            int cu = blks[x].bu * GRID_BLOCK + bit / bit_stride[u] % GRID_BLOCK;
+            int cv = blks[x].bv * GRID_BLOCK + bit / bit_stride[v] % GRID_BLOCK;
+            double lu = nd->min[u] + cu * nd->w[u] - p->o[u];
+            double hu = nd->min[u] + (cu + 1) * nd->w[u] - p->o[u];
+            double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
+            double hv = nd->min[v] + (cv + 1) * nd->w[v] - p->o[v];
+            if (p->box[0] > hu || p->box[1] < lu || p->box[2] > hv ||
+                p->box[3] < lv)
+                continue; /* no ray's box meets it */
+            uint64_t rays = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
+            uint64_t in = 0;
+            for (; rays; rays &= rays - 1) {
+                int i = bits_lowest(rays);
+                double mu = p->mu[i], mv = p->mv[i];
+                double fa = mv * lu, fb = mv * hu;
+                double ga = mu * lv, gb = mu * hv;
+                double tol = p->tol[i];
+                if (!(pk_min(fa, fb) - pk_max(ga, gb) > tol ||
+                      pk_max(fa, fb) - pk_min(ga, gb) < -tol))
+                    in |= UINT64_C(1) << i;
+            }
+            if (!in)
+                continue;
+            pk_test_cell(g, w, q, full_cell(bb[blk], bm[blk], bit), in);
+            for (; in; in &= in - 1) {
+                int i = bits_lowest(in);
+                q[i].cells++;
+                if (q[i].found) {
+                    /* the ray's segment now ends at its walk_end():
+                     * beyond it no cell can hold a better hit */
+                    p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
+                    p->s1[i] = p->tend[i] * p->adk[i] + p->margin;
+                    pk_box(p, i, a, b);
                 }
             }
         }
     }
-}
-
-/* Is any cell of the blocks the frustum may cross in the block slab bj
- * (s from a to b) non-empty? */
-static bool pk_slab_full(const grid_t *g, const packet_t *p, int bj,
-                         double a, double b)
-{
-    const grid_node_t *nd = &g->nodes[0];
-    int u0, u1, v0, v1;
-    pk_range(nd, p, 0, a, b, &u0, &u1);
-    pk_range(nd, p, 1, a, b, &v0, &v1);
-    long stride[3] = { 1, nd->nb[0], (long)nd->nb[0] * nd->nb[1] };
-    const uint64_t *bm = g->bmask + nd->bfirst + (long)bj * stride[p->k];
-    for (int bv = v0 / GRID_BLOCK; bv <= v1 / GRID_BLOCK; bv++)
-        for (int bu = u0 / GRID_BLOCK; bu <= u1 / GRID_BLOCK; bu++)
-            if (bm[bv * stride[p->v] + bu * stride[p->u]])
-                return true;
-    return false;
 }
 
 /* One packet of n <= GRID_PACKET_MAX rays (grid_intersect_packet()).
@@ -1933,6 +1989,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     pk_bounds(&p);
     const int res = nd->res[k], step = p.sg > 0 ? 1 : -1;
     int j = cell_of(nd, k, p.o[k] + p.sg * p.S0);
+    pk_block_t blks[PK_BLOCKS];
     while (p.live && j >= 0 && j < res) {
         /* the block slab of j: its slices from j on, in the rays' order */
         int bj = j / GRID_BLOCK;
@@ -1943,18 +2000,26 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         double b = pk_plane_s(nd, &p, step > 0 ? jend + 1 : jend);
         if (a > p.S1)
             break;
-        if (pk_slab_full(g, &p, bj, pk_max(a, p.S0), pk_min(b, p.S1))) {
-            for (; p.live; j += step) {
-                double sa = pk_plane_s(nd, &p, step > 0 ? j : j + 1);
-                double sb = pk_plane_s(nd, &p, step > 0 ? j + 1 : j);
-                pk_slice(g, &p, w, q, j, sa, sb);
-                pk_stop(&p, sb);
-                if (j == jend)
-                    break;
-            }
-        } else {
-            pk_stop(&p, b);
+        int nb = pk_slab_blocks(g, &p, bj, pk_max(a, p.S0), pk_min(b, p.S1),
+                                blks);
+        if (nb < 0) {
+            /* too wide: the rays left go alone, from the start (with the
+             * hits found so far, which can only be kept or beaten) */
+            for (uint64_t m = p.live; m; m &= m - 1)
+                grid_intersect(g, &q[bits_lowest(m)]);
+            return;
         }
+        for (; nb > 0; j += step) {
+            double sa = pk_plane_s(nd, &p, step > 0 ? j : j + 1);
+            double sb = pk_plane_s(nd, &p, step > 0 ? j + 1 : j);
+            pk_slice(g, &p, w, q, j, sa, sb, blks, nb);
+            if (j == jend)
+                break;
+        }
+        /* the rays whose walk_end() lies before the slab's far plane are
+         * done (dropping them later than the single walk would only
+         * costs time: their segments end there) */
+        pk_stop(&p, b);
         j = jend + step;
     }
 }
