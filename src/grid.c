@@ -1866,8 +1866,9 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
         long blk = blks[x].blk;
         for (; cells; cells &= cells - 1) {
             int bit = bits_lowest(cells);
-            int cu = blks[x].bu * GRID_BLOCK + bit / bit_stride[u] % GRID_BLOCK;
-            int cv = blks[x].bv * GRID_BLOCK + bit / bit_stride[v] % GRID_BLOCK;
+            /* bit x + 4 y + 16 z: axis a's coordinate is 2 a bits up */
+            int cu = blks[x].bu * GRID_BLOCK + (bit >> 2 * u & 3);
+            int cv = blks[x].bv * GRID_BLOCK + (bit >> 2 * v & 3);
             double lu = nd->min[u] + cu * nd->w[u] - p->o[u];
             double hu = nd->min[u] + (cu + 1) * nd->w[u] - p->o[u];
             double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
