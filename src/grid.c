@@ -1501,7 +1501,7 @@ bool grid_occluded(const grid_t *g, primset_query_t *q)
 /* --- packets of coherent rays (Wald et al. 2006) -------------------------- */
 
 /* Rays a packet's arrays hold: GRID_PACKET_MAX, a multiple of 4 (the
- * vector loop of packet_cell_rays()). */
+ * vector loops of pk_slice_boxes() and pk_cell_rays()). */
 #define PK_N GRID_PACKET_MAX
 
 /* A packet on its walk. Distances along the major axis k are measured
@@ -1600,8 +1600,9 @@ static void pk_box(packet_t *p, int i, double a, double b)
     p->vh[i] = in ? pk_max(va, vb) + mg : -inf;
 }
 
-/* pk_box() of every ray (with AVX four rays at a time, the same
- * operations: max, min and selects are exact). */
+/* pk_box() of every ray, and the union of their boxes (with AVX four
+ * rays at a time: the same operations in the same order, and the vector
+ * min and max answer as pk_min and pk_max, NaN included). */
 static void pk_slice_boxes(packet_t *p, double a, double b)
 {
 #ifdef __AVX__
@@ -1640,9 +1641,10 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
     _mm256_storeu_pd(x[1], hi_u);
     _mm256_storeu_pd(x[2], lo_v);
     _mm256_storeu_pd(x[3], hi_v);
-    for (int c = 0; c < 4; c++) {
-        double (*f)(double, double) = c % 2 ? pk_max : pk_min;
-        p->box[c] = f(f(x[c][0], x[c][1]), f(x[c][2], x[c][3]));
+    for (int c = 0; c < 4; c += 2) {
+        p->box[c] = pk_min(pk_min(x[c][0], x[c][1]), pk_min(x[c][2], x[c][3]));
+        p->box[c + 1] = pk_max(pk_max(x[c + 1][0], x[c + 1][1]),
+                               pk_max(x[c + 1][2], x[c + 1][3]));
     }
 #else
     p->box[0] = p->box[2] = (double)INFINITY;
@@ -1702,15 +1704,35 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
         const grid_quad_t *qd = g->quads + (a & ~GRID_MORE);
         uint32_t nq = e - (a & ~GRID_MORE), i = 0;
 #if MESH_WIDE
-        for (; i + 1 < nq; i += 2)
+        /* The sign test's first step, the corners less the origin, is the
+         * same for every ray of the packet (one origin, one kz: packet()):
+         * done once a pair of quads, then mesh_wide_reject_perm() from
+         * there with a zero origin (x - 0 is x, bit for bit), the same
+         * operations as mesh_wide_reject_soa2() and so the same mask. */
+        static const int perm[3][9] = { { 1, 2, 0, 4, 5, 3, 7, 8, 6 },
+                                        { 2, 0, 1, 5, 3, 4, 8, 6, 7 },
+                                        { 0, 1, 2, 3, 4, 5, 6, 7, 8 } };
+        const int *pm = perm[q[bits_lowest(rays)].mr.kz];
+        const vwreal *o = w[bits_lowest(rays)].wr.o;
+        const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
+        for (; i + 1 < nq; i += 2) {
+            vwreal t[9];
+            for (int j = 0; j < 9; j++)
+                t[j] = VW_SUB(VW_LOAD2(qd[i].c + pm[j] * VLANES,
+                                       qd[i + 1].c + pm[j] * VLANES),
+                              o[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
-                unsigned left = ~mesh_wide_reject_soa2(qd[i].c, qd[i + 1].c,
-                                                       &q[r].mr, &w[r].wr) &
-                                ((1u << (2 * MESH_BATCH)) - 1);
+                unsigned left = (1u << (2 * MESH_BATCH)) - 1;
+                if (q[r].mr.fast)
+                    left &= ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
+                                                   t[4], t[5], t[6], t[7],
+                                                   t[8], zo, w[r].wr.sx,
+                                                   w[r].wr.sy);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
             }
+        }
 #endif
         for (; i < nq; i++)
             for (uint64_t m = rays; m; m &= m - 1) {
@@ -1911,26 +1933,30 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
  * Why each ray gets grid_intersect()'s answer. Both answers are the
  * nearest hit of the primitives tested (the rule of primset_keep(), which
  * does not depend on the order of the tests), and both test with the same
- * per-ray code (test_full(): the quads' sign test, the full test, the
- * mailbox, child grids walked by walk()), so the same primitive gives the
- * same t and bits. The single walk's answer is brute force's because it
- * tests every primitive a hit beating the best could come from (grid.c's
- * top): such a hit lies in a cell the ray passes through before its exit
- * passes walk_end(). Here each ray tests a superset of those cells: (1)
- * the slices are walked in the rays' order along k, and a ray is dropped
- * only after a slice whose far plane it crosses past its walk_end(), the
- * single walk's rule with the slice's far plane as the exit (the same
- * bits as plane_t()); (2) within a slice, every cell the ray's segment
- * meets is in the frustum's range (pk_range(): the corner products bound
- * every ray's own, and the range is widened by twice the margin) and
- * passes pk_cell_rays() (the ray's box in the slice, widened by the
- * margin, overlaps it); (3) each ray's segment is its part of the grid's
- * box over the walk's widened (t0, t1), widened again by the margin along
- * k. The margin is ps->pad, the padding every primitive's cells have
- * (2^-20 of the scene), far above the double rounding of these few
- * operations, so the rounding only ever adds cells. A packet's rays all
- * move one way on k (the sign test of the caller), so no ray needs a
- * slice before one the walk has passed. */
+ * per-ray code (pk_test_cell() runs test_full()'s own steps: the quads'
+ * sign test, the full test, the mailbox, the other items, child grids
+ * walked by walk()), so a primitive gives the same t and bits in both.
+ * The single walk's answer is brute force's because it tests every
+ * primitive whose hit could beat the best (grid.c's top): such a hit
+ * point lies in a cell that holds the primitive (the padding) and that
+ * the ray enters before walk_end(). Here each ray tests a superset of
+ * those cells: (1) the slices are walked in the rays' order along k, and
+ * a ray is dropped only after a block slab whose far plane it crosses
+ * past its walk_end() (the single walk's rule, with the slab's far plane,
+ * whose t has plane_t()'s bits, for a cell's exit); (2) a ray's segment
+ * runs over its part of the grid's box within the walk's widened (t0,
+ * t1), widened by the margin along k, and once it has a hit ends at
+ * walk_end() (plus the margin): no better hit lies beyond; (3) within a
+ * slice, every cell the segment meets is in the frustum's range
+ * (pk_range(): the corner products bound every ray's own, and the range
+ * is widened by twice the margin), is found from the blocks' words when
+ * it holds something, and passes both the box test (pk_cell_rays(), the
+ * segment's box widened by the margin) and the line test (pk_slice());
+ * the union of the boxes only bounds them. The margin is ps->pad, the
+ * padding of every primitive's cells (2^-20 of the scene), far above the
+ * double rounding of these few operations, so rounding only ever adds
+ * cells. A packet's rays all move one way on k (packet() sends the others
+ * alone), so no ray needs a slice before one the walk has passed. */
 static void packet(const grid_t *g, primset_query_t *q, int n)
 {
     const grid_node_t *nd = &g->nodes[0];
@@ -1964,7 +1990,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         bool ok = r->o[0] == o[0] && r->o[1] == o[1] && r->o[2] == o[2] &&
                   isfinite(o[0]) && isfinite(o[1]) && isfinite(o[2]) &&
                   dk > 0 && isfinite(dk) && dk >= fabs((double)r->d[u]) &&
-                  dk >= fabs((double)r->d[v]);
+                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k;
         if (!ok) {
             grid_intersect(g, &q[i]);
             continue;
