@@ -243,12 +243,18 @@ START_TEST(the_walk_visits_the_cells_a_ray_crosses)
 }
 END_TEST
 
-/* Brute force: every primitive, in number order. */
-static void brute(const primset_t *ps, const ray_t *r, primset_query_t *q)
+/* Brute force over (0, tmax): every primitive, in number order. */
+static void brute_to(const primset_t *ps, const ray_t *r, real tmax,
+                     primset_query_t *q)
 {
-    primset_query_init(q, r, 0, (real)INFINITY);
+    primset_query_init(q, r, 0, tmax);
     for (uint32_t i = 0; i < ps->nrefs; i++)
         primset_test(ps, q, i);
+}
+
+static void brute(const primset_t *ps, const ray_t *r, primset_query_t *q)
+{
+    brute_to(ps, r, (real)INFINITY, q);
 }
 
 /* The grid's answers (nearest hit, and any hit) for r are brute force's,
@@ -643,18 +649,18 @@ static int tile_rays(ray_t *out, const VECTOR3 o, const VECTOR3 f,
  * primitive, t and the barycentrics bit for bit, and the counters of
  * work untouched where the ray missed the grid. Returns the hits. */
 static long check_packet(const grid_t *g, const primset_t *ps,
-                         const ray_t *r, int n)
+                         const ray_t *r, const real *tmax, int n)
 {
     primset_query_t got[GRID_PACKET_MAX + 8];
     long hits = 0;
     for (int i = 0; i < n; i++)
-        primset_query_init(&got[i], &r[i], 0, (real)INFINITY);
+        primset_query_init(&got[i], &r[i], 0, tmax[i]);
     grid_intersect_packet(g, got, n);
     for (int i = 0; i < n; i++) {
         primset_query_t one, want;
-        primset_query_init(&one, &r[i], 0, (real)INFINITY);
+        primset_query_init(&one, &r[i], 0, tmax[i]);
         grid_intersect(g, &one);
-        brute(ps, &r[i], &want);
+        brute_to(ps, &r[i], tmax[i], &want);
         ck_assert_msg(got[i].found == one.found && one.found == want.found,
                       "ray %d of %d (%g %g %g) (%g %g %g): packet %d, "
                       "alone %d, brute force %d",
@@ -681,10 +687,12 @@ static long check_packet(const grid_t *g, const primset_t *ps,
  * uniform grid and the hierarchy, with quads and without. Cameras outside
  * the grid and inside it, in random directions and along the axes (so
  * that whole rows of a packet run parallel to an axis plane, and the
- * centre ray along an axis), with tiles of 4 x 4, 8 x 2, 8 x 8 and odd
- * sizes over the whole image, the border tiles included (rays that miss
- * everything, part-filled tiles); wide fields of view, whose tiles
- * straddle the change of major axis (those rays go alone). */
+ * centre ray along an axis), with tiles of 4 x 4, 8 x 2, 8 x 8, 16 x 4
+ * and 3 x 5 over the whole image, the border tiles included (rays that
+ * miss everything, part-filled tiles); wide fields of view, whose tiles
+ * straddle the change of major axis (those rays go alone); for a third
+ * of the cameras rays of random lengths (tmax); and one ray in 32 that
+ * goes alone (another origin, or the other way). */
 START_TEST(packets_answer_as_single_rays_and_brute_force)
 {
     svet_error e;
@@ -756,9 +764,22 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
             for (int y0 = 0; y0 < ny; y0 += sh[1])
                 for (int x0 = 0; x0 < nx; x0 += sh[0]) {
                     ray_t rays[GRID_PACKET_MAX];
+                    real tmax[GRID_PACKET_MAX];
                     int n = tile_rays(rays, o, f, r, up, nx, ny, x0, y0,
                                       sh[0], sh[1]);
-                    hits += check_packet(g, &ps, rays, n);
+                    for (int i = 0; i < n; i++) {
+                        /* a third of the packets: rays that end anywhere */
+                        tmax[i] = cam % 3 == 1 ? 20 * pcg32_real(&rng)
+                                               : (real)INFINITY;
+                        /* now and then a ray that goes alone: another
+                         * origin, or the other way */
+                        uint32_t odd = pcg32_bounded(&rng, 64);
+                        if (odd == 0)
+                            rays[i].o[i % 3] += REAL_C(0.25);
+                        else if (odd == 1)
+                            vec_neg(rays[i].d, rays[i].d);
+                    }
+                    hits += check_packet(g, &ps, rays, tmax, n);
                     cases += n;
                     packets++;
                 }
