@@ -375,6 +375,10 @@ static void machine(int argc, char **argv)
            "CPU-s\" divides by the process's CPU time instead, which a "
            "busy machine disturbs less; a measurement stops after %g s "
            "and counts the rays traced by then\n", TRACE_BUDGET);
+    printf("- camera rays in packets: the same rays, 4 x 4 or 8 x 8 pixels "
+           "of a tile at a time, through grid_intersect_packet() on a grid "
+           "of the same kind built over the same scene (grid.h directly: "
+           "without accel.c's checks, which the single rays go through)\n");
     printf("- tests/ray counts the primitives the mailbox let through; "
            "%s\n\n",
            GRID_QUADS ? "where a grid has quads (grid.h: from "
