@@ -96,19 +96,18 @@ typedef struct {
  * scene (the uniform grid's teapot) is timed on the rays it got through. */
 #define TRACE_BUDGET 2.0
 
-static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
+/* Run chunk(ctx, from, to, threads) over [0, n) in chunks of 8192 rays
+ * until done or out of the time budget; chunk returns its hits. */
+typedef long (*chunk_fn)(const void *ctx, long from, long to, int threads);
+
+static run_t timed(long n, int threads, chunk_fn chunk, const void *ctx)
 {
     run_t out;
     long hits = 0, done = 0;
     double t0 = bench_now(), c0 = cpu_now();
     while (done < n) {
         long m = n - done < 8192 ? n - done : 8192;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) \
-    reduction(+ : hits)
-        for (long i = done; i < done + m; i++) {
-            accel_hit_t h;
-            hits += accel_intersect(a, &r[i], 0, (real)INFINITY, &h);
-        }
+        hits += chunk(ctx, done, done + m, threads);
         done += m;
         if (bench_now() - t0 > TRACE_BUDGET)
             break;
@@ -118,6 +117,30 @@ static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
     out.rays = done;
     out.hits = hits;
     return out;
+}
+
+typedef struct {
+    const accel_t *a;
+    const ray_t *r;
+} single_t;
+
+static long single_chunk(const void *ctx, long from, long to, int threads)
+{
+    const single_t *c = ctx;
+    long hits = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) \
+    reduction(+ : hits)
+    for (long i = from; i < to; i++) {
+        accel_hit_t h;
+        hits += accel_intersect(c->a, &c->r[i], 0, (real)INFINITY, &h);
+    }
+    return hits;
+}
+
+static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
+{
+    single_t c = { a, r };
+    return timed(n, threads, single_chunk, &c);
 }
 
 /* The camera rays' numbers in packets of pw x ph pixels, packet after
@@ -139,36 +162,41 @@ static long *packet_order(long n, int pw, int ph)
     return ix;
 }
 
+typedef struct {
+    const grid_t *g;
+    const ray_t *r;
+    const long *ix;
+    int m;
+} packets_t;
+
+/* Packets of m rays (the rays r[ix[..]]): from and to are multiples of
+ * m, as 8192 is. */
+static long packet_chunk(const void *ctx, long from, long to, int threads)
+{
+    const packets_t *c = ctx;
+    long hits = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4) \
+    reduction(+ : hits)
+    for (long i = from; i < to; i += c->m) {
+        primset_query_t q[GRID_PACKET_MAX];
+        int k = (int)(to - i < c->m ? to - i : c->m);
+        for (int j = 0; j < k; j++)
+            primset_query_init(&q[j], &c->r[c->ix[i + j]], 0,
+                               (real)INFINITY);
+        grid_intersect_packet(c->g, q, k);
+        for (int j = 0; j < k; j++)
+            hits += primset_query_finish(c->g->ps, &q[j]) != NULL;
+    }
+    return hits;
+}
+
 /* trace() for packets of m rays (the rays r[ix[..]]) through
  * grid_intersect_packet(). */
 static run_t trace_packets(const grid_t *g, const ray_t *r, const long *ix,
                            long n, int m, int threads)
 {
-    run_t out;
-    long hits = 0, done = 0;
-    double t0 = bench_now(), c0 = cpu_now();
-    while (done < n) {
-        long chunk = n - done < 8192 ? n - done : 8192;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4) \
-    reduction(+ : hits)
-        for (long i = done; i < done + chunk; i += m) {
-            primset_query_t q[GRID_PACKET_MAX];
-            int k = (int)(done + chunk - i < m ? done + chunk - i : m);
-            for (int j = 0; j < k; j++)
-                primset_query_init(&q[j], &r[ix[i + j]], 0, (real)INFINITY);
-            grid_intersect_packet(g, q, k);
-            for (int j = 0; j < k; j++)
-                hits += primset_query_finish(g->ps, &q[j]) != NULL;
-        }
-        done += chunk;
-        if (bench_now() - t0 > TRACE_BUDGET)
-            break;
-    }
-    out.wall = bench_now() - t0;
-    out.cpu = cpu_now() - c0;
-    out.rays = done;
-    out.hits = hits;
-    return out;
+    packets_t c = { g, r, ix, m };
+    return timed(n, threads, packet_chunk, &c);
 }
 
 static void per_ray(const accel_t *a, const ray_t *r, long n, double *cells,

@@ -521,6 +521,25 @@ START_TEST(huge_primitives_coarsen_the_grid_instead_of_exploding)
 }
 END_TEST
 
+/* Variant 0 to 3 of a grid over ps with k cells per cube root: uniform
+ * (even) or hierarchical (odd: two levels, leaves of leaf_max), with
+ * quads (0, 1: forced, as the defaults keep them for large scenes; where
+ * the build has them) or without (2, 3). */
+static grid_t *variant_grid(const primset_t *ps, int variant, double k,
+                            int leaf_max)
+{
+    grid_params_t p;
+    grid_params_uniform(&p);
+    p.k = k;
+    p.quad_min = variant >> 1 ? LONG_MAX : 0;
+    p.max_depth = 2 * (variant & 1);
+    p.leaf_max = leaf_max;
+    grid_t *g;
+    svet_error e;
+    ck_assert_msg(grid_build(&g, ps, &p, &e) == SVET_OK, "%s", e.msg);
+    return g;
+}
+
 /* Cells that hold mesh triangles, other primitives and child grids
  * together: with quads (GRID_QUADS), a cell's triangles are its quads
  * (checked here against its items and the primset's corners, padding
@@ -549,18 +568,8 @@ START_TEST(cells_of_triangles_and_other_primitives_answer_as_brute_force)
     ck_assert(primset_build(&ps, objs, 8, &e) == SVET_OK);
     long cases = 0, quads = 0, mixed = 0;
     for (int variant = 0; variant < 4; variant++) {
-        /* uniform and hierarchical, with quads (where the build has
-         * them: forced, as the defaults keep them for large scenes) and
-         * without */
         int depth = 2 * (variant & 1), with = !(variant >> 1);
-        grid_params_t p;
-        grid_params_uniform(&p);
-        p.k = 1;
-        p.quad_min = with ? 0 : LONG_MAX;
-        p.max_depth = depth;
-        p.leaf_max = 4;
-        grid_t *g;
-        ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
+        grid_t *g = variant_grid(&ps, variant, 1, 4);
         if (depth > 0)
             ck_assert_uint_gt(g->nnodes, 1);
         ck_assert(GRID_QUADS && with ? g->quads != NULL : g->quads == NULL);
@@ -720,15 +729,7 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
     const int shapes[][2] = { { 4, 4 }, { 8, 2 }, { 8, 8 }, { 3, 5 },
                               { 16, 4 } };
     for (int variant = 0; variant < 4; variant++) {
-        int depth = 2 * (variant & 1), with = !(variant >> 1);
-        grid_params_t p;
-        grid_params_uniform(&p);
-        p.k = 2;
-        p.quad_min = with ? 0 : LONG_MAX;
-        p.max_depth = depth;
-        p.leaf_max = 8;
-        grid_t *g;
-        ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
+        grid_t *g = variant_grid(&ps, variant, 2, 8);
         for (int cam = 0; cam < 14; cam++) {
             VECTOR3 o, f, r, up, target;
             if (cam < 6) { /* outside, looking along an axis */
