@@ -203,7 +203,10 @@ bool grid_occluded(const grid_t *g, primset_query_t *q);
  * child grid (hierarchical grid) is walked ray by ray with each ray's
  * best hit so far. Rays that do not share the first ray's origin, or
  * whose largest direction component is not on the packet's major axis
- * with its sign (or is not finite), are traced alone by grid_intersect().
+ * with its sign (or is not finite, or ties with another axis that the
+ * triangle test takes for the largest), are traced alone by
+ * grid_intersect(); so are all the rays left when the frustum grows
+ * wider than 64 blocks of a slab (a very wide packet).
  * n may be anything: n <= 0 does nothing, more than GRID_PACKET_MAX goes
  * GRID_PACKET_MAX at a time. This function can't fail. */
 void grid_intersect_packet(const grid_t *g, primset_query_t *q, int n);

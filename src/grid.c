@@ -19,6 +19,12 @@
  *          triangles, at a time: mesh_wide_reject_soa2), the survivors
  *          through the full test; elsewhere (double, no SSE2) one
  *          triangle at a time;
+ *   packets: camera rays with one origin walked together, slice by slice
+ *          along their major axis (the coherent grid traversal of Wald,
+ *          Ize, Kensler, Knoll & Parker, SIGGRAPH 2006), each ray tested
+ *          with the single walk's own code: grid_intersect_packet(), the
+ *          same answers as grid_intersect() (the argument is above
+ *          packet());
  *   tables: both grids as accel.h's accel_ops_t (grid_accels, at the
  *          end), which accel.c calls without naming this file.
  * Tests: tests/test_grid.c, tests/test_accel.c
