@@ -660,7 +660,7 @@ static int tile_rays(ray_t *out, const VECTOR3 o, const VECTOR3 f,
 static long check_packet(const grid_t *g, const primset_t *ps,
                          const ray_t *r, const real *tmax, int n)
 {
-    primset_query_t got[GRID_PACKET_MAX + 8];
+    primset_query_t got[2 * GRID_PACKET_MAX];
     long hits = 0;
     for (int i = 0; i < n; i++)
         primset_query_init(&got[i], &r[i], 0, tmax[i]);
@@ -696,8 +696,9 @@ static long check_packet(const grid_t *g, const primset_t *ps,
  * uniform grid and the hierarchy, with quads and without. Cameras outside
  * the grid and inside it, in random directions and along the axes (so
  * that whole rows of a packet run parallel to an axis plane, and the
- * centre ray along an axis), with tiles of 4 x 4, 8 x 2, 8 x 8, 16 x 4
- * and 3 x 5 over the whole image, the border tiles included (rays that
+ * centre ray along an axis), with tiles of 4 x 4, 8 x 2, 8 x 8, 16 x 4,
+ * 3 x 5, 12 x 10 (more than GRID_PACKET_MAX: two packets) and 1 x 1 (a
+ * packet of one) over the whole image, the border tiles included (rays that
  * miss everything, part-filled tiles); wide fields of view, whose tiles
  * straddle the change of major axis (those rays go alone); for a third
  * of the cameras rays of random lengths (tmax); and one ray in 32 that
@@ -727,7 +728,7 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
     ck_assert(primset_build(&ps, objs, nobjs, &e) == SVET_OK);
     long cases = 0, hits = 0, packets = 0;
     const int shapes[][2] = { { 4, 4 }, { 8, 2 }, { 8, 8 }, { 3, 5 },
-                              { 16, 4 } };
+                              { 16, 4 }, { 12, 10 }, { 1, 1 } };
     for (int variant = 0; variant < 4; variant++) {
         grid_t *g = variant_grid(&ps, variant, 2, 8);
         for (int cam = 0; cam < 14; cam++) {
@@ -760,12 +761,12 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
                 vec_scale(r, r, fov);
                 vec_scale(up, up, fov);
             }
-            const int *sh = shapes[cam % 5];
+            const int *sh = shapes[cam % 7];
             int nx = 36, ny = 28;
             for (int y0 = 0; y0 < ny; y0 += sh[1])
                 for (int x0 = 0; x0 < nx; x0 += sh[0]) {
-                    ray_t rays[GRID_PACKET_MAX];
-                    real tmax[GRID_PACKET_MAX];
+                    ray_t rays[2 * GRID_PACKET_MAX];
+                    real tmax[2 * GRID_PACKET_MAX];
                     int n = tile_rays(rays, o, f, r, up, nx, ny, x0, y0,
                                       sh[0], sh[1]);
                     for (int i = 0; i < n; i++) {
