@@ -962,7 +962,14 @@ static bool slab(const walk_t *w, const double min[3], const double max[3],
     return lo <= hi;
 }
 
-static void walk_init(walk_t *w, const grid_t *g, const primset_query_t *q)
+/* Inlined where compilers allow: with the packets as its second caller
+ * gcc made it a call, which cost single rays 1.2% more instructions
+ * (callgrind, incoherent rays at 1e6). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+static inline void walk_init(walk_t *w, const grid_t *g,
+                             const primset_query_t *q)
 {
     const ray_t *r = q->r;
     double len2 = 0;
