@@ -1527,7 +1527,8 @@ typedef struct {
     double sg;             /* +1 or -1: the rays' direction on k */
     double o[3];           /* the common origin */
     double margin;         /* how far every test is widened (ps->pad) */
-    int n;                 /* rays, rounded up to a multiple of 4 */
+    int n;                 /* rays, rounded up to a multiple of 4 (of 16
+                              above 16: the groups' boxes) */
     uint64_t live;         /* rays still walking */
     double S0, S1;         /* the union of the live rays' [s0, s1] */
     double mlo[2], mhi[2]; /* the live rays' extreme mu (0) and mv (1) */
@@ -1542,7 +1543,28 @@ typedef struct {
      * widened; empty (+inf, -inf) where the ray is not in the slice */
     double ul[PK_N], uh[PK_N], vl[PK_N], vh[PK_N];
     double box[4];         /* their union: least ul, greatest uh, vl, vh */
+#ifdef __AVX__
+    /* with more than 16 rays: the union of each group of four's boxes
+     * (least ul, greatest uh, vl, vh), so that a cell tests the groups
+     * first (pk_cell_rays) */
+    double gb[4][PK_N / 4];
+#endif
 } packet_t;
+
+#ifdef __AVX__
+/* The least (mx false) or greatest lane of each of a0 .. a3, as the lanes
+ * of one vector: two 4 x 4 half-transposes and three mins or maxes. */
+static inline __m256d pk_reduce4(__m256d a0, __m256d a1, __m256d a2,
+                                 __m256d a3, bool mx)
+{
+#define PK_OP(x, y) (mx ? _mm256_max_pd(x, y) : _mm256_min_pd(x, y))
+    __m256d m01 = PK_OP(_mm256_unpacklo_pd(a0, a1), _mm256_unpackhi_pd(a0, a1));
+    __m256d m23 = PK_OP(_mm256_unpacklo_pd(a2, a3), _mm256_unpackhi_pd(a2, a3));
+    return PK_OP(_mm256_permute2f128_pd(m01, m23, 0x20),
+                 _mm256_permute2f128_pd(m01, m23, 0x31));
+#undef PK_OP
+}
+#endif
 
 static inline double pk_min(double a, double b)
 {
@@ -1649,6 +1671,18 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
         lo_v = _mm256_min_pd(lo_v, vl);
         hi_v = _mm256_max_pd(hi_v, vh);
     }
+    if (p->n > 16) { /* the groups' boxes, four groups at a time */
+        double *const src[4] = { p->ul, p->uh, p->vl, p->vh };
+        for (int g = 0; g < p->n; g += 16)
+            for (int c = 0; c < 4; c++) {
+                const double *x = src[c] + g;
+                _mm256_storeu_pd(p->gb[c] + g / 4,
+                                 pk_reduce4(_mm256_loadu_pd(x),
+                                            _mm256_loadu_pd(x + 4),
+                                            _mm256_loadu_pd(x + 8),
+                                            _mm256_loadu_pd(x + 12), c & 1));
+            }
+    }
     double x[4][4];
     _mm256_storeu_pd(x[0], lo_u);
     _mm256_storeu_pd(x[1], hi_u);
@@ -1682,15 +1716,32 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
 #ifdef __AVX__
     const __m256d a = _mm256_set1_pd(u0), b = _mm256_set1_pd(u1);
     const __m256d c = _mm256_set1_pd(v0), d = _mm256_set1_pd(v1);
-    for (int i = 0; i < p->n; i += 4) {
-        __m256d x = _mm256_and_pd(
-            _mm256_cmp_pd(_mm256_loadu_pd(p->ul + i), b, _CMP_LE_OQ),
-            _mm256_cmp_pd(_mm256_loadu_pd(p->uh + i), a, _CMP_GE_OQ));
-        __m256d y = _mm256_and_pd(
-            _mm256_cmp_pd(_mm256_loadu_pd(p->vl + i), d, _CMP_LE_OQ),
-            _mm256_cmp_pd(_mm256_loadu_pd(p->vh + i), c, _CMP_GE_OQ));
-        m |= (uint64_t)_mm256_movemask_pd(_mm256_and_pd(x, y)) << i;
+#define PK_OVERLAP(L0, H0, L1, H1)                                           \
+    _mm256_movemask_pd(_mm256_and_pd(                                         \
+        _mm256_and_pd(_mm256_cmp_pd(_mm256_loadu_pd(L0), b, _CMP_LE_OQ),      \
+                      _mm256_cmp_pd(_mm256_loadu_pd(H0), a, _CMP_GE_OQ)),     \
+        _mm256_and_pd(_mm256_cmp_pd(_mm256_loadu_pd(L1), d, _CMP_LE_OQ),      \
+                      _mm256_cmp_pd(_mm256_loadu_pd(H1), c, _CMP_GE_OQ))))
+    if (p->n <= 16) {
+        for (int i = 0; i < p->n; i += 4)
+            m |= (uint64_t)PK_OVERLAP(p->ul + i, p->uh + i, p->vl + i,
+                                      p->vh + i)
+                 << i;
+        return m;
     }
+    /* the groups whose union box meets the cell, then their rays */
+    uint32_t gm = 0;
+    for (int g = 0; g < p->n / 4; g += 4)
+        gm |= (uint32_t)PK_OVERLAP(p->gb[0] + g, p->gb[1] + g, p->gb[2] + g,
+                                   p->gb[3] + g)
+              << g;
+    for (; gm; gm &= gm - 1) {
+        int i = 4 * bits_lowest(gm);
+        m |= (uint64_t)PK_OVERLAP(p->ul + i, p->uh + i, p->vl + i,
+                                  p->vh + i)
+             << i;
+    }
+#undef PK_OVERLAP
 #else
     for (int i = 0; i < p->n; i++)
         m |= (uint64_t)(p->ul[i] <= u1 && p->uh[i] >= u0 && p->vl[i] <= v1 &&
@@ -1988,7 +2039,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     for (int a = 0; a < 3; a++)
         p.o[a] = (double)o[a];
     p.margin = g->ps->pad;
-    p.n = (n + 3) / 4 * 4;
+    p.n = n > 16 ? (n + 15) / 16 * 16 : (n + 3) / 4 * 4;
     p.live = 0;
     walk_t w[PK_N];
     const int k = p.k, u = p.u, v = p.v;
