@@ -2036,6 +2036,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     p.v = p.u == 2 ? 0 : p.u + 1;
     p.sg = sum[p.k] < 0 ? -1 : 1;
     const real *o = q[0].r->o;
+    const bool o_ok = isfinite(o[0]) && isfinite(o[1]) && isfinite(o[2]);
     for (int a = 0; a < 3; a++)
         p.o[a] = (double)o[a];
     p.margin = g->ps->pad;
@@ -2051,9 +2052,9 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
             continue;
         const ray_t *r = q[i].r;
         double dk = (double)r->d[k] * p.sg;
-        bool ok = r->o[0] == o[0] && r->o[1] == o[1] && r->o[2] == o[2] &&
-                  isfinite(o[0]) && isfinite(o[1]) && isfinite(o[2]) &&
-                  dk > 0 && isfinite(dk) && dk >= fabs((double)r->d[u]) &&
+        bool ok = o_ok && r->o[0] == o[0] && r->o[1] == o[1] &&
+                  r->o[2] == o[2] && dk > 0 && dk < (double)INFINITY &&
+                  dk >= fabs((double)r->d[u]) &&
                   dk >= fabs((double)r->d[v]) && q[i].mr.kz == k;
         if (!ok) {
             grid_intersect(g, &q[i]);
