@@ -12,6 +12,9 @@
  *   make bench-grid BENCH_ARGS=--quick    a smoke run
  *   make bench-grid BENCH_ARGS="--only 1000000"   one sphere size only
  *   make bench-grid BENCH_ARGS="--only stadium"   the teapot in a stadium
+ * Camera rays are traced one at a time through accel.h (as the renderer
+ * traces them), and in packets of 4 x 4 and 8 x 8 pixels through
+ * grid_intersect_packet() (grid.h) on a grid built over the same scene.
  */
 #include "accel.h"
 #include "bench.h"
@@ -20,6 +23,7 @@
 #include "mesh.h"
 #include "meshgen.h"
 #include "obj.h"
+#include "primset.h"
 #include "rng.h"
 
 #include <omp.h>
@@ -92,19 +96,18 @@ typedef struct {
  * scene (the uniform grid's teapot) is timed on the rays it got through. */
 #define TRACE_BUDGET 2.0
 
-static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
+/* Run chunk(ctx, from, to, threads) over [0, n) in chunks of 8192 rays
+ * until done or out of the time budget; chunk returns its hits. */
+typedef long (*chunk_fn)(const void *ctx, long from, long to, int threads);
+
+static run_t timed(long n, int threads, chunk_fn chunk, const void *ctx)
 {
     run_t out;
     long hits = 0, done = 0;
     double t0 = bench_now(), c0 = cpu_now();
     while (done < n) {
         long m = n - done < 8192 ? n - done : 8192;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) \
-    reduction(+ : hits)
-        for (long i = done; i < done + m; i++) {
-            accel_hit_t h;
-            hits += accel_intersect(a, &r[i], 0, (real)INFINITY, &h);
-        }
+        hits += chunk(ctx, done, done + m, threads);
         done += m;
         if (bench_now() - t0 > TRACE_BUDGET)
             break;
@@ -114,6 +117,86 @@ static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
     out.rays = done;
     out.hits = hits;
     return out;
+}
+
+typedef struct {
+    const accel_t *a;
+    const ray_t *r;
+} single_t;
+
+static long single_chunk(const void *ctx, long from, long to, int threads)
+{
+    const single_t *c = ctx;
+    long hits = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256) \
+    reduction(+ : hits)
+    for (long i = from; i < to; i++) {
+        accel_hit_t h;
+        hits += accel_intersect(c->a, &c->r[i], 0, (real)INFINITY, &h);
+    }
+    return hits;
+}
+
+static run_t trace(const accel_t *a, const ray_t *r, long n, int threads)
+{
+    single_t c = { a, r };
+    return timed(n, threads, single_chunk, &c);
+}
+
+/* The camera rays' numbers in packets of pw x ph pixels, packet after
+ * packet, within the 16 x 16 tiles of camera_rays() (rows of 16 within a
+ * tile): n must be a whole number of tiles. */
+static long *packet_order(long n, int pw, int ph)
+{
+    long *ix = malloc((size_t)n * sizeof *ix), k = 0;
+    if (!ix) {
+        fprintf(stderr, "out of memory\n");
+        exit(1);
+    }
+    for (long t = 0; t < n; t += 256)
+        for (int py = 0; py < 16; py += ph)
+            for (int px = 0; px < 16; px += pw)
+                for (int j = py; j < py + ph; j++)
+                    for (int i = px; i < px + pw; i++)
+                        ix[k++] = t + 16 * j + i;
+    return ix;
+}
+
+typedef struct {
+    const grid_t *g;
+    const ray_t *r;
+    const long *ix;
+    int m;
+} packets_t;
+
+/* Packets of m rays (the rays r[ix[..]]): from and to are multiples of
+ * m, as 8192 is. */
+static long packet_chunk(const void *ctx, long from, long to, int threads)
+{
+    const packets_t *c = ctx;
+    long hits = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4) \
+    reduction(+ : hits)
+    for (long i = from; i < to; i += c->m) {
+        primset_query_t q[GRID_PACKET_MAX];
+        int k = (int)(to - i < c->m ? to - i : c->m);
+        for (int j = 0; j < k; j++)
+            primset_query_init(&q[j], &c->r[c->ix[i + j]], 0,
+                               (real)INFINITY);
+        grid_intersect_packet(c->g, q, k);
+        for (int j = 0; j < k; j++)
+            hits += primset_query_finish(c->g->ps, &q[j]) != NULL;
+    }
+    return hits;
+}
+
+/* trace() for packets of m rays (the rays r[ix[..]]) through
+ * grid_intersect_packet(). */
+static run_t trace_packets(const grid_t *g, const ray_t *r, const long *ix,
+                           long n, int m, int threads)
+{
+    packets_t c = { g, r, ix, m };
+    return timed(n, threads, packet_chunk, &c);
 }
 
 static void per_ray(const accel_t *a, const ray_t *r, long n, double *cells,
@@ -139,6 +222,8 @@ typedef struct {
     double cells_cam, cells_inc, tests_inc;
     double cam[2], inc[2];  /* Mrays/s by wall clock, 1 and 2 threads */
     double cam_cpu, inc_cpu; /* Mrays per CPU second at 1 thread */
+    double pk[2];            /* camera rays in 4 x 4 packets, Mrays/s */
+    double pk_cpu[2];        /* per CPU second at 1 thread: 4x4, 8x8 */
 } row_t;
 
 static row_t rows[64];
@@ -148,18 +233,64 @@ static void print_header(void)
 {
     printf("| scene | triangles | structure | build CPU s | MB | cells/ray "
            "(cam, inc) | tests/ray inc | camera Mrays/s 1T | 2T | "
-           "incoherent Mrays/s 1T | 2T | 1T per CPU-s (cam, inc) |\n");
-    printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+           "incoherent Mrays/s 1T | 2T | 1T per CPU-s (cam, inc) | "
+           "camera, packets of 16 (4x4) Mrays/s 1T | 2T | packets 1T per "
+           "CPU-s (16, 64) |\n");
+    printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+           "---:|---:|\n");
 }
 
 static void print_row(const row_t *r)
 {
     printf("| %s | %ld | %s | %.3f | %.1f | %.1f, %.1f | %.1f | %.3f | %.3f "
-           "| %.3f | %.3f | %.3f, %.3f |\n",
+           "| %.3f | %.3f | %.3f, %.3f |",
            r->scene, r->tris, accel_kind_name(r->kind), r->build, r->mb,
            r->cells_cam, r->cells_inc, r->tests_inc, r->cam[0], r->cam[1],
            r->inc[0], r->inc[1], r->cam_cpu, r->inc_cpu);
+    if (r->kind == ACCEL_BRUTE)
+        printf(" - | - | - |\n");
+    else
+        printf(" %.3f | %.3f | %.3f, %.3f |\n", r->pk[0], r->pk[1],
+               r->pk_cpu[0], r->pk_cpu[1]);
     fflush(stdout);
+}
+
+/* The packets' columns of r: a grid of kind (the parameters accel_build
+ * gives it) over the same scene, traced by grid_intersect_packet(). */
+static void bench_packets(row_t *r, COBJECT **objs, int n, accel_kind kind,
+                          const accel_params_t *over, const ray_t *cam,
+                          long ncam)
+{
+    primset_t ps;
+    grid_params_t gp;
+    grid_t *g;
+    svet_error e;
+    if (kind == ACCEL_HGRID)
+        grid_params_hierarchical(&gp);
+    else
+        grid_params_uniform(&gp);
+    if (over && kind == ACCEL_GRID && over->grid_k > 0)
+        gp.k = over->grid_k;
+    if (primset_build(&ps, objs, n, &e) != SVET_OK ||
+        grid_build(&g, &ps, &gp, &e) != SVET_OK) {
+        fprintf(stderr, "packets: %s\n", e.msg);
+        exit(1);
+    }
+    const int side[2] = { 4, 8 };
+    for (int s = 0; s < 2; s++) {
+        long *ix = packet_order(ncam, side[s], side[s]);
+        for (int t = 0; t < 2 - s; t++) {
+            run_t c = trace_packets(g, cam, ix, ncam, side[s] * side[s],
+                                    t + 1);
+            if (s == 0)
+                r->pk[t] = (double)c.rays / c.wall * 1e-6;
+            if (t == 0)
+                r->pk_cpu[s] = (double)c.rays / c.cpu * 1e-6;
+        }
+        free(ix);
+    }
+    grid_free(g);
+    primset_free(&ps);
 }
 
 /* Benchmark one structure on one scene; brute force traces a sample. */
@@ -208,8 +339,10 @@ static void bench_one(const char *name, COBJECT **objs, int n, long tris,
             r->inc_cpu = (double)i.rays / i.cpu * 1e-6;
         }
     }
-    print_row(r);
     accel_free(a);
+    if (kind != ACCEL_BRUTE)
+        bench_packets(r, objs, n, kind, over, cam, ncam);
+    print_row(r);
 }
 
 static void scene_box(COBJECT **objs, int n, bbox_t *b)
@@ -270,6 +403,10 @@ static void machine(int argc, char **argv)
            "CPU-s\" divides by the process's CPU time instead, which a "
            "busy machine disturbs less; a measurement stops after %g s "
            "and counts the rays traced by then\n", TRACE_BUDGET);
+    printf("- camera rays in packets: the same rays, 4 x 4 or 8 x 8 pixels "
+           "of a tile at a time, through grid_intersect_packet() on a grid "
+           "of the same kind built over the same scene (grid.h directly: "
+           "without accel.c's checks, which the single rays go through)\n");
     printf("- tests/ray counts the primitives the mailbox let through; "
            "%s\n\n",
            GRID_QUADS ? "where a grid has quads (grid.h: from "

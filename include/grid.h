@@ -187,6 +187,30 @@ bool grid_intersect(const grid_t *g, primset_query_t *q);
  * fail. */
 bool grid_occluded(const grid_t *g, primset_query_t *q);
 
+/* The most rays grid_intersect_packet() takes at once. */
+#define GRID_PACKET_MAX 64
+
+/* Nearest hits of n rays (q[0 .. n), each from primset_query_init()) at
+ * once, for coherent rays with one origin (a pinhole camera's: a tile of
+ * 4 x 4 pixels, say): each q[i] ends exactly as grid_intersect(g, &q[i])
+ * leaves it (found, ref, t and bits of the hit), bit for bit. The
+ * coherent grid traversal of Wald, Ize, Kensler, Knoll & Parker ("Ray
+ * tracing animated scenes using coherent grid traversal", SIGGRAPH
+ * 2006): one walk, slice by slice of cells along the packet's major axis,
+ * over the cells the rays' frustum may cross; each non-empty cell tested,
+ * with the single walk's own per-ray test, only for the rays that may
+ * pass through it. Only the top level walks by packets: a cell holding a
+ * child grid (hierarchical grid) is walked ray by ray with each ray's
+ * best hit so far. Rays that do not share the first ray's origin, or
+ * whose largest direction component is not on the packet's major axis
+ * with its sign (or is not finite, or ties with another axis that the
+ * triangle test takes for the largest), are traced alone by
+ * grid_intersect(); so are all the rays left when the frustum grows
+ * wider than 64 blocks of a slab (a very wide packet).
+ * n may be anything: n <= 0 does nothing, more than GRID_PACKET_MAX goes
+ * GRID_PACKET_MAX at a time. This function can't fail. */
+void grid_intersect_packet(const grid_t *g, primset_query_t *q, int n);
+
 /* Bytes the grid holds. */
 size_t grid_bytes(const grid_t *g);
 

@@ -243,12 +243,18 @@ START_TEST(the_walk_visits_the_cells_a_ray_crosses)
 }
 END_TEST
 
-/* Brute force: every primitive, in number order. */
-static void brute(const primset_t *ps, const ray_t *r, primset_query_t *q)
+/* Brute force over (0, tmax): every primitive, in number order. */
+static void brute_to(const primset_t *ps, const ray_t *r, real tmax,
+                     primset_query_t *q)
 {
-    primset_query_init(q, r, 0, (real)INFINITY);
+    primset_query_init(q, r, 0, tmax);
     for (uint32_t i = 0; i < ps->nrefs; i++)
         primset_test(ps, q, i);
+}
+
+static void brute(const primset_t *ps, const ray_t *r, primset_query_t *q)
+{
+    brute_to(ps, r, (real)INFINITY, q);
 }
 
 /* The grid's answers (nearest hit, and any hit) for r are brute force's,
@@ -515,6 +521,25 @@ START_TEST(huge_primitives_coarsen_the_grid_instead_of_exploding)
 }
 END_TEST
 
+/* Variant 0 to 3 of a grid over ps with k cells per cube root: uniform
+ * (even) or hierarchical (odd: two levels, leaves of leaf_max), with
+ * quads (0, 1: forced, as the defaults keep them for large scenes; where
+ * the build has them) or without (2, 3). */
+static grid_t *variant_grid(const primset_t *ps, int variant, double k,
+                            int leaf_max)
+{
+    grid_params_t p;
+    grid_params_uniform(&p);
+    p.k = k;
+    p.quad_min = variant >> 1 ? LONG_MAX : 0;
+    p.max_depth = 2 * (variant & 1);
+    p.leaf_max = leaf_max;
+    grid_t *g;
+    svet_error e;
+    ck_assert_msg(grid_build(&g, ps, &p, &e) == SVET_OK, "%s", e.msg);
+    return g;
+}
+
 /* Cells that hold mesh triangles, other primitives and child grids
  * together: with quads (GRID_QUADS), a cell's triangles are its quads
  * (checked here against its items and the primset's corners, padding
@@ -543,18 +568,8 @@ START_TEST(cells_of_triangles_and_other_primitives_answer_as_brute_force)
     ck_assert(primset_build(&ps, objs, 8, &e) == SVET_OK);
     long cases = 0, quads = 0, mixed = 0;
     for (int variant = 0; variant < 4; variant++) {
-        /* uniform and hierarchical, with quads (where the build has
-         * them: forced, as the defaults keep them for large scenes) and
-         * without */
         int depth = 2 * (variant & 1), with = !(variant >> 1);
-        grid_params_t p;
-        grid_params_uniform(&p);
-        p.k = 1;
-        p.quad_min = with ? 0 : LONG_MAX;
-        p.max_depth = depth;
-        p.leaf_max = 4;
-        grid_t *g;
-        ck_assert(grid_build(&g, &ps, &p, &e) == SVET_OK);
+        grid_t *g = variant_grid(&ps, variant, 1, 4);
         if (depth > 0)
             ck_assert_uint_gt(g->nnodes, 1);
         ck_assert(GRID_QUADS && with ? g->quads != NULL : g->quads == NULL);
@@ -617,6 +632,175 @@ START_TEST(cells_of_triangles_and_other_primitives_answer_as_brute_force)
 }
 END_TEST
 
+/* A pinhole camera's rays through the w x h pixels of the tile at (x0,
+ * y0) of an nx x ny image: origin o, looking along f, the image's axes
+ * along r and up (pixel (i, j) at f + (2 (i + 1/2) / nx - 1) r + (1 - 2
+ * (j + 1/2) / ny) up). */
+static int tile_rays(ray_t *out, const VECTOR3 o, const VECTOR3 f,
+                     const VECTOR3 r, const VECTOR3 up, int nx, int ny,
+                     int x0, int y0, int w, int h)
+{
+    int n = 0;
+    for (int j = y0; j < y0 + h && j < ny; j++)
+        for (int i = x0; i < x0 + w && i < nx; i++) {
+            real x = 2 * ((real)i + REAL_C(0.5)) / (real)nx - 1;
+            real y = 1 - 2 * ((real)j + REAL_C(0.5)) / (real)ny;
+            vec_copy(out[n].o, o);
+            for (int a = 0; a < 3; a++)
+                out[n].d[a] = f[a] + x * r[a] + y * up[a];
+            n++;
+        }
+    return n;
+}
+
+/* Every ray of a packet answered by grid_intersect_packet() as
+ * grid_intersect() answers it alone, and as brute force: found, the
+ * primitive, t and the barycentrics bit for bit, and the counters of
+ * work untouched where the ray missed the grid. Returns the hits. */
+static long check_packet(const grid_t *g, const primset_t *ps,
+                         const ray_t *r, const real *tmax, int n)
+{
+    primset_query_t got[2 * GRID_PACKET_MAX];
+    long hits = 0;
+    for (int i = 0; i < n; i++)
+        primset_query_init(&got[i], &r[i], 0, tmax[i]);
+    grid_intersect_packet(g, got, n);
+    for (int i = 0; i < n; i++) {
+        primset_query_t one, want;
+        primset_query_init(&one, &r[i], 0, tmax[i]);
+        grid_intersect(g, &one);
+        brute_to(ps, &r[i], tmax[i], &want);
+        ck_assert_msg(got[i].found == one.found && one.found == want.found,
+                      "ray %d of %d (%g %g %g) (%g %g %g): packet %d, "
+                      "alone %d, brute force %d",
+                      i, n, (double)r[i].o[0], (double)r[i].o[1],
+                      (double)r[i].o[2], (double)r[i].d[0],
+                      (double)r[i].d[1], (double)r[i].d[2], got[i].found,
+                      one.found, want.found);
+        if (!want.found)
+            continue;
+        hits++;
+        ck_assert_msg(got[i].ref == one.ref && one.ref == want.ref,
+                      "ray %d: primitive %u, alone %u, brute force %u", i,
+                      got[i].ref, one.ref, want.ref);
+        ck_assert(memcmp(&got[i].hit.t, &one.hit.t, sizeof one.hit.t) == 0);
+        ck_assert(memcmp(&got[i].hit.t, &want.hit.t, sizeof one.hit.t) == 0);
+        ck_assert(memcmp(got[i].hit.b, one.hit.b, sizeof one.hit.b) == 0);
+        ck_assert(memcmp(got[i].hit.b, want.hit.b, sizeof one.hit.b) == 0);
+    }
+    return hits;
+}
+
+/* Packets of camera rays answer as single rays and brute force. Scenes:
+ * 3^3 UV spheres crossed by analytic spheres, a terrain under them; the
+ * uniform grid and the hierarchy, with quads and without. Cameras outside
+ * the grid and inside it, in random directions and along the axes (so
+ * that whole rows of a packet run parallel to an axis plane, and the
+ * centre ray along an axis), with tiles of 4 x 4, 8 x 2, 8 x 8, 16 x 4,
+ * 3 x 5, 12 x 10 (more than GRID_PACKET_MAX: two packets) and 1 x 1 (a
+ * packet of one) over the whole image, the border tiles included (rays that
+ * miss everything, part-filled tiles); wide fields of view, whose tiles
+ * straddle the change of major axis (those rays go alone); for a third
+ * of the cameras rays of random lengths (tmax); and one ray in 32 that
+ * goes alone (another origin, or the other way). */
+START_TEST(packets_answer_as_single_rays_and_brute_force)
+{
+    svet_error e;
+    meshgen_scene_t s;
+    ck_assert(meshgen_sphere_grid(&s, 3, 6000, &e) == SVET_OK);
+    COBJECT *objs[40];
+    int nobjs = 0;
+    for (int i = 0; i < s.nobjs; i++)
+        objs[nobjs++] = s.objs[i];
+    pcg32_t rng;
+    pcg32_seed(&rng, 4242, 11);
+    for (int i = 0; i < 6; i++) {
+        VECTOR3 c = { 8 * pcg32_real(&rng) - 1, 8 * pcg32_real(&rng) - 1,
+                      8 * pcg32_real(&rng) - 1 };
+        objs[nobjs] = sphere_new(c, REAL_C(0.2) + REAL_C(0.6) *
+                                                     pcg32_real(&rng), &e);
+        ck_assert(objs[nobjs++] != NULL);
+    }
+    VECTOR3 tc = { 3, 3, -REAL_C(1.5) };
+    ck_assert(meshgen_terrain(&objs[nobjs++], tc, 9, REAL_C(0.5), 24, 3,
+                              &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, objs, nobjs, &e) == SVET_OK);
+    long cases = 0, hits = 0, packets = 0;
+    const int shapes[][2] = { { 4, 4 }, { 8, 2 }, { 8, 8 }, { 3, 5 },
+                              { 16, 4 }, { 12, 10 }, { 1, 1 } };
+    for (int variant = 0; variant < 4; variant++) {
+        grid_t *g = variant_grid(&ps, variant, 2, 8);
+        for (int cam = 0; cam < 14; cam++) {
+            VECTOR3 o, f, r, up, target;
+            if (cam < 6) { /* outside, looking along an axis */
+                int a = cam % 3;
+                real sg = cam < 3 ? 1 : -1;
+                vec_set(o, 3, 3, 3);
+                o[a] -= sg * 12;
+                vec_set(f, 0, 0, 0);
+                f[a] = sg;
+                vec_set(r, 0, 0, 0);
+                vec_set(up, 0, 0, 0);
+                r[(a + 1) % 3] = REAL_C(0.6);
+                up[(a + 2) % 3] = REAL_C(0.6);
+            } else { /* anywhere, inside the grid for the later ones */
+                real span = cam < 10 ? 30 : 7;
+                for (int a = 0; a < 3; a++) {
+                    o[a] = span * pcg32_real(&rng) - (span - 7) / 2 - 1;
+                    target[a] = 6 * pcg32_real(&rng);
+                }
+                vec_sub(f, target, o);
+                vec_normalize(f, f);
+                VECTOR3 z = { 0, 0, 1 };
+                VVECTOR3(r, f, z);
+                vec_normalize(r, r);
+                VVECTOR3(up, r, f);
+                /* wide views straddle the change of major axis */
+                real fov = cam % 2 ? REAL_C(1.5) : REAL_C(0.4);
+                vec_scale(r, r, fov);
+                vec_scale(up, up, fov);
+            }
+            const int *sh = shapes[cam % 7];
+            int nx = 36, ny = 28;
+            for (int y0 = 0; y0 < ny; y0 += sh[1])
+                for (int x0 = 0; x0 < nx; x0 += sh[0]) {
+                    ray_t rays[2 * GRID_PACKET_MAX];
+                    real tmax[2 * GRID_PACKET_MAX];
+                    int n = tile_rays(rays, o, f, r, up, nx, ny, x0, y0,
+                                      sh[0], sh[1]);
+                    for (int i = 0; i < n; i++) {
+                        /* a third of the packets: rays that end anywhere */
+                        tmax[i] = cam % 3 == 1 ? 20 * pcg32_real(&rng)
+                                               : (real)INFINITY;
+                        /* now and then a ray that goes alone: another
+                         * origin, or the other way */
+                        uint32_t odd = pcg32_bounded(&rng, 64);
+                        if (odd == 0)
+                            rays[i].o[i % 3] += REAL_C(0.25);
+                        else if (odd == 1)
+                            vec_neg(rays[i].d, rays[i].d);
+                    }
+                    hits += check_packet(g, &ps, rays, tmax, n);
+                    cases += n;
+                    packets++;
+                }
+        }
+        grid_free(g);
+    }
+    /* many rays hit, many miss */
+    ck_assert(hits > cases / 4 && hits < cases * 3 / 4);
+    test_report_cases("packets_answer_as_single_rays_and_brute_force (rays)",
+                      cases);
+    test_report_cases("packets_answer_as_single_rays_and_brute_force "
+                      "(packets)", packets);
+    primset_free(&ps);
+    for (int i = 0; i < nobjs; i++)
+        cobject_free(objs[i]);
+    free(s.objs);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("grid");
@@ -630,6 +814,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, huge_primitives_coarsen_the_grid_instead_of_exploding);
     tcase_add_test(tc,
                    cells_of_triangles_and_other_primitives_answer_as_brute_force);
+    tcase_add_test(tc, packets_answer_as_single_rays_and_brute_force);
     suite_add_tcase(s, tc);
     return s;
 }
