@@ -556,23 +556,32 @@ static void brute_search_init(brute_search_t *q, real tmin, real tmax,
     q->best = 0;
 }
 
+/* nearest() by the fast brute force (a->brute) of a ray that
+ * ray_ok() accepts. */
+static inline bool brute_nearest(const accel_t *a, const ray_t *r,
+                                 real tmin, real tmax,
+                                 const COBJECT *const skip[2], hit_t *hit,
+                                 const COBJECT **obj)
+{
+    brute_search_t q;
+    brute_search_init(&q, tmin, tmax, hit, skip);
+    if (!brute_run(a->brute, &a->ps, r, &q))
+        return false;
+    *obj = a->brute->items[q.best].obj;
+    hit->prim = a->brute->items[q.best].prim;
+    return true;
+}
+
 /* The nearest hit, written into *hit and *obj (untouched on a miss):
- * the one query behind accel_intersect*() and accel_trace(). */
+ * the one query behind accel_intersect*() and accel_tracer_intersect(). */
 static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
                     const COBJECT *const skip[2], hit_t *hit,
                     const COBJECT **obj, accel_counters_t *c)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
-    if (a->brute && !c) {
-        brute_search_t q;
-        brute_search_init(&q, tmin, tmax, hit, skip);
-        if (!brute_run(a->brute, &a->ps, r, &q))
-            return false;
-        *obj = a->brute->items[q.best].obj;
-        hit->prim = a->brute->items[q.best].prim;
-        return true;
-    }
+    if (a->brute && !c)
+        return brute_nearest(a, r, tmin, tmax, skip, hit, obj);
     primset_query_t q;
     primset_query_init(&q, r, tmin, tmax);
     run(a, &q, false);
@@ -600,11 +609,15 @@ bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
     return nearest(a, r, tmin, tmax, skip, &h->hit, &h->obj, NULL);
 }
 
-bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
-                      real tmax, const COBJECT *const skip[2], hit_t *hit,
-                      const COBJECT **obj)
+bool accel_tracer_intersect(const void *a, const ray_t *r, real tmin,
+                            real tmax, const COBJECT *const skip[2],
+                            hit_t *hit, const COBJECT **obj)
 {
-    return nearest(a, r, tmin, tmax, skip, hit, obj, NULL);
+    const accel_t *acc = a;
+    if (acc && acc->brute) /* nearest()'s way, written out */
+        return ray_ok(r, tmin, tmax) &&
+               brute_nearest(acc, r, tmin, tmax, skip, hit, obj);
+    return nearest(acc, r, tmin, tmax, skip, hit, obj, NULL);
 }
 
 bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
@@ -613,13 +626,10 @@ bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
     return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, c);
 }
 
-bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
-{
-    return accel_occluded_skip(a, r, tmin, tmax, NULL);
-}
-
-bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
-                         real tmax, const COBJECT *const skip[2])
+/* accel_occluded_skip() and accel_tracer_occluded(): the one shadow
+ * query (inline in both). */
+static inline bool occluded(const accel_t *a, const ray_t *r, real tmin,
+                            real tmax, const COBJECT *const skip[2])
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
@@ -631,6 +641,23 @@ bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
     primset_query_t q;
     primset_query_init(&q, r, tmin, tmax);
     return run(a, &q, true);
+}
+
+bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
+{
+    return occluded(a, r, tmin, tmax, NULL);
+}
+
+bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
+                         real tmax, const COBJECT *const skip[2])
+{
+    return occluded(a, r, tmin, tmax, skip);
+}
+
+bool accel_tracer_occluded(const void *a, const ray_t *r, real tmin,
+                           real tmax, const COBJECT *const skip[2])
+{
+    return occluded(a, r, tmin, tmax, skip);
 }
 
 void accel_get_stats(const accel_t *a, accel_stats_t *s)

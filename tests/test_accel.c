@@ -848,6 +848,15 @@ static void skip_agrees(const accel_t *a, const ray_t *r, real tmax,
                   memcmp(h0.hit.b, h1.hit.b, sizeof h0.hit.b) == 0);
     ck_assert(accel_occluded(a, r, 0, tmax) ==
               accel_occluded_skip(a, r, 0, tmax, skip));
+    /* the tracer's entries (render.c): the same answers */
+    hit_t h2 = { 0, 0, { 0, 0, 0 } };
+    const COBJECT *o2 = NULL;
+    ck_assert(accel_tracer_intersect(a, r, 0, tmax, skip, &h2, &o2) == f1);
+    ck_assert(!f1 ? o2 == NULL : o2 == h1.obj && h2.prim == h1.hit.prim &&
+              memcmp(&h2.t, &h1.hit.t, sizeof h2.t) == 0 &&
+              memcmp(h2.b, h1.hit.b, sizeof h2.b) == 0);
+    ck_assert(accel_tracer_occluded(a, r, 0, tmax, skip) ==
+              accel_occluded_skip(a, r, 0, tmax, skip));
 }
 
 /* Rays spawned as the integrator spawns them, from points where random
