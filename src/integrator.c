@@ -143,7 +143,7 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
         return rad_grey(0);
     real w = 1;
     if (!ls.delta && mis) {
-        real pl = pmf * light_pdf(l, pp, two, ls.wi, ls.p, ls.n);
+        real pl = pmf * ls.pdf_mis; /* light_pdf(l, pp, two, ls.wi, ls.p, ls.n) */
         real pb = material_pdf(m, wi, wo);
         w = integrator_mis_weight(pl, pb);
     }
