@@ -277,6 +277,26 @@ static bool lambert_sample(const material_t *m, const VECTOR3 wo,
     return true;
 }
 
+/* For a single Lambert lobe, material_eval() is 0 + brdf_eval() and
+ * material_pdf() is lambert_pdf(); brdf_eval() and brdf_pdf() of Lambert
+ * are rho / pi and |wi_z| / pi where brdf_same_side(), else black and 0:
+ * written out here on one side test, the same operations. */
+RADIANCE material_eval_pdf(const material_t *m, const VECTOR3 wi,
+                           const VECTOR3 wo, real *pdf)
+{
+    if (m->lambert) {
+        const RADIANCE rho = m->comp[0].rho;
+        if (!brdf_same_side(wi, wo)) {
+            *pdf = 0;
+            return black; /* 0 + 0 */
+        }
+        *pdf = rad_luminance(rho) > 0 ? fabs(wi[Z]) * REAL_INV_PI : 0;
+        return rad_add(black, rad_scale(rho, REAL_INV_PI));
+    }
+    *pdf = material_pdf(m, wi, wo);
+    return material_eval(m, wi, wo);
+}
+
 real material_pdf(const material_t *m, const VECTOR3 wi, const VECTOR3 wo)
 {
     if (m->lambert)
