@@ -7,7 +7,9 @@
  */
 #include "xform.h"
 #include "shape.h"
+#include "simd.h"
 
+#include <stddef.h>
 #include <string.h>
 
 typedef long double ld;
@@ -300,6 +302,11 @@ typedef struct {
     /* the box's own bounds (its bounds(), the min and max its intersect()
      * tests against), for leaves_box(); set with the face table */
     VECTOR3 box_min, box_max;
+    /* the same for vectors of four lanes (x, y, z and one that never
+     * answers: -inf, +inf), and the columns of inv, col[j][i] = inv[i][j]
+     * with a zero fourth lane (object_ray() with SSE) */
+    real box_lo4[4], box_hi4[4];
+    real inv_col[4][4];
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -330,16 +337,53 @@ object_ray_scaled(const xf_shape *sh, const ray_t *r, real m, ray_t *ro,
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
-static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
-                              int *k)
+/* An object-space ray in eight reals (o, d and two spare), so that
+ * object_ray() may store vectors of four into it. */
+typedef union {
+    ray_t r;
+    real v[8];
+} ray_slots;
+_Static_assert(sizeof(ray_t) == 6 * sizeof(real) &&
+               offsetof(ray_t, d) == 3 * sizeof(real),
+               "ray_t: o and d without padding");
+
+static inline bool object_ray(const xf_shape *sh, const ray_t *r,
+                              ray_slots *rs, int *k)
 {
     /* no libm in this inner loop: plain comparisons for the max (a NaN
      * component makes ro->d NaN below whatever m is), and ilogb only for
      * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
     real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
     if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)))
-        return object_ray_scaled(sh, r, m, ro, k);
+        return object_ray_scaled(sh, r, m, &rs->r, k);
     *k = 0;
+#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+    /* apply() with SSE, lane i for row i: the columns of inv times the
+     * coordinates, summed in row()'s order, the vector's + 0 kept (it
+     * makes a -0 +0), so every lane has row()'s bits; lane 3 is 0. Then
+     * the tests below on the lanes: all of o and d finite (each lane of
+     * (o - o) + (d - d) is 0 exactly when both are), d not zero. */
+    const __m128 c0 = _mm_loadu_ps(sh->inv_col[0]),
+                 c1 = _mm_loadu_ps(sh->inv_col[1]),
+                 c2 = _mm_loadu_ps(sh->inv_col[2]);
+    const __m128 zero = _mm_setzero_ps();
+    __m128 o = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(r->o[X])),
+                              _mm_mul_ps(c1, _mm_set1_ps(r->o[Y]))),
+                   _mm_mul_ps(c2, _mm_set1_ps(r->o[Z]))),
+        _mm_loadu_ps(sh->inv_col[3]));
+    __m128 d = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(r->d[X])),
+                              _mm_mul_ps(c1, _mm_set1_ps(r->d[Y]))),
+                   _mm_mul_ps(c2, _mm_set1_ps(r->d[Z]))),
+        zero);
+    _mm_storeu_ps(rs->v, o);
+    _mm_storeu_ps(rs->v + 3, d); /* over o's lane 3 */
+    __m128 f = _mm_add_ps(_mm_sub_ps(o, o), _mm_sub_ps(d, d));
+    return _mm_movemask_ps(_mm_cmpeq_ps(f, zero)) == 15 &&
+           (_mm_movemask_ps(_mm_cmpneq_ps(d, zero)) & 7) != 0;
+#else
+    ray_t *ro = &rs->r;
     apply(MAT(sh->x.inv), ro->o, r->o, true);
     apply(MAT(sh->x.inv), ro->d, r->d, false);
     /* finite: x - x is 0 for a finite x, NaN otherwise (vec_is_finite's
@@ -348,6 +392,7 @@ static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
              ((ro->o[Z] - ro->o[Z]) + (ro->d[X] - ro->d[X])) +
              ((ro->d[Y] - ro->d[Y]) + (ro->d[Z] - ro->d[Z]));
     return f == 0 && (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
+#endif
 }
 
 /* True when the object-space ray ro of a transformed box (sh->nfaces = 6)
@@ -366,14 +411,28 @@ static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
  * the culling sphere, and many that pass beside it, for the price of six
  * comparisons instead of the six divisions of the slab test.
  * tests/test_xform.c compares with xform_intersect_unseparated(). */
-static inline bool leaves_box(const xf_shape *sh, const ray_t *ro)
+static inline bool leaves_box(const xf_shape *sh, const ray_slots *rs)
 {
+#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+    /* the six comparisons as four lanes: o (and d_x, which the fourth
+     * lane's infinite bounds turn away) against the bounds, d's sign */
+    const __m128 o = _mm_loadu_ps(rs->v), d = _mm_loadu_ps(rs->v + 3);
+    const __m128 zero = _mm_setzero_ps();
+    __m128 beyond = _mm_or_ps(
+        _mm_and_ps(_mm_cmpgt_ps(o, _mm_loadu_ps(sh->box_hi4)),
+                   _mm_cmpge_ps(d, zero)),
+        _mm_and_ps(_mm_cmplt_ps(o, _mm_loadu_ps(sh->box_lo4)),
+                   _mm_cmple_ps(d, zero)));
+    return _mm_movemask_ps(beyond) != 0;
+#else
+    const ray_t *ro = &rs->r;
     return (ro->o[X] > sh->box_max[X] && ro->d[X] >= 0) ||
            (ro->o[X] < sh->box_min[X] && ro->d[X] <= 0) ||
            (ro->o[Y] > sh->box_max[Y] && ro->d[Y] >= 0) ||
            (ro->o[Y] < sh->box_min[Y] && ro->d[Y] <= 0) ||
            (ro->o[Z] > sh->box_max[Z] && ro->d[Z] >= 0) ||
            (ro->o[Z] < sh->box_min[Z] && ro->d[Z] <= 0);
+#endif
 }
 
 static inline bool intersect_unculled(const COBJECT *obj, int prim,
@@ -381,7 +440,7 @@ static inline bool intersect_unculled(const COBJECT *obj, int prim,
                                       hit_t *hit, bool separate)
 {
     const xf_shape *sh = obj->shape;
-    ray_t ro;
+    ray_slots ro;
     int k;
     if (!object_ray(sh, r, &ro, &k))
         return false;
@@ -392,7 +451,7 @@ static inline bool intersect_unculled(const COBJECT *obj, int prim,
      * and the same ray must give the same bytes */
     hit_t h = { 0, 0, { 0, 0, 0 } };
     real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
-    if (!sh->inner->ops->intersect(sh->inner, prim, &ro, lo, hi, &h))
+    if (!sh->inner->ops->intersect(sh->inner, prim, &ro.r, lo, hi, &h))
         return false;
     real t = k ? ldexp(h.t, -k) : h.t;
     if (!(t > tmin && t < tmax))
@@ -492,13 +551,13 @@ static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
 static void surface_point(const xf_shape *sh, const ray_t *r,
                           const hit_t *hit, PATHPOINT *pp)
 {
-    ray_t ro;
+    ray_slots ro;
     int k;
     object_ray(sh, r, &ro, &k);
     hit_t h = *hit;
     if (k != 0)
         h.t = ldexp(hit->t, k);
-    sh->inner->ops->surface(sh->inner, &ro, &h, pp);
+    sh->inner->ops->surface(sh->inner, &ro.r, &h, pp);
     VECTOR3 p, e;
     world_point(sh, pp->cross_point, pp->p_error, p, e);
     vec_copy(pp->cross_point, p);
@@ -580,6 +639,12 @@ static void set_faces(xf_shape *sh)
     sh->inner->ops->bounds(sh->inner, -1, &bb);
     vec_copy(sh->box_min, bb.min);
     vec_copy(sh->box_max, bb.max);
+    for (int k = 0; k < 3; k++) {
+        sh->box_lo4[k] = bb.min[k];
+        sh->box_hi4[k] = bb.max[k];
+    }
+    sh->box_lo4[3] = -(real)INFINITY;
+    sh->box_hi4[3] = (real)INFINITY;
     sh->nfaces = 6;
 }
 
@@ -934,9 +999,13 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
         for (int j = 0; j < 3; j++)
             sh->abs_m[i][j] = fabs(x.m[i][j]);
         sh->g_m3[i] = ray_gamma(4) * fabs(x.m[i][3]);
-        for (int j = 0; j < 4; j++)
+        for (int j = 0; j < 4; j++) {
             sh->g_inv[i][j] = ray_gamma(4) * fabs(x.inv[i][j]);
+            sh->inv_col[j][i] = x.inv[i][j];
+        }
     }
+    for (int j = 0; j < 4; j++)
+        sh->inv_col[j][3] = 0;
     sh->area = transformed_area(sh);
     set_culling(sh);
     set_faces(sh);
