@@ -187,6 +187,13 @@ bool accel_tracer_occluded(const void *a, const ray_t *r, real tmin,
 bool accel_ray_ok(const ray_t *r, real tmin, real tmax);
 bool accel_ray_ok_plain(const ray_t *r, real tmin, real tmax);
 
+/* For tests: bit k set when ray r passes the k-th culling sphere of a's
+ * fast brute force (those of the objects given to accel_build() that
+ * xform_culling_sphere() gives one, in their order; k < 64), as its
+ * vector test finds it; 0 when a has no fast brute force. This function
+ * can't fail. */
+uint64_t accel_spheres_passed(const accel_t *a, const ray_t *r);
+
 /* Work done by one query, for the heat maps of ch. 7. */
 typedef struct {
     long cells; /* grid cells visited, at every level */
