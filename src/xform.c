@@ -307,6 +307,10 @@ typedef struct {
      * with a zero fourth lane (object_ray() with SSE) */
     real box_lo4[4], box_hi4[4];
     real inv_col[4][4];
+    /* world_point()'s numbers by column, lane i for row i (zero in lane
+     * 3): m's columns, |m_ij|'s, gamma(4) |m_i3| and gamma(4) |inv_ij|'s
+     * (world_point_v()) */
+    real m_col[4][4], abs_col[3][4], g_m3_4[4], g_inv_col[4][4];
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -535,6 +539,68 @@ static void world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
             widen_row(sh, 2, e2, back));
 }
 
+#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+/* world_point() with SSE, lane i for row i: every lane the operations of
+ * apply(), point_error_row(), back_row() and widen_row() for its row,
+ * in their order (a product's factors in either order give the same
+ * bits; fabs as the sign bit cleared), on the shape's columns, so the
+ * same bits (tests/test_xform.c compares xf_surface(), which uses this,
+ * with xform_surface_generic(), which uses world_point()). */
+static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
+                                 const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
+{
+    const real g = ray_gamma(4);
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    const __m128 px = _mm_set1_ps(p[X]), py = _mm_set1_ps(p[Y]),
+                 pz = _mm_set1_ps(p[Z]);
+    const __m128 mx = _mm_mul_ps(_mm_loadu_ps(sh->m_col[0]), px),
+                 my = _mm_mul_ps(_mm_loadu_ps(sh->m_col[1]), py),
+                 mz = _mm_mul_ps(_mm_loadu_ps(sh->m_col[2]), pz);
+    const __m128 o = _mm_add_ps(_mm_add_ps(_mm_add_ps(mx, my), mz),
+                                _mm_loadu_ps(sh->m_col[3]));
+    const __m128 a0 = _mm_loadu_ps(sh->abs_col[0]),
+                 a1 = _mm_loadu_ps(sh->abs_col[1]),
+                 a2 = _mm_loadu_ps(sh->abs_col[2]);
+    const __m128 prop = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(a0, _mm_set1_ps(e[X])),
+                   _mm_mul_ps(a1, _mm_set1_ps(e[Y]))),
+        _mm_mul_ps(a2, _mm_set1_ps(e[Z])));
+    const __m128 G = _mm_set1_ps(g);
+    const __m128 err = _mm_add_ps(
+        _mm_add_ps(
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(1 + g), prop),
+                                  _mm_mul_ps(G, _mm_andnot_ps(sign, mx))),
+                       _mm_mul_ps(G, _mm_andnot_ps(sign, my))),
+            _mm_mul_ps(G, _mm_andnot_ps(sign, mz))),
+        _mm_loadu_ps(sh->g_m3_4));
+    const __m128 w = _mm_add_ps(_mm_andnot_ps(sign, o), err);
+    const __m128 back = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_loadu_ps(sh->g_inv_col[3]),
+                              _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[0]),
+                                         _mm_shuffle_ps(w, w, 0x00))),
+                   _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[1]),
+                              _mm_shuffle_ps(w, w, 0x55))),
+        _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[2]),
+                   _mm_shuffle_ps(w, w, 0xaa)));
+    const __m128 oe = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(err, _mm_mul_ps(a0, _mm_shuffle_ps(back, back,
+                                                                 0x00))),
+                   _mm_mul_ps(a1, _mm_shuffle_ps(back, back, 0x55))),
+        _mm_mul_ps(a2, _mm_shuffle_ps(back, back, 0xaa)));
+    real ro[4], re[4];
+    _mm_storeu_ps(ro, o);
+    _mm_storeu_ps(re, oe);
+    vec_set(out, ro[0], ro[1], ro[2]);
+    vec_set(out_e, re[0], re[1], re[2]);
+}
+#else
+static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
+                                 const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
+{
+    world_point(sh, p, e, out, out_e);
+}
+#endif
+
 /* unit M^-T n, with a fallback that cannot happen for a valid transform */
 static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
 {
@@ -548,8 +614,8 @@ static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
 
 /* The inner primitive's surface() on the ray in object space, and the
  * point mapped back to the world. */
-static void surface_point(const xf_shape *sh, const ray_t *r,
-                          const hit_t *hit, PATHPOINT *pp)
+static inline void surface_point(const xf_shape *sh, const ray_t *r,
+                                 const hit_t *hit, PATHPOINT *pp, bool vec)
 {
     ray_slots ro;
     int k;
@@ -559,7 +625,10 @@ static void surface_point(const xf_shape *sh, const ray_t *r,
         h.t = ldexp(hit->t, k);
     sh->inner->ops->surface(sh->inner, &ro.r, &h, pp);
     VECTOR3 p, e;
-    world_point(sh, pp->cross_point, pp->p_error, p, e);
+    if (vec)
+        world_point_v(sh, pp->cross_point, pp->p_error, p, e);
+    else
+        world_point(sh, pp->cross_point, pp->p_error, p, e);
     vec_copy(pp->cross_point, p);
     vec_copy(pp->p_error, e);
 }
@@ -585,7 +654,7 @@ void xform_surface_generic(const COBJECT *obj, const ray_t *r,
                            const hit_t *hit, PATHPOINT *pp)
 {
     const xf_shape *sh = obj->shape;
-    surface_point(sh, r, hit, pp);
+    surface_point(sh, r, hit, pp, false);
     surface_frame(sh, pp);
 }
 
@@ -593,7 +662,7 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                        PATHPOINT *pp)
 {
     const xf_shape *sh = obj->shape;
-    surface_point(sh, r, hit, pp);
+    surface_point(sh, r, hit, pp, true);
     if (pp->prim >= 0 && pp->prim < sh->nfaces) {
         /* a box's face: its world frame as surface_frame() made it */
         int f = pp->prim;
@@ -1006,6 +1075,15 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
     }
     for (int j = 0; j < 4; j++)
         sh->inv_col[j][3] = 0;
+    for (int i = 0; i < 4; i++) {
+        for (int j = 0; j < 4; j++) {
+            sh->m_col[j][i] = i < 3 ? x.m[i][j] : 0;
+            sh->g_inv_col[j][i] = i < 3 ? sh->g_inv[i][j] : 0;
+        }
+        for (int j = 0; j < 3; j++)
+            sh->abs_col[j][i] = i < 3 ? sh->abs_m[i][j] : 0;
+        sh->g_m3_4[i] = i < 3 ? sh->g_m3[i] : 0;
+    }
     sh->area = transformed_area(sh);
     set_culling(sh);
     set_faces(sh);

@@ -598,7 +598,9 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 {
     /* A transformed box's surface() takes the world normals, derivatives
      * and frame of a hit from a table made once per face (xform.c); the
-     * general way maps them at every hit. The same bytes, PATHPOINT for
+     * general way maps them at every hit (and its world point and bound
+     * come from the plain rows, the table's way from SSE lanes in
+     * float). The same bytes, PATHPOINT for
      * PATHPOINT, on hits from outside and from rays leaving a face, for
      * random maps (mirrors included), thin boxes and scales 2^-20 to
      * 2^20; and for an ellipsoid, which has no table. */
