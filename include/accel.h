@@ -167,13 +167,18 @@ bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
 bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
                          real tmax, const COBJECT *const skip[2]);
 
-/* accel_intersect_skip() answering into the caller's hit and object
- * directly, in the shape of integrator.h's tracer_t.intersect (render.c's
- * tracer), with no accel_hit_t in between: the same answer, bit for bit;
- * *hit and *obj are untouched on a miss. This function can't fail. */
-bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
-                      real tmax, const COBJECT *const skip[2], hit_t *hit,
-                      const COBJECT **obj);
+/* accel_intersect_skip() and accel_occluded_skip() in the shape of
+ * integrator.h's tracer_t.intersect and .occluded, so that render.c's
+ * tracer calls them with no function in between: a is the accel_t (as
+ * tracer_t's ctx). accel_tracer_intersect() answers into the caller's hit
+ * and object directly, with no accel_hit_t in between; *hit and *obj are
+ * untouched on a miss. The same answers, bit for bit. These functions
+ * can't fail. */
+bool accel_tracer_intersect(const void *a, const ray_t *r, real tmin,
+                            real tmax, const COBJECT *const skip[2],
+                            hit_t *hit, const COBJECT **obj);
+bool accel_tracer_occluded(const void *a, const ray_t *r, real tmin,
+                           real tmax, const COBJECT *const skip[2]);
 
 /* Whether a query takes ray r over (tmin, tmax) at all: all six
  * coordinates finite, d nonzero, tmin < tmax (a query answers "no hit"
@@ -181,6 +186,13 @@ bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
  * tests. These functions can't fail. */
 bool accel_ray_ok(const ray_t *r, real tmin, real tmax);
 bool accel_ray_ok_plain(const ray_t *r, real tmin, real tmax);
+
+/* For tests: bit k set when ray r passes the k-th culling sphere of a's
+ * fast brute force (those of the objects given to accel_build() that
+ * xform_culling_sphere() gives one, in their order; k < 64), as its
+ * vector test finds it; 0 when a has no fast brute force. This function
+ * can't fail. */
+uint64_t accel_spheres_passed(const accel_t *a, const ray_t *r);
 
 /* Work done by one query, for the heat maps of ch. 7. */
 typedef struct {

@@ -45,6 +45,16 @@ typedef enum {
 
 /* |cos theta| below this is "in the tangent plane" (see above). */
 #define BRDF_COS_MIN REAL_C(1e-12)
+
+/* Whether wi and wo (local frame) lie on one side of the surface, neither
+ * in its tangent plane: where a reflection lobe (Lambert, glossy) is not
+ * zero. Inline: material.c's Lambert shortcut asks it too. This function
+ * can't fail. */
+static inline bool brdf_same_side(const VECTOR3 wi, const VECTOR3 wo)
+{
+    return fabs(wi[Z]) >= BRDF_COS_MIN && fabs(wo[Z]) >= BRDF_COS_MIN &&
+           (wi[Z] > 0) == (wo[Z] > 0);
+}
 /* Parameter ranges the constructors accept. Beyond them the lobe is
  * narrower than the arithmetic resolves (the peak of Ward's lobe, 1/(pi
  * alpha^2), or Phong's (e + 2)/(2 pi) would overflow float products at

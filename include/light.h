@@ -43,6 +43,10 @@ typedef struct {
                           projected area, the delta's integral) */
     real pdf;          /* density of wi per unit solid angle; for a point
                           light 1 (a delta: no MIS) */
+    real pdf_mis;      /* light_pdf(l, pp, two_sided, wi, p, n), the
+                          density the MIS weights use, bit for bit (0 for
+                          a point light), made from the numbers the sample
+                          already has */
     bool delta;        /* point light */
     bool infinite;     /* environment: the shadow ray runs to infinity */
     VECTOR3 p;         /* the point on the light (not for the environment) */
@@ -117,9 +121,10 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
  * with geometric normal ng (ignored for the environment), for the MIS
  * weights: exact for point-free lights and for area lights whose sample()
  * is uniform by area (every primitive of app. D), p_A = 1/A. The integrator
- * uses this one function on both sides of the power heuristic, so the
- * weights of a path sum to 1 and the estimate stays unbiased even where a
- * transformed curved emitter samples non-uniformly. 0 for point lights. */
+ * uses this one function (or light_sample_t.pdf_mis, its value for the
+ * sampled direction bit for bit) on both sides of the power heuristic, so
+ * the weights of a path sum to 1 and the estimate stays unbiased even where
+ * a transformed curved emitter samples non-uniformly. 0 for point lights. */
 real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
                const VECTOR3 wi, const VECTOR3 p, const VECTOR3 ng);
 

@@ -130,6 +130,13 @@ svet_status material_glass(material_t *m, RADIANCE rho_s, RADIANCE rho_t,
 RADIANCE material_eval(const material_t *m, const VECTOR3 wi,
                        const VECTOR3 wo);
 
+/* material_eval(m, wi, wo), with *pdf = material_pdf(m, wi, wo): the
+ * same answers bit for bit, in one call (light sampling asks for both;
+ * a single Lambert lobe gets both from one side test). This function
+ * can't fail. */
+RADIANCE material_eval_pdf(const material_t *m, const VECTOR3 wi,
+                           const VECTOR3 wo, real *pdf);
+
 /* Sample wi for wo with THREE uniform numbers u[0..2] in [0,1): u[0]
  * chooses a component, u[1..2] sample it. Component k is chosen with
  * probability P_k = Y_k / sum Y, Y_k the luminance (rad_luminance) of its
@@ -149,6 +156,12 @@ RADIANCE material_eval(const material_t *m, const VECTOR3 wi,
  * fail. */
 bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
                      brdf_sample_t *s);
+
+/* material_sample() without its shortcut for a single Lambert lobe: the
+ * same answers, bit for bit, for any material (tests/test_material.c
+ * compares them). This function can't fail. */
+bool material_sample_general(const material_t *m, const VECTOR3 wo,
+                             const real u[3], brdf_sample_t *s);
 
 /* The density of wi under material_sample, per unit solid angle, over the
  * non-delta components only: sum over them of P_k pdf_k(wi, wo). This

@@ -59,7 +59,14 @@ typedef struct {
     xform_sphere_t *spheres; /* the transformed objects' culling spheres */
     uint32_t *sphere_item;   /* the item of each sphere */
     uint32_t nspheres;
+    /* the spheres' fields side by side (structure of arrays), nspheres
+     * rounded up to whole vectors, zero past nspheres: sphere_misses() */
+    real *sph; /* SPH_FIELDS arrays of nsph_pad */
+    uint32_t nsph_pad;
 } brute_t;
+
+/* The fields of sph: centre x, y, z, radius, pad0, pad_o, pad_oc. */
+enum { SPH_CX, SPH_CY, SPH_CZ, SPH_R, SPH_P0, SPH_PO, SPH_POC, SPH_FIELDS };
 
 struct accel {
     accel_kind kind;
@@ -173,6 +180,7 @@ static void brute_free(brute_t *b)
     parallelogram_batch_free(b->batch);
     free(b->spheres);
     free(b->sphere_item);
+    free(b->sph);
     free(b->objs_by_id);
     free(b->bits_by_id);
     free(b);
@@ -213,6 +221,32 @@ static bool index_by_id(brute_t *b, const primset_t *ps)
         const COBJECT *o = b->para_obj[k];
         if (o->id >= 0 && o->id < b->nid && b->objs_by_id[o->id] == o)
             b->bits_by_id[o->id] |= (uint64_t)1 << k;
+    }
+    return true;
+}
+
+#ifdef SIMD_REAL
+#define SPH_LANES VLANES
+#else
+#define SPH_LANES 1
+#endif
+
+/* Fill b->sph from b->spheres (brute_new()); false when memory runs
+ * out. */
+static bool sphere_arrays(brute_t *b)
+{
+    uint32_t n = (b->nspheres + SPH_LANES - 1) / SPH_LANES * SPH_LANES;
+    b->nsph_pad = n;
+    b->sph = calloc((size_t)SPH_FIELDS * n + 1, sizeof *b->sph);
+    if (!b->sph)
+        return false;
+    for (uint32_t k = 0; k < b->nspheres; k++) {
+        const xform_sphere_t *sp = &b->spheres[k];
+        const real f[SPH_FIELDS] = { sp->centre[X], sp->centre[Y],
+                                     sp->centre[Z], sp->radius, sp->pad0,
+                                     sp->pad_o, sp->pad_oc };
+        for (int j = 0; j < SPH_FIELDS; j++)
+            b->sph[(size_t)j * n + k] = f[j];
     }
     return true;
 }
@@ -262,6 +296,10 @@ static brute_t *brute_new(const primset_t *ps)
         b->others[b->nothers++] = i;
     }
     b->nspheres = (uint32_t)nsph;
+    if (!sphere_arrays(b)) {
+        brute_free(b);
+        return NULL;
+    }
     b->npara = npara;
     b->batch = parallelogram_batch_new(para, npara);
     if (!b->batch || !index_by_id(b, ps)) {
@@ -482,6 +520,56 @@ static inline bool sphere_item_test(const brute_t *b, const primset_t *ps,
            brute_found(q, ps, i, &hh);
 }
 
+/* Bit j set when the ray passes sphere k0 + j (of SPH_LANES from k0):
+ * !xform_sphere_misses_ray(). With SSE2, lane j of each vector is sphere
+ * k0 + j, and every lane gets the IEEE operations of
+ * xform_sphere_misses_ray() in its order (no fused multiply-add;
+ * comparisons false on NaN as C's, so a NaN lets the ray through as
+ * there): the same answers bit for bit (tests/test_accel.c's brute
+ * force test compares the whole query with the generic one, whose
+ * transformed objects make the sphere test themselves). Lanes past
+ * nspheres hold a sphere of radius 0 at the origin; the caller drops
+ * them. */
+static inline unsigned spheres_passed(const brute_t *b, uint32_t k0,
+                                      const ray_t *r,
+                                      const xform_sphere_ray_t *rs)
+{
+#ifdef SIMD_REAL
+    const real u = REAL_UNIT_ROUNDOFF;
+    const real *f = b->sph + k0;
+    const size_t n = b->nsph_pad;
+    const vreal sign = V_SET1(-REAL_C(0.0));
+    const vreal ocx = V_SUB(V_LOAD(f + SPH_CX * n), V_SET1(r->o[X])),
+                ocy = V_SUB(V_LOAD(f + SPH_CY * n), V_SET1(r->o[Y])),
+                ocz = V_SUB(V_LOAD(f + SPH_CZ * n), V_SET1(r->o[Z]));
+    const vreal oc1 = V_ADD(V_ADD(V_ANDNOT(sign, ocx), V_ANDNOT(sign, ocy)),
+                            V_ANDNOT(sign, ocz));
+    const vreal rho = V_ADD(
+        V_LOAD(f + SPH_R * n),
+        V_ADD(V_ADD(V_LOAD(f + SPH_P0 * n),
+                    V_MUL(V_LOAD(f + SPH_PO * n), V_SET1(rs->o_max))),
+              V_MUL(V_LOAD(f + SPH_POC * n), oc1)));
+    const vreal rho2 = V_MUL(rho, rho);
+    const vreal c2 = V_ADD(V_ADD(V_MUL(ocx, ocx), V_MUL(ocy, ocy)),
+                           V_MUL(ocz, ocz));
+    const vreal bb = V_ADD(V_ADD(V_MUL(ocx, V_SET1(r->d[X])),
+                                 V_MUL(ocy, V_SET1(r->d[Y]))),
+                           V_MUL(ocz, V_SET1(r->d[Z])));
+    const vreal dd = V_SET1(rs->dd);
+    const vreal apart = V_GT(V_SUB(V_MUL(c2, dd), V_MUL(bb, bb)),
+                             V_MUL(V_ADD(rho2, V_MUL(V_SET1(32 * u), c2)),
+                                   dd));
+    const vreal away = V_AND(
+        V_LE(V_ADD(bb, V_MUL(V_MUL(V_SET1(4 * u), oc1), V_SET1(rs->d_max))),
+             V_SET1(0)),
+        V_GT(c2, V_MUL(rho2, V_SET1(1 + 8 * u))));
+    return ~(unsigned)V_MASK(V_OR(apart, away)) & ((1u << VLANES) - 1);
+#else
+    (void)k0;
+    return !xform_sphere_misses_ray(&b->spheres[k0], r, rs);
+#endif
+}
+
 /* The fast brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
  * test skipped here is one whose intersect() would have answered "no
@@ -504,10 +592,16 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
     /* xf_intersect() culls by its sphere only for tmin >= 0: the two
      * cases as two loops, so that the loop does not test tmin again */
     if (q->tmin >= 0) {
-        for (uint32_t k = 0; k < b->nspheres; k++)
-            if (!xform_sphere_misses_ray(&b->spheres[k], r, &rs) &&
-                sphere_item_test(b, ps, r, q, k))
-                return true;
+        for (uint32_t k0 = 0; k0 < b->nspheres; k0 += SPH_LANES) {
+            /* the spheres the ray passes, lowest first, as the loop over
+             * k would take them */
+            unsigned pass = spheres_passed(b, k0, r, &rs);
+            for (; pass; pass &= pass - 1) {
+                uint32_t k = k0 + (uint32_t)bits_lowest(pass);
+                if (k < b->nspheres && sphere_item_test(b, ps, r, q, k))
+                    return true;
+            }
+        }
     } else {
         for (uint32_t k = 0; k < b->nspheres; k++)
             if (sphere_item_test(b, ps, r, q, k))
@@ -542,6 +636,19 @@ static bool brute_run(const brute_t *b, const primset_t *ps, const ray_t *r,
     return q->found;
 }
 
+uint64_t accel_spheres_passed(const accel_t *a, const ray_t *r)
+{
+    if (!a || !a->brute)
+        return 0;
+    const brute_t *b = a->brute;
+    xform_sphere_ray_t rs;
+    xform_sphere_ray(r, &rs);
+    uint64_t m = 0;
+    for (uint32_t k0 = 0; k0 < b->nspheres && k0 < 64; k0 += SPH_LANES)
+        m |= (uint64_t)spheres_passed(b, k0, r, &rs) << k0;
+    return b->nspheres < 64 ? m & (((uint64_t)1 << b->nspheres) - 1) : m;
+}
+
 /* Start a search of (tmin, tmax). */
 static void brute_search_init(brute_search_t *q, real tmin, real tmax,
                               hit_t *hit, const COBJECT *const skip[2])
@@ -556,23 +663,32 @@ static void brute_search_init(brute_search_t *q, real tmin, real tmax,
     q->best = 0;
 }
 
+/* nearest() by the fast brute force (a->brute) of a ray that
+ * ray_ok() accepts. */
+static inline bool brute_nearest(const accel_t *a, const ray_t *r,
+                                 real tmin, real tmax,
+                                 const COBJECT *const skip[2], hit_t *hit,
+                                 const COBJECT **obj)
+{
+    brute_search_t q;
+    brute_search_init(&q, tmin, tmax, hit, skip);
+    if (!brute_run(a->brute, &a->ps, r, &q))
+        return false;
+    *obj = a->brute->items[q.best].obj;
+    hit->prim = a->brute->items[q.best].prim;
+    return true;
+}
+
 /* The nearest hit, written into *hit and *obj (untouched on a miss):
- * the one query behind accel_intersect*() and accel_trace(). */
+ * the one query behind accel_intersect*() and accel_tracer_intersect(). */
 static bool nearest(const accel_t *a, const ray_t *r, real tmin, real tmax,
                     const COBJECT *const skip[2], hit_t *hit,
                     const COBJECT **obj, accel_counters_t *c)
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
-    if (a->brute && !c) {
-        brute_search_t q;
-        brute_search_init(&q, tmin, tmax, hit, skip);
-        if (!brute_run(a->brute, &a->ps, r, &q))
-            return false;
-        *obj = a->brute->items[q.best].obj;
-        hit->prim = a->brute->items[q.best].prim;
-        return true;
-    }
+    if (a->brute && !c)
+        return brute_nearest(a, r, tmin, tmax, skip, hit, obj);
     primset_query_t q;
     primset_query_init(&q, r, tmin, tmax);
     run(a, &q, false);
@@ -600,11 +716,15 @@ bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
     return nearest(a, r, tmin, tmax, skip, &h->hit, &h->obj, NULL);
 }
 
-bool accel_trace_skip(const accel_t *a, const ray_t *r, real tmin,
-                      real tmax, const COBJECT *const skip[2], hit_t *hit,
-                      const COBJECT **obj)
+bool accel_tracer_intersect(const void *a, const ray_t *r, real tmin,
+                            real tmax, const COBJECT *const skip[2],
+                            hit_t *hit, const COBJECT **obj)
 {
-    return nearest(a, r, tmin, tmax, skip, hit, obj, NULL);
+    const accel_t *acc = a;
+    if (acc && acc->brute) /* nearest()'s way, written out */
+        return ray_ok(r, tmin, tmax) &&
+               brute_nearest(acc, r, tmin, tmax, skip, hit, obj);
+    return nearest(acc, r, tmin, tmax, skip, hit, obj, NULL);
 }
 
 bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
@@ -613,13 +733,10 @@ bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
     return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, c);
 }
 
-bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
-{
-    return accel_occluded_skip(a, r, tmin, tmax, NULL);
-}
-
-bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
-                         real tmax, const COBJECT *const skip[2])
+/* accel_occluded_skip() and accel_tracer_occluded(): the one shadow
+ * query (inline in both). */
+static inline bool occluded(const accel_t *a, const ray_t *r, real tmin,
+                            real tmax, const COBJECT *const skip[2])
 {
     if (!a || !ray_ok(r, tmin, tmax))
         return false;
@@ -631,6 +748,23 @@ bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
     primset_query_t q;
     primset_query_init(&q, r, tmin, tmax);
     return run(a, &q, true);
+}
+
+bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax)
+{
+    return occluded(a, r, tmin, tmax, NULL);
+}
+
+bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
+                         real tmax, const COBJECT *const skip[2])
+{
+    return occluded(a, r, tmin, tmax, skip);
+}
+
+bool accel_tracer_occluded(const void *a, const ray_t *r, real tmin,
+                           real tmax, const COBJECT *const skip[2])
+{
+    return occluded(a, r, tmin, tmax, skip);
 }
 
 void accel_get_stats(const accel_t *a, accel_stats_t *s)

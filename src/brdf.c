@@ -186,8 +186,7 @@ real brdf_fresnel_cos(real cos_o, real eta)
 /* wi and wo on the same side of the surface, neither in the tangent plane */
 static bool same_side(const VECTOR3 wi, const VECTOR3 wo)
 {
-    return fabs(wi[Z]) >= BRDF_COS_MIN && fabs(wo[Z]) >= BRDF_COS_MIN &&
-           (wi[Z] > 0) == (wo[Z] > 0);
+    return brdf_same_side(wi, wo);
 }
 
 static bool opposite_sides(const VECTOR3 wi, const VECTOR3 wo)

@@ -120,7 +120,8 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
         return rad_grey(0);
     VECTOR3 wi;
     frame_to_local(wi, ls.wi, pp->u, pp->v, pp->n);
-    RADIANCE f = material_eval(m, wi, wo);
+    real pb; /* material_pdf(m, wi, wo), for the MIS weight below */
+    RADIANCE f = material_eval_pdf(m, wi, wo, &pb);
     if (rad_is_black(f) || rad_is_black(ls.Li))
         return rad_grey(0);
     /* visibility: a shadow ray between the two points, each offset off its
@@ -143,8 +144,7 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
         return rad_grey(0);
     real w = 1;
     if (!ls.delta && mis) {
-        real pl = pmf * light_pdf(l, pp, two, ls.wi, ls.p, ls.n);
-        real pb = material_pdf(m, wi, wo);
+        real pl = pmf * ls.pdf_mis; /* light_pdf(l, pp, two, ls.wi, ls.p, ls.n) */
         w = integrator_mis_weight(pl, pb);
     }
     /* f L |cos| / p, with p = pmf * pdf (the point light's pdf is 1) */

@@ -147,6 +147,7 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
             return false;
         s->Li = rad_scale(l->intensity, 1 / d2); /* inverse-square law */
         s->pdf = 1;
+        s->pdf_mis = 0;
         s->delta = true;
         s->infinite = false;
         vec_copy(s->p, l->position);
@@ -172,6 +173,11 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
         s->pdf = cs.pdf * d2 / cos_l; /* area to solid angle */
         if (!isfinite(s->pdf))
             return false;
+        /* light_pdf() on (wi, p, n) = (s->wi, cs.p, cs.n) makes this
+         * cos_l, d and d2 again by the same operations on the same
+         * numbers, and passes the same tests (cos_l > 0 here) */
+        real area = l->area;
+        s->pdf_mis = area > 0 && isfinite(area) ? d2 / (area * cos_l) : 0;
         s->Li = l->emission->radiance;
         s->delta = false;
         s->infinite = false;
@@ -197,6 +203,7 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
         s->pdf = env_pdf(pp, two_sided, s->wi);
         if (!(s->pdf > 0))
             return false;
+        s->pdf_mis = s->pdf; /* light_pdf() is env_pdf() on the same wi */
         s->Li = l->radiance;
         s->delta = false;
         s->infinite = true;

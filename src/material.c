@@ -277,6 +277,26 @@ static bool lambert_sample(const material_t *m, const VECTOR3 wo,
     return true;
 }
 
+/* For a single Lambert lobe, material_eval() is 0 + brdf_eval() and
+ * material_pdf() is lambert_pdf(); brdf_eval() and brdf_pdf() of Lambert
+ * are rho / pi and |wi_z| / pi where brdf_same_side(), else black and 0:
+ * written out here on one side test, the same operations. */
+RADIANCE material_eval_pdf(const material_t *m, const VECTOR3 wi,
+                           const VECTOR3 wo, real *pdf)
+{
+    if (m->lambert) {
+        const RADIANCE rho = m->comp[0].rho;
+        if (!brdf_same_side(wi, wo)) {
+            *pdf = 0;
+            return black; /* 0 + 0 */
+        }
+        *pdf = rad_luminance(rho) > 0 ? fabs(wi[Z]) * REAL_INV_PI : 0;
+        return rad_add(black, rad_scale(rho, REAL_INV_PI));
+    }
+    *pdf = material_pdf(m, wi, wo);
+    return material_eval(m, wi, wo);
+}
+
 real material_pdf(const material_t *m, const VECTOR3 wi, const VECTOR3 wo)
 {
     if (m->lambert)
@@ -288,18 +308,24 @@ real material_pdf(const material_t *m, const VECTOR3 wi, const VECTOR3 wo)
     return combined_pdf(m, w, sum, wi, wo);
 }
 
-bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
-                     brdf_sample_t *s)
+/* Fill s with what material_sample() answers on false (wi = +z, weight
+ * black, pdf 0); false when wo lies in the tangent plane, where it
+ * answers so at once. */
+static inline bool sample_start(const VECTOR3 wo, brdf_sample_t *s)
 {
     vec_set(s->wi, 0, 0, 1);
     s->weight = black;
     s->pdf = 0;
     s->delta = false;
     s->component = 0;
-    if (!(fabs(wo[Z]) >= BRDF_COS_MIN))
+    return fabs(wo[Z]) >= BRDF_COS_MIN;
+}
+
+bool material_sample_general(const material_t *m, const VECTOR3 wo,
+                             const real u[3], brdf_sample_t *s)
+{
+    if (!sample_start(wo, s))
         return false;
-    if (m->lambert)
-        return lambert_sample(m, wo, u, s);
     real w[MATERIAL_MAX_COMPONENTS];
     real sum = weights(m, wo, w);
     if (!(sum > 0))
@@ -341,6 +367,16 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
     RADIANCE f = material_eval(m, c.wi, wo);
     s->weight = rad_scale(f, fabs(c.wi[Z]) / s->pdf);
     return true;
+}
+
+bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
+                     brdf_sample_t *s)
+{
+    /* the general way in a function of its own, so that the shortcut's
+     * path saves none of the registers that one needs */
+    if (!m->lambert)
+        return material_sample_general(m, wo, u, s);
+    return sample_start(wo, s) && lambert_sample(m, wo, u, s);
 }
 
 

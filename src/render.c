@@ -14,20 +14,6 @@
 #include <omp.h>
 #endif
 
-/* The tracer over an acceleration structure (ch. 7). */
-static bool accel_trace(const void *ctx, const ray_t *r, real tmin, real tmax,
-                        const COBJECT *const skip[2], hit_t *hit,
-                        const COBJECT **obj)
-{
-    return accel_trace_skip(ctx, r, tmin, tmax, skip, hit, obj);
-}
-
-static bool accel_shadow(const void *ctx, const ray_t *r, real tmin,
-                         real tmax, const COBJECT *const skip[2])
-{
-    return accel_occluded_skip(ctx, r, tmin, tmax, skip);
-}
-
 static void accel_release(void *a)
 {
     accel_free(a);
@@ -68,8 +54,9 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
     }
     r->accel = a;
     r->accel_free = accel_release;
-    r->tracer.intersect = accel_trace;
-    r->tracer.occluded = accel_shadow;
+    /* the tracer over the acceleration structure (ch. 7) */
+    r->tracer.intersect = accel_tracer_intersect;
+    r->tracer.occluded = accel_tracer_occluded;
     r->tracer.ctx = a;
     snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
              accel_describe(a));

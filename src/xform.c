@@ -7,7 +7,9 @@
  */
 #include "xform.h"
 #include "shape.h"
+#include "simd.h"
 
+#include <stddef.h>
 #include <string.h>
 
 typedef long double ld;
@@ -300,6 +302,15 @@ typedef struct {
     /* the box's own bounds (its bounds(), the min and max its intersect()
      * tests against), for leaves_box(); set with the face table */
     VECTOR3 box_min, box_max;
+    /* the same for vectors of four lanes (x, y, z and one that never
+     * answers: -inf, +inf), and the columns of inv, col[j][i] = inv[i][j]
+     * with a zero fourth lane (object_ray() with SSE) */
+    real box_lo4[4], box_hi4[4];
+    real inv_col[4][4];
+    /* world_point()'s numbers by column, lane i for row i (zero in lane
+     * 3): m's columns, |m_ij|'s, gamma(4) |m_i3| and gamma(4) |inv_ij|'s
+     * (world_point_v()) */
+    real m_col[4][4], abs_col[3][4], g_m3_4[4], g_inv_col[4][4];
 } xf_shape;
 
 static const cobject_ops xform_ops;
@@ -330,16 +341,53 @@ object_ray_scaled(const xf_shape *sh, const ray_t *r, real m, ray_t *ro,
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
-static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
-                              int *k)
+/* An object-space ray in eight reals (o, d and two spare), so that
+ * object_ray() may store vectors of four into it. */
+typedef union {
+    ray_t r;
+    real v[8];
+} ray_slots;
+_Static_assert(sizeof(ray_t) == 6 * sizeof(real) &&
+               offsetof(ray_t, d) == 3 * sizeof(real),
+               "ray_t: o and d without padding");
+
+static inline bool object_ray(const xf_shape *sh, const ray_t *r,
+                              ray_slots *rs, int *k)
 {
     /* no libm in this inner loop: plain comparisons for the max (a NaN
      * component makes ro->d NaN below whatever m is), and ilogb only for
      * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
     real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
     if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)))
-        return object_ray_scaled(sh, r, m, ro, k);
+        return object_ray_scaled(sh, r, m, &rs->r, k);
     *k = 0;
+#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+    /* apply() with SSE, lane i for row i: the columns of inv times the
+     * coordinates, summed in row()'s order, the vector's + 0 kept (it
+     * makes a -0 +0), so every lane has row()'s bits; lane 3 is 0. Then
+     * the tests below on the lanes: all of o and d finite (each lane of
+     * (o - o) + (d - d) is 0 exactly when both are), d not zero. */
+    const __m128 c0 = _mm_loadu_ps(sh->inv_col[0]),
+                 c1 = _mm_loadu_ps(sh->inv_col[1]),
+                 c2 = _mm_loadu_ps(sh->inv_col[2]);
+    const __m128 zero = _mm_setzero_ps();
+    __m128 o = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(r->o[X])),
+                              _mm_mul_ps(c1, _mm_set1_ps(r->o[Y]))),
+                   _mm_mul_ps(c2, _mm_set1_ps(r->o[Z]))),
+        _mm_loadu_ps(sh->inv_col[3]));
+    __m128 d = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(r->d[X])),
+                              _mm_mul_ps(c1, _mm_set1_ps(r->d[Y]))),
+                   _mm_mul_ps(c2, _mm_set1_ps(r->d[Z]))),
+        zero);
+    _mm_storeu_ps(rs->v, o);
+    _mm_storeu_ps(rs->v + 3, d); /* over o's lane 3 */
+    __m128 f = _mm_add_ps(_mm_sub_ps(o, o), _mm_sub_ps(d, d));
+    return _mm_movemask_ps(_mm_cmpeq_ps(f, zero)) == 15 &&
+           (_mm_movemask_ps(_mm_cmpneq_ps(d, zero)) & 7) != 0;
+#else
+    ray_t *ro = &rs->r;
     apply(MAT(sh->x.inv), ro->o, r->o, true);
     apply(MAT(sh->x.inv), ro->d, r->d, false);
     /* finite: x - x is 0 for a finite x, NaN otherwise (vec_is_finite's
@@ -348,6 +396,7 @@ static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
              ((ro->o[Z] - ro->o[Z]) + (ro->d[X] - ro->d[X])) +
              ((ro->d[Y] - ro->d[Y]) + (ro->d[Z] - ro->d[Z]));
     return f == 0 && (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
+#endif
 }
 
 /* True when the object-space ray ro of a transformed box (sh->nfaces = 6)
@@ -366,14 +415,28 @@ static inline bool object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro,
  * the culling sphere, and many that pass beside it, for the price of six
  * comparisons instead of the six divisions of the slab test.
  * tests/test_xform.c compares with xform_intersect_unseparated(). */
-static inline bool leaves_box(const xf_shape *sh, const ray_t *ro)
+static inline bool leaves_box(const xf_shape *sh, const ray_slots *rs)
 {
+#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+    /* the six comparisons as four lanes: o (and d_x, which the fourth
+     * lane's infinite bounds turn away) against the bounds, d's sign */
+    const __m128 o = _mm_loadu_ps(rs->v), d = _mm_loadu_ps(rs->v + 3);
+    const __m128 zero = _mm_setzero_ps();
+    __m128 beyond = _mm_or_ps(
+        _mm_and_ps(_mm_cmpgt_ps(o, _mm_loadu_ps(sh->box_hi4)),
+                   _mm_cmpge_ps(d, zero)),
+        _mm_and_ps(_mm_cmplt_ps(o, _mm_loadu_ps(sh->box_lo4)),
+                   _mm_cmple_ps(d, zero)));
+    return _mm_movemask_ps(beyond) != 0;
+#else
+    const ray_t *ro = &rs->r;
     return (ro->o[X] > sh->box_max[X] && ro->d[X] >= 0) ||
            (ro->o[X] < sh->box_min[X] && ro->d[X] <= 0) ||
            (ro->o[Y] > sh->box_max[Y] && ro->d[Y] >= 0) ||
            (ro->o[Y] < sh->box_min[Y] && ro->d[Y] <= 0) ||
            (ro->o[Z] > sh->box_max[Z] && ro->d[Z] >= 0) ||
            (ro->o[Z] < sh->box_min[Z] && ro->d[Z] <= 0);
+#endif
 }
 
 static inline bool intersect_unculled(const COBJECT *obj, int prim,
@@ -381,7 +444,7 @@ static inline bool intersect_unculled(const COBJECT *obj, int prim,
                                       hit_t *hit, bool separate)
 {
     const xf_shape *sh = obj->shape;
-    ray_t ro;
+    ray_slots ro;
     int k;
     if (!object_ray(sh, r, &ro, &k))
         return false;
@@ -392,7 +455,7 @@ static inline bool intersect_unculled(const COBJECT *obj, int prim,
      * and the same ray must give the same bytes */
     hit_t h = { 0, 0, { 0, 0, 0 } };
     real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
-    if (!sh->inner->ops->intersect(sh->inner, prim, &ro, lo, hi, &h))
+    if (!sh->inner->ops->intersect(sh->inner, prim, &ro.r, lo, hi, &h))
         return false;
     real t = k ? ldexp(h.t, -k) : h.t;
     if (!(t > tmin && t < tmax))
@@ -476,6 +539,68 @@ static void world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
             widen_row(sh, 2, e2, back));
 }
 
+#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+/* world_point() with SSE, lane i for row i: every lane the operations of
+ * apply(), point_error_row(), back_row() and widen_row() for its row,
+ * in their order (a product's factors in either order give the same
+ * bits; fabs as the sign bit cleared), on the shape's columns, so the
+ * same bits (tests/test_xform.c compares xf_surface(), which uses this,
+ * with xform_surface_generic(), which uses world_point()). */
+static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
+                                 const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
+{
+    const real g = ray_gamma(4);
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    const __m128 px = _mm_set1_ps(p[X]), py = _mm_set1_ps(p[Y]),
+                 pz = _mm_set1_ps(p[Z]);
+    const __m128 mx = _mm_mul_ps(_mm_loadu_ps(sh->m_col[0]), px),
+                 my = _mm_mul_ps(_mm_loadu_ps(sh->m_col[1]), py),
+                 mz = _mm_mul_ps(_mm_loadu_ps(sh->m_col[2]), pz);
+    const __m128 o = _mm_add_ps(_mm_add_ps(_mm_add_ps(mx, my), mz),
+                                _mm_loadu_ps(sh->m_col[3]));
+    const __m128 a0 = _mm_loadu_ps(sh->abs_col[0]),
+                 a1 = _mm_loadu_ps(sh->abs_col[1]),
+                 a2 = _mm_loadu_ps(sh->abs_col[2]);
+    const __m128 prop = _mm_add_ps(
+        _mm_add_ps(_mm_mul_ps(a0, _mm_set1_ps(e[X])),
+                   _mm_mul_ps(a1, _mm_set1_ps(e[Y]))),
+        _mm_mul_ps(a2, _mm_set1_ps(e[Z])));
+    const __m128 G = _mm_set1_ps(g);
+    const __m128 err = _mm_add_ps(
+        _mm_add_ps(
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(1 + g), prop),
+                                  _mm_mul_ps(G, _mm_andnot_ps(sign, mx))),
+                       _mm_mul_ps(G, _mm_andnot_ps(sign, my))),
+            _mm_mul_ps(G, _mm_andnot_ps(sign, mz))),
+        _mm_loadu_ps(sh->g_m3_4));
+    const __m128 w = _mm_add_ps(_mm_andnot_ps(sign, o), err);
+    const __m128 back = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(_mm_loadu_ps(sh->g_inv_col[3]),
+                              _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[0]),
+                                         _mm_shuffle_ps(w, w, 0x00))),
+                   _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[1]),
+                              _mm_shuffle_ps(w, w, 0x55))),
+        _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[2]),
+                   _mm_shuffle_ps(w, w, 0xaa)));
+    const __m128 oe = _mm_add_ps(
+        _mm_add_ps(_mm_add_ps(err, _mm_mul_ps(a0, _mm_shuffle_ps(back, back,
+                                                                 0x00))),
+                   _mm_mul_ps(a1, _mm_shuffle_ps(back, back, 0x55))),
+        _mm_mul_ps(a2, _mm_shuffle_ps(back, back, 0xaa)));
+    real ro[4], re[4];
+    _mm_storeu_ps(ro, o);
+    _mm_storeu_ps(re, oe);
+    vec_set(out, ro[0], ro[1], ro[2]);
+    vec_set(out_e, re[0], re[1], re[2]);
+}
+#else
+static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
+                                 const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
+{
+    world_point(sh, p, e, out, out_e);
+}
+#endif
+
 /* unit M^-T n, with a fallback that cannot happen for a valid transform */
 static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
 {
@@ -489,18 +614,21 @@ static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
 
 /* The inner primitive's surface() on the ray in object space, and the
  * point mapped back to the world. */
-static void surface_point(const xf_shape *sh, const ray_t *r,
-                          const hit_t *hit, PATHPOINT *pp)
+static inline void surface_point(const xf_shape *sh, const ray_t *r,
+                                 const hit_t *hit, PATHPOINT *pp, bool vec)
 {
-    ray_t ro;
+    ray_slots ro;
     int k;
     object_ray(sh, r, &ro, &k);
     hit_t h = *hit;
     if (k != 0)
         h.t = ldexp(hit->t, k);
-    sh->inner->ops->surface(sh->inner, &ro, &h, pp);
+    sh->inner->ops->surface(sh->inner, &ro.r, &h, pp);
     VECTOR3 p, e;
-    world_point(sh, pp->cross_point, pp->p_error, p, e);
+    if (vec)
+        world_point_v(sh, pp->cross_point, pp->p_error, p, e);
+    else
+        world_point(sh, pp->cross_point, pp->p_error, p, e);
     vec_copy(pp->cross_point, p);
     vec_copy(pp->p_error, e);
 }
@@ -526,7 +654,7 @@ void xform_surface_generic(const COBJECT *obj, const ray_t *r,
                            const hit_t *hit, PATHPOINT *pp)
 {
     const xf_shape *sh = obj->shape;
-    surface_point(sh, r, hit, pp);
+    surface_point(sh, r, hit, pp, false);
     surface_frame(sh, pp);
 }
 
@@ -534,7 +662,7 @@ static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                        PATHPOINT *pp)
 {
     const xf_shape *sh = obj->shape;
-    surface_point(sh, r, hit, pp);
+    surface_point(sh, r, hit, pp, true);
     if (pp->prim >= 0 && pp->prim < sh->nfaces) {
         /* a box's face: its world frame as surface_frame() made it */
         int f = pp->prim;
@@ -580,6 +708,12 @@ static void set_faces(xf_shape *sh)
     sh->inner->ops->bounds(sh->inner, -1, &bb);
     vec_copy(sh->box_min, bb.min);
     vec_copy(sh->box_max, bb.max);
+    for (int k = 0; k < 3; k++) {
+        sh->box_lo4[k] = bb.min[k];
+        sh->box_hi4[k] = bb.max[k];
+    }
+    sh->box_lo4[3] = -(real)INFINITY;
+    sh->box_hi4[3] = (real)INFINITY;
     sh->nfaces = 6;
 }
 
@@ -934,8 +1068,21 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
         for (int j = 0; j < 3; j++)
             sh->abs_m[i][j] = fabs(x.m[i][j]);
         sh->g_m3[i] = ray_gamma(4) * fabs(x.m[i][3]);
-        for (int j = 0; j < 4; j++)
+        for (int j = 0; j < 4; j++) {
             sh->g_inv[i][j] = ray_gamma(4) * fabs(x.inv[i][j]);
+            sh->inv_col[j][i] = x.inv[i][j];
+        }
+    }
+    for (int j = 0; j < 4; j++)
+        sh->inv_col[j][3] = 0;
+    for (int i = 0; i < 4; i++) {
+        for (int j = 0; j < 4; j++) {
+            sh->m_col[j][i] = i < 3 ? x.m[i][j] : 0;
+            sh->g_inv_col[j][i] = i < 3 ? sh->g_inv[i][j] : 0;
+        }
+        for (int j = 0; j < 3; j++)
+            sh->abs_col[j][i] = i < 3 ? sh->abs_m[i][j] : 0;
+        sh->g_m3_4[i] = i < 3 ? sh->g_m3[i] : 0;
     }
     sh->area = transformed_area(sh);
     set_culling(sh);

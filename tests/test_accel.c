@@ -848,6 +848,15 @@ static void skip_agrees(const accel_t *a, const ray_t *r, real tmax,
                   memcmp(h0.hit.b, h1.hit.b, sizeof h0.hit.b) == 0);
     ck_assert(accel_occluded(a, r, 0, tmax) ==
               accel_occluded_skip(a, r, 0, tmax, skip));
+    /* the tracer's entries (render.c): the same answers */
+    hit_t h2 = { 0, 0, { 0, 0, 0 } };
+    const COBJECT *o2 = NULL;
+    ck_assert(accel_tracer_intersect(a, r, 0, tmax, skip, &h2, &o2) == f1);
+    ck_assert(!f1 ? o2 == NULL : o2 == h1.obj && h2.prim == h1.hit.prim &&
+              memcmp(&h2.t, &h1.hit.t, sizeof h2.t) == 0 &&
+              memcmp(h2.b, h1.hit.b, sizeof h2.b) == 0);
+    ck_assert(accel_tracer_occluded(a, r, 0, tmax, skip) ==
+              accel_occluded_skip(a, r, 0, tmax, skip));
 }
 
 /* Rays spawned as the integrator spawns them, from points where random
@@ -983,6 +992,118 @@ START_TEST(query_ray_check_accepts_exactly_finite_rays_with_a_direction)
 }
 END_TEST
 
+START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
+{
+    /* Brute force tests the transformed boxes' culling spheres a vector
+     * at a time (accel.c, spheres_passed()); each answer must be
+     * xform_sphere_misses_ray()'s for that sphere. Eleven boxes under
+     * random maps (more than one vector, a part-filled last one) among
+     * other objects; rays whose line passes a sphere's centre at
+     * (1 + delta) times its padded radius, delta 0 or +-2^-k (k <= 28),
+     * from origins 1 to 2048 radii before or past the nearest point;
+     * rays from (1 + delta) padded radii moving away from the centre or
+     * along the surface (tilted by +-2^-k, k < 30); random rays. */
+    pcg32_t g;
+    pcg32_seed(&g, 777, 3);
+    COBJECT *objs[14];
+    xform_sphere_t sp[11];
+    int n = 0, nsph = 0;
+    svet_error e;
+    for (int i = 0; i < 11; i++) {
+        VECTOR3 lo, hi, axis, sc, tr;
+        rand_point(lo, &g, -1, 0);
+        rand_point(hi, &g, REAL_C(0.1), 1);
+        rand_point(axis, &g, -1, 1);
+        rand_point(sc, &g, REAL_C(0.2), 3);
+        rand_point(tr, &g, -8, 8);
+        xform_t x = xform_compose(
+            xform_compose(xform_scale(sc), xform_rotate(axis, uni(&g, -180, 180))),
+            xform_translate(tr));
+        objs[n] = xform_new(box_new(lo, hi, &e), &x, &e);
+        ck_assert(objs[n] != NULL);
+        ck_assert(xform_culling_sphere(objs[n], &sp[nsph]));
+        n++, nsph++;
+        if (i == 3 || i == 7) { /* other objects between them */
+            VECTOR3 c = { 1, 2, 3 }, c1 = { 2, 2, 3 }, c3 = { 1, 3, 3 };
+            objs[n++] = i == 3 ? sphere_new(c, 1, &e)
+                               : parallelogram_new(c, c1, c3, &e);
+            ck_assert(objs[n - 1] != NULL);
+        }
+    }
+    ck_assert_int_eq(n, 13);
+    accel_t *a;
+    ck_assert(accel_build(&a, objs, n, NULL, &e) == SVET_OK);
+    long cases = 0, passed = 0;
+    for (int i = 0; i < 200000; i++) {
+        ray_t r;
+        const xform_sphere_t *s0 = &sp[pcg32_bounded(&g, (uint32_t)nsph)];
+        geomcheck_random_dir(r.d, &g);
+        /* delta: 0 or +-2^-k, k up to 28, around the padded radius */
+        real delta = i % 5 == 0 ? 0
+                                : ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 29));
+        if (pcg32_next(&g) % 2)
+            delta = -delta;
+        VECTOR3 w; /* the unit vector from the centre to the origin's side */
+        real along = 0;
+        if (i % 3 == 0) { /* a line passing at (1 + delta) rho */
+            VECTOR3 t;
+            geomcheck_random_dir(t, &g);
+            VVECTOR3(w, r.d, t);
+            vec_normalize(w, w);
+            along = s0->radius * ldexp(uni(&g, 1, 2), (int)pcg32_bounded(&g, 11)) *
+                    (pcg32_next(&g) % 2 ? 1 : -1);
+        } else if (i % 3 == 1) { /* from (1 + delta) rho, moving away */
+            geomcheck_random_dir(w, &g);
+            if (SVECTOR3(w, r.d) < 0)
+                vec_neg(r.d, r.d);
+            if (i % 2) { /* nearly along the surface: d = t + eps w */
+                VECTOR3 t;
+                VVECTOR3(t, w, r.d);
+                vec_normalize(t, t);
+                real eps = ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 30));
+                vec_add_scaled(r.d, t, pcg32_next(&g) % 2 ? eps : -eps, w);
+            }
+        }
+        if (i % 3 != 2) {
+            /* rho as xform_sphere_misses_ray() pads it, for the origin
+             * placed first at the bare radius */
+            real rho = s0->radius;
+            for (int pass = 0; pass < 2; pass++) {
+                for (int k = 0; k < 3; k++)
+                    r.o[k] = s0->centre[k] + rho * (1 + delta) * w[k] +
+                             along * r.d[k];
+                xform_sphere_ray_t rs0;
+                xform_sphere_ray(&r, &rs0);
+                real oc1 = fabs(s0->centre[X] - r.o[X]) +
+                           fabs(s0->centre[Y] - r.o[Y]) +
+                           fabs(s0->centre[Z] - r.o[Z]);
+                rho = s0->radius + (s0->pad0 + s0->pad_o * rs0.o_max +
+                                    s0->pad_oc * oc1);
+            }
+        } else {
+            rand_point(r.o, &g, -12, 12);
+        }
+        if (i % 7 == 0) /* a direction of any length */
+            vec_scale(r.d, r.d, uni(&g, REAL_C(0.01), 100));
+        xform_sphere_ray_t rs;
+        xform_sphere_ray(&r, &rs);
+        uint64_t got = accel_spheres_passed(a, &r);
+        for (int k = 0; k < nsph; k++, cases++) {
+            bool pass = !xform_sphere_misses_ray(&sp[k], &r, &rs);
+            ck_assert_msg(((got >> k) & 1) == pass, "ray %d sphere %d", i, k);
+            passed += pass;
+        }
+        ck_assert(got >> nsph == 0);
+    }
+    ck_assert(passed > cases / 50 && passed < cases - cases / 50);
+    test_report_cases("vector_sphere_test_answers_as_each_sphere_bit_for_bit",
+                      cases);
+    accel_free(a);
+    for (int i = 0; i < n; i++)
+        cobject_free(objs[i]);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("accel");
@@ -997,6 +1118,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
     tcase_add_test(tc, no_structures_means_brute_force_and_refused_grids);
     tcase_add_test(tc, query_ray_check_accepts_exactly_finite_rays_with_a_direction);
+    tcase_add_test(tc, vector_sphere_test_answers_as_each_sphere_bit_for_bit);
     tcase_add_test(tc,
                    fast_brute_force_answers_bit_for_bit_what_primset_test_answers);
     tcase_add_test(tc,

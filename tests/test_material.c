@@ -744,23 +744,31 @@ START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
 {
     /* material.c answers eval, pdf and sample of a single Lambert lobe by
      * a shortcut; with m.lambert cleared the general code (component
-     * weights, one-sample MIS) runs. Reflectances of every kind (black,
+     * weights, one-sample MIS) runs; material_eval_pdf() answers as
+     * material_eval() and material_pdf(). Reflectances of every kind (black,
      * -0 channels, tiny, up to 1), directions on both sides, grazing and
      * in the tangent plane, random numbers up to the last below 1. */
     pcg32_t g;
     pcg32_seed(&g, 61, 62);
     long n = 0;
-    const real special[6] = { 0, -REAL_C(0.0), REAL_MIN, REAL_C(1e-30), 1,
-                              REAL_C(0.5) };
+    /* REAL_TRUE_MIN: a lobe whose luminance rounds to 0 (no pdf) */
+    const real special[7] = { 0, -REAL_C(0.0), REAL_MIN, REAL_C(1e-30), 1,
+                              REAL_C(0.5), REAL_TRUE_MIN };
+    material_t two_lobes;
+    ck_assert(material_phong(&two_lobes, rad_grey(REAL_C(0.5)),
+                             rad_grey(REAL_C(0.3)), 10, NULL) == SVET_OK);
     for (int i = 0; i < 400; i++) {
         real c[3];
         for (int k = 0; k < 3; k++)
-            c[k] = pcg32_bounded(&g, 3) == 0 ? special[pcg32_bounded(&g, 6)]
+            c[k] = pcg32_bounded(&g, 3) == 0 ? special[pcg32_bounded(&g, 7)]
                                              : pcg32_real(&g);
         material_t fast, general;
         ck_assert(material_lambert(&fast, rad_make(c[0], c[1], c[2]), NULL) ==
                   SVET_OK);
-        ck_assert(fast.lambert);
+        /* a black one has no lobe at all (checked below) */
+        ck_assert(fast.lambert == (c[0] != 0 || c[1] != 0 || c[2] != 0));
+        if (!fast.lambert)
+            continue;
         general = fast;
         general.lambert = false;
         for (int j = 0; j < 250; j++, n++) {
@@ -779,6 +787,19 @@ START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
             real p1 = material_pdf(&fast, wi, wo),
                  p2 = material_pdf(&general, wi, wo);
             ck_assert(same_bits(&p1, &p2, sizeof p1));
+            /* material_eval_pdf(): both answers in one call, on the
+             * shortcut, the general way and a material of two lobes */
+            real pe;
+            ck_assert(same_rad(material_eval_pdf(&fast, wi, wo, &pe),
+                               material_eval(&general, wi, wo)) &&
+                      same_bits(&pe, &p2, sizeof pe));
+            ck_assert(same_rad(material_eval_pdf(&general, wi, wo, &pe),
+                               material_eval(&general, wi, wo)) &&
+                      same_bits(&pe, &p2, sizeof pe));
+            real pm = material_pdf(&two_lobes, wi, wo);
+            ck_assert(same_rad(material_eval_pdf(&two_lobes, wi, wo, &pe),
+                               material_eval(&two_lobes, wi, wo)) &&
+                      same_bits(&pe, &pm, sizeof pe));
             brdf_sample_t s1, s2;
             bool a = material_sample(&fast, wo, u, &s1);
             bool b = material_sample(&general, wo, u, &s2);
@@ -787,6 +808,14 @@ START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
                       same_rad(s1.weight, s2.weight) &&
                       same_bits(&s1.pdf, &s2.pdf, sizeof s1.pdf) &&
                       s1.delta == s2.delta && s1.component == s2.component);
+            /* material_sample_general() on the material that has the
+             * shortcut: the general way too */
+            brdf_sample_t s3;
+            ck_assert(material_sample_general(&fast, wo, u, &s3) == b);
+            ck_assert(same_bits(s3.wi, s2.wi, sizeof s3.wi) &&
+                      same_rad(s3.weight, s2.weight) &&
+                      same_bits(&s3.pdf, &s2.pdf, sizeof s3.pdf) &&
+                      s3.delta == s2.delta && s3.component == s2.component);
         }
     }
     /* only a lone Lambert lobe takes the shortcut */

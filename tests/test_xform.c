@@ -598,7 +598,9 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 {
     /* A transformed box's surface() takes the world normals, derivatives
      * and frame of a hit from a table made once per face (xform.c); the
-     * general way maps them at every hit. The same bytes, PATHPOINT for
+     * general way maps them at every hit (and its world point and bound
+     * come from the plain rows, the table's way from SSE lanes in
+     * float). The same bytes, PATHPOINT for
      * PATHPOINT, on hits from outside and from rays leaving a face, for
      * random maps (mirrors included), thin boxes and scales 2^-20 to
      * 2^20; and for an ellipsoid, which has no table. */
@@ -670,10 +672,12 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
      * and around the box, world directions along the axes (zero object
      * components under quarter turns), tmin 0, -1 or tiny, tmax infinite
      * or short; random maps (mirrors included), thin boxes, scales 2^-20
-     * to 2^20. */
+     * to 2^20. Where d needs no rescaling, the answer is also the box's
+     * own on the ray mapped to object space by the plain rows (the SSE
+     * object-space ray of xform.c against them). */
     pcg32_t g;
     pcg32_seed(&g, 91, 92);
-    long n = 0, turned = 0;
+    long n = 0, turned = 0, mapped = 0;
     for (int i = 0; i < 300; i++) {
         VECTOR3 lo, hi, s3;
         random_box(&g, i, lo, hi, s3);
@@ -686,6 +690,8 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
         if (!o)
             continue; /* a map singular to working precision */
         const xform_t *xf = xform_of(o);
+        COBJECT *inner = box_new(lo, hi, &err);
+        ck_assert(inner != NULL);
         for (int j = 0; j < 1000; j++) {
             VECTOR3 q, p, dir;
             for (int k = 0; k < 3; k++)
@@ -720,6 +726,29 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
                 ck_assert(memcmp(&h1, &h2, sizeof h1) == 0);
                 n++;
                 turned += !a;
+                /* and the box's own test on the ray mapped by
+                 * xform_point() and xform_vector() with the inverse (the
+                 * plain rows; xform.c maps it with SSE in float) */
+                real dm = real_max(fabs(r.d[X]),
+                                   real_max(fabs(r.d[Y]), fabs(r.d[Z])));
+                if (dm >= REAL_C(0x1p-16) && dm < REAL_C(0x1p17)) {
+                    xform_t back = *xf;
+                    memcpy(back.m, xf->inv, sizeof back.m);
+                    ray_t ro;
+                    xform_point(&back, ro.o, r.o);
+                    xform_vector(&back, ro.d, r.d);
+                    hit_t h3 = { 0, 0, { 0, 0, 0 } };
+                    bool c = vec_is_finite(ro.o) && vec_is_finite(ro.d) &&
+                             (ro.d[X] != 0 || ro.d[Y] != 0 || ro.d[Z] != 0) &&
+                             inner->ops->intersect(inner, 0, &ro, tmin, tmax,
+                                                   &h3) &&
+                             h3.t > tmin && h3.t < tmax;
+                    ck_assert(c == b);
+                    ck_assert(!c || (memcmp(&h3.t, &h2.t, sizeof h3.t) == 0 &&
+                                     h3.prim == h2.prim &&
+                                     memcmp(h3.b, h2.b, sizeof h3.b) == 0));
+                    mapped++;
+                }
                 /* then a ray spawned from the hit, outward or inward */
                 hit_t h = { 0, 0, { 0, 0, 0 } };
                 if (!o->ops->intersect(o, 0, &r, 0, (real)INFINITY, &h))
@@ -742,9 +771,11 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
             }
         }
         cobject_free(o);
+        cobject_free(inner);
     }
     ck_assert(n > 200000);
     ck_assert(turned > n / 10);
+    ck_assert(mapped > n / 2);
     test_report_cases("leaving_a_box_slab_answers_as_the_full_test_bit_for_bit",
                       n);
 }
