@@ -10,6 +10,56 @@
 #include "simd.h"
 
 #if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+#define OFFSET_VEC 1
+typedef __m128 ov_t;
+typedef __m128i ovi_t;
+#define OV_SET1 _mm_set1_ps
+#define OV_SET3(x, y, z) _mm_set_ps(0, z, y, x)
+#define OV_MUL _mm_mul_ps
+#define OV_ADD _mm_add_ps
+#define OV_GT _mm_cmpgt_ps
+#define OV_LT _mm_cmplt_ps
+#define OV_EQ _mm_cmpeq_ps
+#define OV_AND _mm_and_ps
+#define OV_ANDNOT _mm_andnot_ps
+#define OV_OR _mm_or_ps
+#define OV_XOR _mm_xor_ps
+#define OV_ZERO _mm_setzero_ps
+#define OV_STORE _mm_storeu_ps
+#define OV_BITS _mm_castps_si128
+#define OV_REAL _mm_castsi128_ps
+#define OVI_SET1 _mm_set1_epi32
+#define OVI_ADD _mm_add_epi32
+#define OVI_AND _mm_and_si128
+#define OVI_ANDNOT _mm_andnot_si128
+#define OVI_OR _mm_or_si128
+#elif defined(SVET_DOUBLE) && defined(__AVX2__)
+#define OFFSET_VEC 1
+typedef __m256d ov_t;
+typedef __m256i ovi_t;
+#define OV_SET1 _mm256_set1_pd
+#define OV_SET3(x, y, z) _mm256_set_pd(0, z, y, x)
+#define OV_MUL _mm256_mul_pd
+#define OV_ADD _mm256_add_pd
+#define OV_GT(a, b) _mm256_cmp_pd(a, b, _CMP_GT_OQ)
+#define OV_LT(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
+#define OV_EQ(a, b) _mm256_cmp_pd(a, b, _CMP_EQ_OQ)
+#define OV_AND _mm256_and_pd
+#define OV_ANDNOT _mm256_andnot_pd
+#define OV_OR _mm256_or_pd
+#define OV_XOR _mm256_xor_pd
+#define OV_ZERO _mm256_setzero_pd
+#define OV_STORE _mm256_storeu_pd
+#define OV_BITS _mm256_castpd_si256
+#define OV_REAL _mm256_castsi256_pd
+#define OVI_SET1 _mm256_set1_epi64x
+#define OVI_ADD _mm256_add_epi64
+#define OVI_AND _mm256_and_si256
+#define OVI_ANDNOT _mm256_andnot_si256
+#define OVI_OR _mm256_or_si256
+#endif
+
+#ifdef OFFSET_VEC
 /* The three coordinates at once, lane i = coordinate i, without a branch
  * per coordinate: the offset's direction along an axis-aligned normal
  * changes from one wall to the next, so offset_coord()'s branches were
@@ -26,37 +76,37 @@
  *   a lane whose offset is neither > 0 nor < 0 (a zero, NaN) keeps q.
  * The side test stays a branch: as a mask it made every lane wait for
  * w . n, and the renders took longer. test_ray.c compares the bits with
- * libm's nextafter on every class of input. */
+ * libm's nextafter on every class of input. Float uses SSE2's four
+ * lanes; double uses AVX2's four (its integer lanes step the bits).
+ * Without them the plain code below. */
 static void offset_origin_vec(VECTOR3 po, const VECTOR3 p, real d,
                               bool flip, const VECTOR3 n)
 {
-    const __m128 sign = _mm_set1_ps(-0.0f);
-    const __m128i one = _mm_set1_epi32(1);
-    __m128 vd = _mm_set1_ps(d);
+    const ov_t sign = OV_SET1(-REAL_C(0.0));
+    const ovi_t one = OVI_SET1(1);
+    ov_t vd = OV_SET1(d);
     if (flip) /* -d: d with its sign bit flipped, as C's negation */
-        vd = _mm_xor_ps(vd, sign);
-    __m128 off = _mm_mul_ps(_mm_set_ps(0, n[Z], n[Y], n[X]), vd);
-    __m128 q = _mm_add_ps(_mm_set_ps(0, p[Z], p[Y], p[X]), off);
-    __m128 up = _mm_cmpgt_ps(off, _mm_setzero_ps());
-    __m128 down = _mm_cmplt_ps(off, _mm_setzero_ps());
-    __m128 flipq = _mm_and_ps(down, sign);
-    __m128 x = _mm_xor_ps(q, flipq); /* next_up(x) is asked for */
-    __m128i xi = _mm_castps_si128(x);
-    __m128i pos = _mm_castps_si128(_mm_cmpgt_ps(x, _mm_setzero_ps()));
-    __m128i zero = _mm_castps_si128(_mm_cmpeq_ps(x, _mm_setzero_ps()));
-    __m128i finite =
-        _mm_castps_si128(_mm_cmplt_ps(x, _mm_set1_ps((real)INFINITY)));
+        vd = OV_XOR(vd, sign);
+    ov_t off = OV_MUL(OV_SET3(n[X], n[Y], n[Z]), vd);
+    ov_t q = OV_ADD(OV_SET3(p[X], p[Y], p[Z]), off);
+    ov_t up = OV_GT(off, OV_ZERO());
+    ov_t down = OV_LT(off, OV_ZERO());
+    ov_t flipq = OV_AND(down, sign);
+    ov_t x = OV_XOR(q, flipq); /* next_up(x) is asked for */
+    ovi_t xi = OV_BITS(x);
+    ovi_t pos = OV_BITS(OV_GT(x, OV_ZERO()));
+    ovi_t zero = OV_BITS(OV_EQ(x, OV_ZERO()));
+    ovi_t finite = OV_BITS(OV_LT(x, OV_SET1((real)INFINITY)));
     /* + 1 where x > 0, - 1 (all ones) elsewhere: ~pos | 1 */
-    __m128i step =
-        _mm_or_si128(_mm_andnot_si128(pos, _mm_set1_epi32(-1)), one);
-    __m128i r = _mm_add_epi32(xi, step);
-    r = _mm_or_si128(_mm_andnot_si128(zero, r), _mm_and_si128(zero, one));
-    r = _mm_or_si128(_mm_and_si128(finite, r), _mm_andnot_si128(finite, xi));
-    __m128 moved = _mm_xor_ps(_mm_castsi128_ps(r), flipq);
-    __m128 move = _mm_or_ps(up, down);
-    __m128 res = _mm_or_ps(_mm_and_ps(move, moved), _mm_andnot_ps(move, q));
-    float out[4];
-    _mm_storeu_ps(out, res);
+    ovi_t step = OVI_OR(OVI_ANDNOT(pos, OVI_SET1(-1)), one);
+    ovi_t r = OVI_ADD(xi, step);
+    r = OVI_OR(OVI_ANDNOT(zero, r), OVI_AND(zero, one));
+    r = OVI_OR(OVI_AND(finite, r), OVI_ANDNOT(finite, xi));
+    ov_t moved = OV_XOR(OV_REAL(r), flipq);
+    ov_t move = OV_OR(up, down);
+    ov_t res = OV_OR(OV_AND(move, moved), OV_ANDNOT(move, q));
+    real out[4];
+    OV_STORE(out, res);
     vec_set(po, out[0], out[1], out[2]);
 }
 #else
@@ -82,7 +132,7 @@ void ray_offset_origin(VECTOR3 po, const VECTOR3 p, const VECTOR3 p_error,
      * (n (-d) is -(n d) bit for bit: rounding is symmetric). */
     real d = fabs(n[X]) * p_error[X] + fabs(n[Y]) * p_error[Y] +
              fabs(n[Z]) * p_error[Z];
-#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
+#ifdef OFFSET_VEC
     offset_origin_vec(po, p, d, SVECTOR3(w, n) < 0, n);
 #else
     if (SVECTOR3(w, n) < 0)
