@@ -1767,17 +1767,20 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
         uint32_t a = g->qstart[f], e = g->qstart[f + 1] & ~GRID_MORE;
         const grid_quad_t *qd = g->quads + (a & ~GRID_MORE);
         uint32_t nq = e - (a & ~GRID_MORE), i = 0;
-#if MESH_WIDE
         /* The sign test's first step, the corners less the origin, is the
          * same for every ray of the packet (one origin, one kz: packet()):
-         * done once a pair of quads, then mesh_wide_reject_perm() from
-         * there with a zero origin (x - 0 is x, bit for bit), the same
-         * operations as mesh_wide_reject_soa2() and so the same mask. */
+         * done once a pair of quads (or a quad), then
+         * mesh_wide_reject_perm() (mesh_lanes_reject_perm()) from there
+         * with a zero origin (x - 0 is x, bit for bit), the same
+         * operations as mesh_wide_reject_soa2() (mesh_lanes_reject_soa())
+         * and so the same mask. */
         static const int perm[3][9] = { { 1, 2, 0, 4, 5, 3, 7, 8, 6 },
                                         { 2, 0, 1, 5, 3, 4, 8, 6, 7 },
                                         { 0, 1, 2, 3, 4, 5, 6, 7, 8 } };
-        const int *pm = perm[q[bits_lowest(rays)].mr.kz];
-        const vwreal *o = w[bits_lowest(rays)].wr.o;
+        const int r0 = bits_lowest(rays);
+        const int *pm = perm[q[r0].mr.kz];
+#if MESH_WIDE
+        const vwreal *o = w[r0].wr.o;
         const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
         for (; i + 1 < nq; i += 2) {
             vwreal t[9];
@@ -1787,25 +1790,35 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
                               o[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
-                unsigned left = (1u << (2 * MESH_BATCH)) - 1;
-                if (q[r].mr.fast)
-                    left &= ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
-                                                   t[4], t[5], t[6], t[7],
-                                                   t[8], zo, w[r].wr.sx,
-                                                   w[r].wr.sy);
+                /* every ray of a packet is fast (packet()) */
+                unsigned left = ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
+                                                       t[4], t[5], t[6], t[7],
+                                                       t[8], zo, w[r].wr.sx,
+                                                       w[r].wr.sy) &
+                                ((1u << (2 * MESH_BATCH)) - 1);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
             }
         }
 #endif
-        for (; i < nq; i++)
+        const vreal zo4[3] = { V_SET1(0), V_SET1(0), V_SET1(0) };
+        for (; i < nq; i++) {
+            vreal t[9];
+            for (int j = 0; j < 9; j++)
+                t[j] = V_SUB(V_LOAD(qd[i].c + pm[j] * VLANES),
+                             q[r0].mr.vo[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
-                unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q[r].mr) &
+                unsigned left = ~mesh_lanes_reject_perm(t[0], t[1], t[2], t[3],
+                                                        t[4], t[5], t[6], t[7],
+                                                        t[8], zo4,
+                                                        q[r].mr.vsx,
+                                                        q[r].mr.vsy) &
                                 ((1u << MESH_BATCH) - 1);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
             }
+        }
         if (!(a & GRID_MORE))
             return;
         for (uint64_t m = rays; m; m &= m - 1) {
@@ -2055,7 +2068,8 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         bool ok = o_ok && r->o[0] == o[0] && r->o[1] == o[1] &&
                   r->o[2] == o[2] && dk > 0 && dk < (double)INFINITY &&
                   dk >= fabs((double)r->d[u]) &&
-                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k;
+                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k &&
+                  q[i].mr.fast;
         if (!ok) {
             grid_intersect(g, &q[i]);
             continue;
