@@ -1893,12 +1893,25 @@ typedef struct {
 /* At most this many blocks a slab: a wider frustum is walked ray by ray. */
 #define PK_BLOCKS 64
 
+/* A block slab's blocks that the frustum may cross and that hold
+ * something in its range (blk[0 .. n)), and the planes between the cells
+ * of that range on u (j = 0) and v (j = 1), relative to the origin:
+ * e[j][c - c0[j]] is plane c (made once a slab, not once a cell: the
+ * same formula, so the same bits). At most 4 PK_BLOCKS cells an axis. */
+typedef struct {
+    pk_block_t blk[PK_BLOCKS];
+    int n, c0[2];
+    double e[2][GRID_BLOCK * PK_BLOCKS + 1];
+} pk_slab_t;
+
 /* The blocks of block slab bj (s from a to b) that the frustum may cross
- * and that hold something in its range, into out[]; returns how many, or
- * -1 when the range spans more than PK_BLOCKS blocks. */
+ * and that hold something in its range, into sl (and, when there are
+ * any, the planes between the range's cells); returns how many, or -1
+ * when the range spans more than PK_BLOCKS blocks. */
 static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
-                          double a, double b, pk_block_t *out)
+                          double a, double b, pk_slab_t *sl)
 {
+    pk_block_t *out = sl->blk;
     const grid_node_t *nd = &g->nodes[0];
     const int u = p->u, v = p->v;
     int u0, u1, v0, v1;
@@ -1930,7 +1943,16 @@ static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
             }
         }
     }
-    return n;
+    if (n > 0) {
+        const int ax[2] = { u, v }, lo[2] = { u0, v0 }, hi[2] = { u1, v1 };
+        for (int j = 0; j < 2; j++) {
+            sl->c0[j] = lo[j];
+            for (int c = lo[j]; c <= hi[j] + 1; c++)
+                sl->e[j][c - lo[j]] =
+                    nd->min[ax[j]] + c * nd->w[ax[j]] - p->o[ax[j]];
+        }
+    }
+    return sl->n = n;
 }
 
 /* Walk slice j (s from a to b) over the slab's blocks blks[0 .. nb): each
@@ -1946,8 +1968,10 @@ static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
  * something in it. */
 static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
                      primset_query_t *q, int j, double a, double b,
-                     const pk_block_t *blks, int nb)
+                     const pk_slab_t *sl)
 {
+    const pk_block_t *blks = sl->blk;
+    const int nb = sl->n;
     const grid_node_t *nd = &g->nodes[0];
     const int u = p->u, v = p->v;
     const uint64_t *bm = g->bmask + nd->bfirst;
@@ -1968,10 +1992,9 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
             /* bit x + 4 y + 16 z: axis a's coordinate is 2 a bits up */
             int cu = blks[x].bu * GRID_BLOCK + (bit >> 2 * u & 3);
             int cv = blks[x].bv * GRID_BLOCK + (bit >> 2 * v & 3);
-            double lu = nd->min[u] + cu * nd->w[u] - p->o[u];
-            double hu = nd->min[u] + (cu + 1) * nd->w[u] - p->o[u];
-            double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
-            double hv = nd->min[v] + (cv + 1) * nd->w[v] - p->o[v];
+            const double *eu = sl->e[0] + (cu - sl->c0[0]);
+            const double *ev = sl->e[1] + (cv - sl->c0[1]);
+            double lu = eu[0], hu = eu[1], lv = ev[0], hv = ev[1];
             if (p->box[0] > hu || p->box[1] < lu || p->box[2] > hv ||
                 p->box[3] < lv)
                 continue; /* no ray's box meets it */
@@ -2095,7 +2118,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     pk_bounds(&p);
     const int res = nd->res[k], step = p.sg > 0 ? 1 : -1;
     int j = cell_of(nd, k, p.o[k] + p.sg * p.S0);
-    pk_block_t blks[PK_BLOCKS];
+    pk_slab_t sl;
     while (p.live && j >= 0 && j < res) {
         /* the block slab of j: its slices from j on, in the rays' order */
         int bj = j / GRID_BLOCK;
@@ -2107,7 +2130,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         if (a > p.S1)
             break;
         int nb = pk_slab_blocks(g, &p, bj, pk_max(a, p.S0), pk_min(b, p.S1),
-                                blks);
+                                &sl);
         if (nb < 0) {
             /* too wide: the rays left go alone, from the start (with the
              * hits found so far, which can only be kept or beaten) */
@@ -2118,7 +2141,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         for (; nb > 0; j += step) {
             double sa = pk_plane_s(nd, &p, step > 0 ? j : j + 1);
             double sb = pk_plane_s(nd, &p, step > 0 ? j + 1 : j);
-            pk_slice(g, &p, w, q, j, sa, sb, blks, nb);
+            pk_slice(g, &p, w, q, j, sa, sb, &sl);
             if (j == jend)
                 break;
         }
