@@ -204,7 +204,8 @@ bool grid_occluded(const grid_t *g, primset_query_t *q);
  * best hit so far. Rays that do not share the first ray's origin, or
  * whose largest direction component is not on the packet's major axis
  * with its sign (or is not finite, or ties with another axis that the
- * triangle test takes for the largest), are traced alone by
+ * triangle test takes for the largest, or lies outside the triangle
+ * test's fast range, 2^-16 to 2^17: mesh_ray_prepare), are traced alone by
  * grid_intersect(); so are all the rays left when the frustum grows
  * wider than 64 blocks of a slab (a very wide packet).
  * n may be anything: n <= 0 does nothing, more than GRID_PACKET_MAX goes

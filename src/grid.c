@@ -1706,9 +1706,43 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
 #endif
 }
 
+/* Whether ray i's line on (u, v) may meet the cell [u0, u1] x [v0, v1]
+ * (relative to o): see pk_slice(). */
+static inline bool pk_line(const packet_t *p, int i, double u0, double u1,
+                           double v0, double v1)
+{
+    double mu = p->mu[i], mv = p->mv[i];
+    double fa = mv * u0, fb = mv * u1;
+    double ga = mu * v0, gb = mu * v1;
+    double tol = p->tol[i];
+    return !(pk_min(fa, fb) - pk_max(ga, gb) > tol ||
+             pk_max(fa, fb) - pk_min(ga, gb) < -tol);
+}
+
+#ifdef __AVX__
+/* pk_line() of rays i .. i + 3 at once, as the bits of a mask: the same
+ * operations (the vector min and max answer as pk_min and pk_max, NaN
+ * included; the ordered comparisons are false on NaN, as C's). */
+static inline int pk_line4(const packet_t *p, int i, __m256d u0, __m256d u1,
+                           __m256d v0, __m256d v1)
+{
+    __m256d mu = _mm256_loadu_pd(p->mu + i), mv = _mm256_loadu_pd(p->mv + i);
+    __m256d tol = _mm256_loadu_pd(p->tol + i);
+    __m256d fa = _mm256_mul_pd(mv, u0), fb = _mm256_mul_pd(mv, u1);
+    __m256d ga = _mm256_mul_pd(mu, v0), gb = _mm256_mul_pd(mu, v1);
+    __m256d x = _mm256_sub_pd(_mm256_min_pd(fa, fb), _mm256_max_pd(ga, gb));
+    __m256d y = _mm256_sub_pd(_mm256_max_pd(fa, fb), _mm256_min_pd(ga, gb));
+    __m256d out = _mm256_or_pd(
+        _mm256_cmp_pd(x, tol, _CMP_GT_OQ),
+        _mm256_cmp_pd(y, _mm256_sub_pd(_mm256_setzero_pd(), tol), _CMP_LT_OQ));
+    return ~_mm256_movemask_pd(out) & 15;
+}
+#endif
+
 /* The rays whose slice box overlaps the cell [u0, u1] x [v0, v1]
- * (relative to o): a superset of the rays whose segment in the slice
- * meets the cell, the cell's own extent along k being the slice's. */
+ * (relative to o) and whose line on (u, v) may meet it (pk_line): a
+ * superset of the rays whose segment in the slice meets the cell, the
+ * cell's own extent along k being the slice's. */
 static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
                                     double v0, double v1)
 {
@@ -1716,6 +1750,7 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
 #ifdef __AVX__
     const __m256d a = _mm256_set1_pd(u0), b = _mm256_set1_pd(u1);
     const __m256d c = _mm256_set1_pd(v0), d = _mm256_set1_pd(v1);
+    int box;
 #define PK_OVERLAP(L0, H0, L1, H1)                                           \
     _mm256_movemask_pd(_mm256_and_pd(                                         \
         _mm256_and_pd(_mm256_cmp_pd(_mm256_loadu_pd(L0), b, _CMP_LE_OQ),      \
@@ -1724,9 +1759,9 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
                       _mm256_cmp_pd(_mm256_loadu_pd(H1), c, _CMP_GE_OQ))))
     if (p->n <= 16) {
         for (int i = 0; i < p->n; i += 4)
-            m |= (uint64_t)PK_OVERLAP(p->ul + i, p->uh + i, p->vl + i,
-                                      p->vh + i)
-                 << i;
+            if ((box = PK_OVERLAP(p->ul + i, p->uh + i, p->vl + i,
+                                  p->vh + i)) != 0)
+                m |= (uint64_t)(box & pk_line4(p, i, a, b, c, d)) << i;
         return m;
     }
     /* the groups whose union box meets the cell, then their rays */
@@ -1737,15 +1772,16 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
               << g;
     for (; gm; gm &= gm - 1) {
         int i = 4 * bits_lowest(gm);
-        m |= (uint64_t)PK_OVERLAP(p->ul + i, p->uh + i, p->vl + i,
-                                  p->vh + i)
-             << i;
+        if ((box = PK_OVERLAP(p->ul + i, p->uh + i, p->vl + i,
+                              p->vh + i)) != 0)
+            m |= (uint64_t)(box & pk_line4(p, i, a, b, c, d)) << i;
     }
 #undef PK_OVERLAP
 #else
     for (int i = 0; i < p->n; i++)
-        m |= (uint64_t)(p->ul[i] <= u1 && p->uh[i] >= u0 && p->vl[i] <= v1 &&
-                        p->vh[i] >= v0)
+        m |= (uint64_t)(p->ul[i] <= u1 && p->uh[i] >= u0 &&
+                        p->vl[i] <= v1 && p->vh[i] >= v0 &&
+                        pk_line(p, i, u0, u1, v0, v1))
              << i;
 #endif
     return m;
@@ -1767,17 +1803,20 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
         uint32_t a = g->qstart[f], e = g->qstart[f + 1] & ~GRID_MORE;
         const grid_quad_t *qd = g->quads + (a & ~GRID_MORE);
         uint32_t nq = e - (a & ~GRID_MORE), i = 0;
-#if MESH_WIDE
         /* The sign test's first step, the corners less the origin, is the
          * same for every ray of the packet (one origin, one kz: packet()):
-         * done once a pair of quads, then mesh_wide_reject_perm() from
-         * there with a zero origin (x - 0 is x, bit for bit), the same
-         * operations as mesh_wide_reject_soa2() and so the same mask. */
+         * done once a pair of quads (or a quad), then
+         * mesh_wide_reject_perm() (mesh_lanes_reject_perm()) from there
+         * with a zero origin (x - 0 is x, bit for bit), the same
+         * operations as mesh_wide_reject_soa2() (mesh_lanes_reject_soa())
+         * and so the same mask. */
         static const int perm[3][9] = { { 1, 2, 0, 4, 5, 3, 7, 8, 6 },
                                         { 2, 0, 1, 5, 3, 4, 8, 6, 7 },
                                         { 0, 1, 2, 3, 4, 5, 6, 7, 8 } };
-        const int *pm = perm[q[bits_lowest(rays)].mr.kz];
-        const vwreal *o = w[bits_lowest(rays)].wr.o;
+        const int r0 = bits_lowest(rays);
+        const int *pm = perm[q[r0].mr.kz];
+#if MESH_WIDE
+        const vwreal *o = w[r0].wr.o;
         const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
         for (; i + 1 < nq; i += 2) {
             vwreal t[9];
@@ -1787,25 +1826,35 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
                               o[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
-                unsigned left = (1u << (2 * MESH_BATCH)) - 1;
-                if (q[r].mr.fast)
-                    left &= ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
-                                                   t[4], t[5], t[6], t[7],
-                                                   t[8], zo, w[r].wr.sx,
-                                                   w[r].wr.sy);
+                /* every ray of a packet is fast (packet()) */
+                unsigned left = ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
+                                                       t[4], t[5], t[6], t[7],
+                                                       t[8], zo, w[r].wr.sx,
+                                                       w[r].wr.sy) &
+                                ((1u << (2 * MESH_BATCH)) - 1);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
             }
         }
 #endif
-        for (; i < nq; i++)
+        const vreal zo4[3] = { V_SET1(0), V_SET1(0), V_SET1(0) };
+        for (; i < nq; i++) {
+            vreal t[9];
+            for (int j = 0; j < 9; j++)
+                t[j] = V_SUB(V_LOAD(qd[i].c + pm[j] * VLANES),
+                             q[r0].mr.vo[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
-                unsigned left = ~mesh_lanes_reject_soa(qd[i].c, &q[r].mr) &
+                unsigned left = ~mesh_lanes_reject_perm(t[0], t[1], t[2], t[3],
+                                                        t[4], t[5], t[6], t[7],
+                                                        t[8], zo4,
+                                                        q[r].mr.vsx,
+                                                        q[r].mr.vsy) &
                                 ((1u << MESH_BATCH) - 1);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
             }
+        }
         if (!(a & GRID_MORE))
             return;
         for (uint64_t m = rays; m; m &= m - 1) {
@@ -1880,12 +1929,25 @@ typedef struct {
 /* At most this many blocks a slab: a wider frustum is walked ray by ray. */
 #define PK_BLOCKS 64
 
+/* A block slab's blocks that the frustum may cross and that hold
+ * something in its range (blk[0 .. n)), and the planes between the cells
+ * of that range on u (j = 0) and v (j = 1), relative to the origin:
+ * e[j][c - c0[j]] is plane c (made once a slab, not once a cell: the
+ * same formula, so the same bits). At most 4 PK_BLOCKS cells an axis. */
+typedef struct {
+    pk_block_t blk[PK_BLOCKS];
+    int n, c0[2];
+    double e[2][GRID_BLOCK * PK_BLOCKS + 1];
+} pk_slab_t;
+
 /* The blocks of block slab bj (s from a to b) that the frustum may cross
- * and that hold something in its range, into out[]; returns how many, or
- * -1 when the range spans more than PK_BLOCKS blocks. */
+ * and that hold something in its range, into sl (and, when there are
+ * any, the planes between the range's cells); returns how many, or -1
+ * when the range spans more than PK_BLOCKS blocks. */
 static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
-                          double a, double b, pk_block_t *out)
+                          double a, double b, pk_slab_t *sl)
 {
+    pk_block_t *out = sl->blk;
     const grid_node_t *nd = &g->nodes[0];
     const int u = p->u, v = p->v;
     int u0, u1, v0, v1;
@@ -1917,7 +1979,16 @@ static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
             }
         }
     }
-    return n;
+    if (n > 0) {
+        const int ax[2] = { u, v }, lo[2] = { u0, v0 }, hi[2] = { u1, v1 };
+        for (int j = 0; j < 2; j++) {
+            sl->c0[j] = lo[j];
+            for (int c = lo[j]; c <= hi[j] + 1; c++)
+                sl->e[j][c - lo[j]] =
+                    nd->min[ax[j]] + c * nd->w[ax[j]] - p->o[ax[j]];
+        }
+    }
+    return sl->n = n;
 }
 
 /* Walk slice j (s from a to b) over the slab's blocks blks[0 .. nb): each
@@ -1933,8 +2004,10 @@ static int pk_slab_blocks(const grid_t *g, const packet_t *p, int bj,
  * something in it. */
 static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
                      primset_query_t *q, int j, double a, double b,
-                     const pk_block_t *blks, int nb)
+                     const pk_slab_t *sl)
 {
+    const pk_block_t *blks = sl->blk;
+    const int nb = sl->n;
     const grid_node_t *nd = &g->nodes[0];
     const int u = p->u, v = p->v;
     const uint64_t *bm = g->bmask + nd->bfirst;
@@ -1955,25 +2028,13 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
             /* bit x + 4 y + 16 z: axis a's coordinate is 2 a bits up */
             int cu = blks[x].bu * GRID_BLOCK + (bit >> 2 * u & 3);
             int cv = blks[x].bv * GRID_BLOCK + (bit >> 2 * v & 3);
-            double lu = nd->min[u] + cu * nd->w[u] - p->o[u];
-            double hu = nd->min[u] + (cu + 1) * nd->w[u] - p->o[u];
-            double lv = nd->min[v] + cv * nd->w[v] - p->o[v];
-            double hv = nd->min[v] + (cv + 1) * nd->w[v] - p->o[v];
+            const double *eu = sl->e[0] + (cu - sl->c0[0]);
+            const double *ev = sl->e[1] + (cv - sl->c0[1]);
+            double lu = eu[0], hu = eu[1], lv = ev[0], hv = ev[1];
             if (p->box[0] > hu || p->box[1] < lu || p->box[2] > hv ||
                 p->box[3] < lv)
                 continue; /* no ray's box meets it */
-            uint64_t rays = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
-            uint64_t in = 0;
-            for (; rays; rays &= rays - 1) {
-                int i = bits_lowest(rays);
-                double mu = p->mu[i], mv = p->mv[i];
-                double fa = mv * lu, fb = mv * hu;
-                double ga = mu * lv, gb = mu * hv;
-                double tol = p->tol[i];
-                if (!(pk_min(fa, fb) - pk_max(ga, gb) > tol ||
-                      pk_max(fa, fb) - pk_min(ga, gb) < -tol))
-                    in |= UINT64_C(1) << i;
-            }
+            uint64_t in = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
             if (!in)
                 continue;
             pk_test_cell(g, w, q, full_cell(bb[blk], bm[blk], bit), in);
@@ -2015,8 +2076,9 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
  * (pk_range(): the corner products bound every ray's own, and the range
  * is widened by twice the margin), is found from the blocks' words when
  * it holds something, and passes both the box test (pk_cell_rays(), the
- * segment's box widened by the margin) and the line test (pk_slice());
- * the union of the boxes only bounds them. The margin is ps->pad, the
+ * segment's box widened by the margin) and the line test (pk_line(),
+ * also in pk_cell_rays(), four rays at a time with AVX); the union of
+ * the boxes only bounds them. The margin is ps->pad, the
  * padding of every primitive's cells (2^-20 of the scene), far above the
  * double rounding of these few operations, so rounding only ever adds
  * cells. A packet's rays all move one way on k (packet() sends the others
@@ -2055,7 +2117,8 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         bool ok = o_ok && r->o[0] == o[0] && r->o[1] == o[1] &&
                   r->o[2] == o[2] && dk > 0 && dk < (double)INFINITY &&
                   dk >= fabs((double)r->d[u]) &&
-                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k;
+                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k &&
+                  q[i].mr.fast;
         if (!ok) {
             grid_intersect(g, &q[i]);
             continue;
@@ -2081,7 +2144,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     pk_bounds(&p);
     const int res = nd->res[k], step = p.sg > 0 ? 1 : -1;
     int j = cell_of(nd, k, p.o[k] + p.sg * p.S0);
-    pk_block_t blks[PK_BLOCKS];
+    pk_slab_t sl;
     while (p.live && j >= 0 && j < res) {
         /* the block slab of j: its slices from j on, in the rays' order */
         int bj = j / GRID_BLOCK;
@@ -2093,7 +2156,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         if (a > p.S1)
             break;
         int nb = pk_slab_blocks(g, &p, bj, pk_max(a, p.S0), pk_min(b, p.S1),
-                                blks);
+                                &sl);
         if (nb < 0) {
             /* too wide: the rays left go alone, from the start (with the
              * hits found so far, which can only be kept or beaten) */
@@ -2104,7 +2167,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         for (; nb > 0; j += step) {
             double sa = pk_plane_s(nd, &p, step > 0 ? j : j + 1);
             double sb = pk_plane_s(nd, &p, step > 0 ? j + 1 : j);
-            pk_slice(g, &p, w, q, j, sa, sb, blks, nb);
+            pk_slice(g, &p, w, q, j, sa, sb, &sl);
             if (j == jend)
                 break;
         }

@@ -701,8 +701,9 @@ static long check_packet(const grid_t *g, const primset_t *ps,
  * packet of one) over the whole image, the border tiles included (rays that
  * miss everything, part-filled tiles); wide fields of view, whose tiles
  * straddle the change of major axis (those rays go alone); for a third
- * of the cameras rays of random lengths (tmax); and one ray in 32 that
- * goes alone (another origin, or the other way). */
+ * of the cameras rays of random lengths (tmax); and three rays in 64
+ * that go alone (another origin, the other way, or a direction 2^-20 as
+ * long: outside the triangle test's fast range, mesh_ray_prepare). */
 START_TEST(packets_answer_as_single_rays_and_brute_force)
 {
     svet_error e;
@@ -780,6 +781,9 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
                             rays[i].o[i % 3] += REAL_C(0.25);
                         else if (odd == 1)
                             vec_neg(rays[i].d, rays[i].d);
+                        else if (odd == 2) /* outside the triangle
+                                              test's fast range */
+                            vec_scale(rays[i].d, rays[i].d, REAL_C(0x1p-20));
                     }
                     hits += check_packet(g, &ps, rays, tmax, n);
                     cases += n;
