@@ -15,6 +15,22 @@ OPT      ?= -O3
 # add, and no reassociation is allowed); `make ARCH=` builds a binary for
 # any x86-64 (SSE2 only) to copy to another machine.
 ARCH     ?= -march=native
+# Link-time optimisation (gcc): the compiler inlines across modules (the
+# integrator's calls into material.c, light.c and ray.c), about 2.5% faster
+# on the Cornell box, and the same bits: without -ffast-math inlining
+# changes no rounding. `make LTO=` builds without it, as `make sanitize`
+# does; with clang it is off unless asked for (LTO=-flto AR=llvm-ar).
+ifeq ($(findstring clang,$(shell $(CC) --version 2>/dev/null)),)
+LTO      ?= -flto=auto
+else
+LTO      ?=
+endif
+# an archive of LTO objects needs the compiler's wrapper of ar
+ifneq ($(strip $(LTO)),)
+ifeq ($(origin AR),default)
+AR       := gcc-ar
+endif
+endif
 BUILD    ?= build/$(REAL)
 PREFIX   ?= /usr/local
 PKG_CONFIG ?= pkg-config
@@ -31,7 +47,7 @@ endif
 # are the same on every x86-64 compiler that honours it (docs: determinism).
 WARN     := -Wall -Wextra -Wpedantic -Wdouble-promotion -Wshadow \
             -Wstrict-prototypes -Wmissing-prototypes -Wformat=2
-CFLAGS   ?= $(OPT) $(ARCH) -g
+CFLAGS   ?= $(OPT) $(ARCH) $(LTO) -g
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off $(WARN) \
              $(REALDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
 
@@ -111,7 +127,7 @@ test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
              -fno-omit-frame-pointer
 sanitize:
-	$(MAKE) BUILD=build/sanitize-$(REAL) OPT=-O1 \
+	$(MAKE) BUILD=build/sanitize-$(REAL) OPT=-O1 LTO= \
 	    EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
 	    SVET_SANITIZE=1 test
 

@@ -739,7 +739,9 @@ START_TEST(no_sampler_returns_nan_or_inf_over_a_dense_sweep)
         for (int i = 0; i < nv; i++)
             for (int j = 0; j < nv; j++, cases++) {
                 real u[2] = { v[i], v[j] };
-                VECTOR3 w;
+                /* NaN until a sampler writes it: one that does not fails
+                 * the first assertion below */
+                VECTOR3 w = { (real)NAN, (real)NAN, (real)NAN };
                 real pdf_s = 0;
                 if (dirs[d].kind == D_SPHERE_SA)
                     pdf_s = sample_sphere_solid_angle(w, dirs[d].x, dirs[d].c,

@@ -1,7 +1,9 @@
 #!/bin/sh
 # count-render.sh - `make count-render`: instructions per camera sample of
 # the Cornell box (bench/results/render.md's table), counted by valgrind's
-# callgrind over render_pass only, so the count does not depend on the
+# callgrind over render_pass's parallel region only (gcc's outlined
+# render_pass._omp_fn.0, which link-time optimisation renames and into whose
+# caller it folds render_pass itself), so the count does not depend on the
 # machine's load. Needs valgrind (apt-get install valgrind). Counted with
 # the Makefile's -march=native; valgrind 3.19 does not run AVX-512 code,
 # so on such a CPU count a build made with `make ARCH=-march=x86-64-v3`.
@@ -13,7 +15,7 @@ command -v valgrind >/dev/null || { echo "count-render: valgrind is not installe
 mkdir -p out
 out=out/callgrind.render
 valgrind --tool=callgrind --callgrind-out-file="$out" \
-    --toggle-collect=render_pass "$svet" render "$scene" --spp 1 \
+    --toggle-collect='render_pass._omp_fn*' "$svet" render "$scene" --spp 1 \
     --threads 1 -o out/count-render.exr >/dev/null 2>&1
 total=$(callgrind_annotate "$out" | awk '/PROGRAM TOTALS/ { gsub(",", "", $1); print $1 }')
 # the image size from the camera line's width and height

@@ -89,7 +89,7 @@ static double seconds(void)
 static int run_scene(const char *dir, scene_t_ *sc)
 {
     svet_error err;
-    camera_t cam;
+    camera_t cam = { 0 }; /* gcc -flto takes it for unset after a failed init */
     VECTOR3 up = { 0, 0, 1 };
     if (camera_init(&cam, sc->eye, sc->target, up, 40, CAMERA_FOV_X, W, H,
                     &err) != SVET_OK) {
