@@ -1706,8 +1706,10 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
 #endif
 }
 
+#ifndef __AVX__
 /* Whether ray i's line on (u, v) may meet the cell [u0, u1] x [v0, v1]
- * (relative to o): see pk_slice(). */
+ * (relative to o): see pk_slice(). With AVX, pk_line4() below asks it of
+ * four rays at once by the same operations. */
 static inline bool pk_line(const packet_t *p, int i, double u0, double u1,
                            double v0, double v1)
 {
@@ -1718,6 +1720,7 @@ static inline bool pk_line(const packet_t *p, int i, double u0, double u1,
     return !(pk_min(fa, fb) - pk_max(ga, gb) > tol ||
              pk_max(fa, fb) - pk_min(ga, gb) < -tol);
 }
+#endif
 
 #ifdef __AVX__
 /* pk_line() of rays i .. i + 3 at once, as the bits of a mask: the same
