@@ -12,6 +12,7 @@
  * usage: bench_render [scene] [ref_spp]
  */
 #include "bench.h"
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,7 +69,18 @@ static void run(const scene_t *s, long spp, int threads, image_t *img,
 int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "scenes/cbox.scn";
-    long ref_spp = argc > 2 ? atol(argv[2]) : 4096;
+    long ref_spp = 4096;
+    if (argc > 2) {
+        char *end;
+        errno = 0;
+        ref_spp = strtol(argv[2], &end, 10);
+        if (errno || end == argv[2] || *end || ref_spp < 1)
+            ref_spp = 0;
+    }
+    if (argc > 3 || ref_spp < 1) {
+        fprintf(stderr, "usage: bench_render [scene] [ref_spp >= 1]\n");
+        return 2;
+    }
     svet_error e;
     scene_t s;
     scene_init(&s);
