@@ -19,16 +19,22 @@ ARCH     ?= -march=native
 # integrator's calls into material.c, light.c and ray.c), about 2.5% faster
 # on the Cornell box, and the same bits: without -ffast-math inlining
 # changes no rounding. `make LTO=` builds without it, as `make sanitize`
-# does; with clang it is off unless asked for (LTO=-flto AR=llvm-ar).
+# does; with clang it is off unless asked for (LTO=-flto, with llvm-ar).
+# The build does not track flags: give a changed LTO (or OPT, ARCH) a
+# fresh BUILD directory or `make clean` first.
 ifeq ($(findstring clang,$(shell $(CC) --version 2>/dev/null)),)
 LTO      ?= -flto=auto
 else
 LTO      ?=
 endif
-# an archive of LTO objects needs the compiler's wrapper of ar
+# an archive of LTO objects needs the compiler's own ar
 ifneq ($(strip $(LTO)),)
 ifeq ($(origin AR),default)
+ifeq ($(findstring clang,$(shell $(CC) --version 2>/dev/null)),)
 AR       := gcc-ar
+else
+AR       := llvm-ar
+endif
 endif
 endif
 BUILD    ?= build/$(REAL)
@@ -249,7 +255,7 @@ count-render: $(BUILD)/svet
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
-	SVET_FLAGS="$(OPT) $(ARCH)" sh tools/tradeoffs.sh
+	SVET_FLAGS="$(OPT) $(ARCH) $(LTO)" sh tools/tradeoffs.sh
 
 # --- install ---------------------------------------------------------------
 install: all

@@ -36,12 +36,13 @@ static inline int bits_count(uint64_t x)
 #endif
 }
 
-/* The index (0 to 63) of the lowest set bit of x, which must not be 0,
- * by a loop. This function can't fail for x != 0. */
+/* The index (0 to 63) of the lowest set bit of x, by a loop; 64 for
+ * x = 0 (which bits_lowest() must not be given). This function can't
+ * fail. */
 static inline int bits_lowest_plain(uint64_t x)
 {
     int j = 0;
-    for (; !(x & 1); x >>= 1)
+    for (; j < 64 && !(x & 1); x >>= 1)
         j++;
     return j;
 }

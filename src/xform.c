@@ -358,8 +358,10 @@ static inline bool object_ray(const xf_shape *sh, const ray_t *r,
      * component makes ro->d NaN below whatever m is), and ilogb only for
      * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
     real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
-    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)))
+    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17))) {
+        rs->v[6] = rs->v[7] = 0; /* leaves_box()'s fourth lane reads v[6] */
         return object_ray_scaled(sh, r, m, &rs->r, k);
+    }
     *k = 0;
 #if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
     /* apply() with SSE, lane i for row i: the columns of inv times the

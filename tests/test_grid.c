@@ -3,8 +3,10 @@
  * (about k^3 N cells over the box's aspect), every triangle listed in
  * every cell it overlaps (checked against clipping the triangle to the
  * cell, an independent method), the 3D-DDA's cell counts on rays whose
- * path is known, the hierarchy's refinement and its limits.
- * Agreement with brute force: tests/test_accel.c.
+ * path is known, the hierarchy's refinement and its limits, and the
+ * packets of camera rays (Wald et al. 2006) against single rays and brute
+ * force, bad rays included. Agreement with brute force through accel.h:
+ * tests/test_accel.c.
  */
 #include "testutil.h"
 #include "grid.h"
@@ -655,8 +657,7 @@ static int tile_rays(ray_t *out, const VECTOR3 o, const VECTOR3 f,
 
 /* Every ray of a packet answered by grid_intersect_packet() as
  * grid_intersect() answers it alone, and as brute force: found, the
- * primitive, t and the barycentrics bit for bit, and the counters of
- * work untouched where the ray missed the grid. Returns the hits. */
+ * primitive, t and the barycentrics bit for bit. Returns the hits. */
 static long check_packet(const grid_t *g, const primset_t *ps,
                          const ray_t *r, const real *tmax, int n)
 {
@@ -805,6 +806,66 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
 }
 END_TEST
 
+/* Rays a caller should not send, in packets: a NaN or infinite direction,
+ * a NaN origin (on the packet's first ray, whose origin the others are
+ * compared with), tmax below tmin or NaN; each answers as it does alone
+ * and as brute force does (no hit), and spoils nothing for the rays
+ * beside it. n = 0 and n < 0 leave the queries as they were. */
+START_TEST(packets_with_bad_rays_answer_as_single_rays)
+{
+    svet_error e;
+    meshgen_scene_t s;
+    ck_assert(meshgen_sphere_grid(&s, 2, 2000, &e) == SVET_OK);
+    primset_t ps;
+    ck_assert(primset_build(&ps, s.objs, s.nobjs, &e) == SVET_OK);
+    const real nan = (real)NAN, inf = (real)INFINITY;
+    long cases = 0, hits = 0;
+    for (int variant = 0; variant < 4; variant++) {
+        grid_t *g = variant_grid(&ps, variant, 2, 8);
+        VECTOR3 o = { -9, 2, 2 }, f = { 1, 0, 0 };
+        VECTOR3 r = { 0, REAL_C(0.4), 0 }, up = { 0, 0, REAL_C(0.4) };
+        for (int bad = 0; bad < 7; bad++) {
+            ray_t rays[GRID_PACKET_MAX];
+            real tmax[GRID_PACKET_MAX];
+            int n = tile_rays(rays, o, f, r, up, 8, 8, 0, 0, 8, 8);
+            for (int i = 0; i < n; i++)
+                tmax[i] = inf;
+            for (int i = bad % 2; i < n; i += 5) {
+                switch (bad) {
+                case 0: rays[i].d[i % 3] = nan; break;
+                case 1: rays[i].d[i % 3] = inf; break;
+                case 2: tmax[i] = -1; break;
+                case 3: tmax[i] = nan; break;
+                case 4: rays[i].o[i % 3] = nan; break;
+                case 5: vec_set(rays[i].d, 0, 0, 0); break;
+                default: rays[i].d[0] = -inf; break;
+                }
+            }
+            if (bad == 6) /* the first ray's origin spoilt */
+                rays[0].o[0] = -inf;
+            hits += check_packet(g, &ps, rays, tmax, n);
+            cases += n;
+        }
+        /* n = 0 and n < 0: nothing read, nothing written */
+        primset_query_t q[2], before[2];
+        ray_t ray = { { 0, 2, 2 }, { 1, 0, 0 } };
+        primset_query_init(&q[0], &ray, 0, inf);
+        primset_query_init(&q[1], &ray, 0, inf);
+        memcpy(before, q, sizeof q);
+        grid_intersect_packet(g, q, 0);
+        grid_intersect_packet(g, q, -3);
+        ck_assert(memcmp(before, q, sizeof q) == 0);
+        grid_free(g);
+    }
+    ck_assert(hits > cases / 8); /* the good rays beside them hit */
+    test_report_cases("packets_with_bad_rays_answer_as_single_rays", cases);
+    primset_free(&ps);
+    for (int i = 0; i < s.nobjs; i++)
+        cobject_free(s.objs[i]);
+    free(s.objs);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("grid");
@@ -819,6 +880,7 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    cells_of_triangles_and_other_primitives_answer_as_brute_force);
     tcase_add_test(tc, packets_answer_as_single_rays_and_brute_force);
+    tcase_add_test(tc, packets_with_bad_rays_answer_as_single_rays);
     suite_add_tcase(s, tc);
     return s;
 }
