@@ -6,6 +6,9 @@
  * Graphics Interface 1989), in which a cell holding too many primitives
  * holds a grid of its own. Both index a primset_t; the renderer reaches
  * them through accel.h, in the programs that offer them (grid_accels).
+ * Coherent camera rays can also walk the grid together, in packets
+ * (grid_intersect_packet: the coherent grid traversal of Wald, Ize,
+ * Kensler, Knoll & Parker, SIGGRAPH 2006), with the same answers.
  * Tests: tests/test_grid.c (agreement with brute force: tests/test_accel.c)
  */
 #ifndef SVET_GRID_H

@@ -399,11 +399,15 @@ static inline bool ray_ok_plain(const ray_t *r, real tmin, real tmax)
  * (o and d are adjacent in ray_t): the lanes of x - x are 0 where x is
  * finite and NaN elsewhere, and 0 <= lane fails only for NaN; a finite d
  * is nonzero exactly when some |d_i| > 0. */
-_Static_assert(offsetof(ray_t, d) == 3 * sizeof(real),
+_Static_assert(offsetof(ray_t, d) == 3 * sizeof(real) &&
+               sizeof(ray_t) == 6 * sizeof(real),
                "ray_t: d follows o without padding");
 static inline bool ray_ok(const ray_t *r, real tmin, real tmax)
 {
-    const real *c = r->o; /* o[0..2], then d[0..2] */
+    /* o[0..2], then d[0..2], copied as six reals (reading d through o's
+     * pointer would index past o's array); gcc makes it plain loads */
+    real c[6];
+    memcpy(c, r, sizeof c);
     const vreal zero = V_SET1(0), sign = V_SET1(-REAL_C(0.0));
 #ifdef SVET_DOUBLE
     vreal a = V_LOAD(c), b = V_LOAD(c + 2), e = V_LOAD(c + 4); /* o0 o1, o2 d0, d1 d2 */

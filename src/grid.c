@@ -1516,6 +1516,10 @@ bool grid_occluded(const grid_t *g, primset_query_t *q)
 /* Rays a packet's arrays hold: GRID_PACKET_MAX, a multiple of 4 (the
  * vector loops of pk_slice_boxes() and pk_cell_rays()). */
 #define PK_N GRID_PACKET_MAX
+/* the live rays are the bits of a uint64_t, and the groups of four rays'
+ * boxes come in fours (pk_slice_boxes) */
+_Static_assert(GRID_PACKET_MAX <= 64 && GRID_PACKET_MAX % 16 == 0,
+               "GRID_PACKET_MAX: at most 64, a multiple of 16");
 
 /* A packet on its walk. Distances along the major axis k are measured
  * from the common origin in the rays' direction: s = (x_k - o_k) sg, so

@@ -96,8 +96,6 @@ void lightset_free(lightset_t *ls)
     memset(ls, 0, sizeof *ls);
 }
 
-
-
 int lightset_find_area(const lightset_t *ls, const COBJECT *obj)
 {
     for (int i = 0; i < ls->n; i++)

@@ -378,5 +378,3 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
         return material_sample_general(m, wo, u, s);
     return sample_start(wo, s) && lambert_sample(m, wo, u, s);
 }
-
-
