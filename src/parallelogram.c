@@ -272,19 +272,6 @@ static inline bool rejects(const para_cull_t *k, const ray_t *r,
            misses_quad(k, r, &pl);
 }
 
-/* The watertight test of the two triangles A = (c0, c1, c2) and
- * B = (c0, c2, c3), sharing what they share: the ray is prepared once,
- * each corner is sheared once, and the diagonal's edge function once
- * (B's edge (c0, c2) is -edge(c2, c0) exactly, triangle.h). Each triangle
- * then gets exactly the numbers it would get on its own, so the answers
- * are those of two triangle tests bit for bit, and watertight as they
- * are: a parallelogram sharing an edge with another shears the same two
- * corners into the same points. Only a zero edge function, which needs
- * the exact recomputation, takes the way of two separate tests. No early
- * check of the corners' z against (tmin, tmax) here any more: every
- * caller has made rejects() first, whose stays_before() turns away what
- * that check did (a segment that ends before the plane), so it found
- * almost nothing left. */
 /* A sheared corner in a slot of four reals, so that a vector of four
  * can be stored into it whole (shear_corners()). */
 typedef union {
@@ -356,6 +343,19 @@ static inline void shear_corners(const para_shape *sh,
 }
 #endif
 
+/* The watertight test of the two triangles A = (c0, c1, c2) and
+ * B = (c0, c2, c3), sharing what they share: the ray is prepared once,
+ * each corner is sheared once, and the diagonal's edge function once
+ * (B's edge (c0, c2) is -edge(c2, c0) exactly, triangle.h). Each triangle
+ * then gets exactly the numbers it would get on its own, so the answers
+ * are those of two triangle tests bit for bit, and watertight as they
+ * are: a parallelogram sharing an edge with another shears the same two
+ * corners into the same points. Only a zero edge function, which needs
+ * the exact recomputation, takes the way of two separate tests. No early
+ * check of the corners' z against (tmin, tmax) here any more: every
+ * caller has made rejects() first, whose stays_before() turns away what
+ * that check did (a segment that ends before the plane), so it found
+ * almost nothing left. */
 static bool exact(const para_shape *sh, int prim, const triangle_ray_t *pr,
                   real tmin, real tmax, hit_t *hit)
 {
