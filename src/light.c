@@ -131,6 +131,19 @@ static real env_pdf(const PATHPOINT *pp, bool two_sided, const VECTOR3 wi)
     return c * side > 0 ? c * side * REAL_INV_PI : 0;
 }
 
+/* An area light's solid-angle density for MIS, p_A d^2 / cos_l with
+ * uniform area sampling, p_A = 1/A (every app. D primitive): d2 the
+ * squared distance, cos_l > 0 the cosine at the light. light_sample()'s
+ * pdf_mis and light_pdf() both make it here, so that they agree bit for
+ * bit (the MIS weights of a path sum to 1 only then). */
+static inline real area_pdf(const light_t *l, real d2, real cos_l)
+{
+    real area = l->area; /* o->ops->area(o), as lightset_build asked */
+    if (!(cos_l > 0) || !(area > 0) || !isfinite(area))
+        return 0;
+    return d2 / (area * cos_l);
+}
+
 bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
                   const real u[2], light_sample_t *s)
 {
@@ -173,9 +186,8 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
             return false;
         /* light_pdf() on (wi, p, n) = (s->wi, cs.p, cs.n) makes this
          * cos_l, d and d2 again by the same operations on the same
-         * numbers, and passes the same tests (cos_l > 0 here) */
-        real area = l->area;
-        s->pdf_mis = area > 0 && isfinite(area) ? d2 / (area * cos_l) : 0;
+         * numbers */
+        s->pdf_mis = area_pdf(l, d2, cos_l);
         s->Li = l->emission->radiance;
         s->delta = false;
         s->infinite = false;
@@ -227,12 +239,7 @@ real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
         cos_l = fabs(cos_l);
         VECTOR3 d;
         vec_sub(d, p, pp->cross_point);
-        real d2 = vec_length2(d);
-        real area = l->area; /* o->ops->area(o), as lightset_build asked */
-        if (!(cos_l > 0) || !(area > 0) || !isfinite(area))
-            return 0;
-        /* uniform area sampling: p_A = 1/A (every app. D primitive) */
-        return d2 / (area * cos_l);
+        return area_pdf(l, vec_length2(d), cos_l);
     }
     case LIGHT_ENVIRONMENT:
         return env_pdf(pp, two_sided, wi);
