@@ -183,12 +183,9 @@ real brdf_fresnel_cos(real cos_o, real eta)
 
 /* --- geometry shared by the lobes -------------------------------------- */
 
-/* wi and wo on the same side of the surface, neither in the tangent plane */
-static bool same_side(const VECTOR3 wi, const VECTOR3 wo)
-{
-    return brdf_same_side(wi, wo);
-}
-
+/* wi and wo on opposite sides of the surface, neither in the tangent
+ * plane: where diffuse transmission is not zero (brdf_same_side(), in
+ * brdf.h, is the reflection lobes' test) */
 static bool opposite_sides(const VECTOR3 wi, const VECTOR3 wo)
 {
     return fabs(wi[Z]) >= BRDF_COS_MIN && fabs(wo[Z]) >= BRDF_COS_MIN &&
@@ -208,7 +205,7 @@ static void upper(VECTOR3 a, const VECTOR3 w, bool flip)
 static bool upper_pair(const VECTOR3 wi, const VECTOR3 wo, VECTOR3 a,
                        VECTOR3 o)
 {
-    if (!same_side(wi, wo))
+    if (!brdf_same_side(wi, wo))
         return false;
     upper(a, wi, wo[Z] < 0);
     upper(o, wo, wo[Z] < 0);
@@ -508,7 +505,7 @@ RADIANCE brdf_eval(const brdf_t *b, const VECTOR3 wi, const VECTOR3 wo)
 {
     switch (b->kind) {
     case BRDF_LAMBERT: /* eq. (1.5) */
-        return same_side(wi, wo) ? rad_scale(b->rho, REAL_INV_PI) : black;
+        return brdf_same_side(wi, wo) ? rad_scale(b->rho, REAL_INV_PI) : black;
     case BRDF_DIFFUSE_TRANSMISSION:
         return opposite_sides(wi, wo) ? rad_scale(b->rho, REAL_INV_PI)
                                       : black;
@@ -526,7 +523,7 @@ real brdf_pdf(const brdf_t *b, const VECTOR3 wi, const VECTOR3 wo)
 {
     switch (b->kind) {
     case BRDF_LAMBERT:
-        return same_side(wi, wo) ? fabs(wi[Z]) * REAL_INV_PI : 0;
+        return brdf_same_side(wi, wo) ? fabs(wi[Z]) * REAL_INV_PI : 0;
     case BRDF_DIFFUSE_TRANSMISSION:
         return opposite_sides(wi, wo) ? fabs(wi[Z]) * REAL_INV_PI : 0;
     case BRDF_PHONG:
