@@ -132,8 +132,9 @@ RADIANCE material_eval(const material_t *m, const VECTOR3 wi,
 
 /* material_eval(m, wi, wo), with *pdf = material_pdf(m, wi, wo): the
  * same answers bit for bit, in one call (light sampling asks for both;
- * a single Lambert lobe gets both from one side test). This function
- * can't fail. */
+ * a single Lambert lobe gets both from one side test). pdf may be NULL:
+ * then no pdf is made (light sampling without a MIS weight). This
+ * function can't fail. */
 RADIANCE material_eval_pdf(const material_t *m, const VECTOR3 wi,
                            const VECTOR3 wo, real *pdf);
 

@@ -85,14 +85,6 @@ real integrator_mis_weight(real a, real b)
     return 1 / (1 + r * r);
 }
 
-/* Whether light from behind the surface can scatter toward the viewer:
- * rho_t or rho_dt not black, as material_init() found once (the params
- * are those it was given). */
-static bool transmits(const material_t *m)
-{
-    return m->transmits;
-}
-
 static void draw2(real u[2], pcg32_t *g)
 {
     u[0] = pcg32_real(g);
@@ -120,8 +112,12 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
         return rad_grey(0);
     VECTOR3 wi;
     frame_to_local(wi, ls.wi, pp->u, pp->v, pp->n);
-    real pb; /* material_pdf(m, wi, wo), for the MIS weight below */
-    RADIANCE f = material_eval_pdf(m, wi, wo, &pb);
+    /* the MIS weight needs material_pdf(m, wi, wo), pb: not for a point
+     * light (a delta, weight 1) nor when BSDF hits are not counted, and
+     * then it is not made (NULL) */
+    const bool weigh = !ls.delta && mis;
+    real pb = 0;
+    RADIANCE f = material_eval_pdf(m, wi, wo, weigh ? &pb : NULL);
     if (rad_is_black(f) || rad_is_black(ls.Li))
         return rad_grey(0);
     /* visibility: a shadow ray between the two points, each offset off its
@@ -143,7 +139,7 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     if (it->tracer.occluded(it->tracer.ctx, &sr, 0, tmax, skip))
         return rad_grey(0);
     real w = 1;
-    if (!ls.delta && mis) {
+    if (weigh) {
         real pl = pmf * ls.pdf_mis; /* light_pdf(l, pp, two, ls.wi, ls.p, ls.n) */
         w = integrator_mis_weight(pl, pb);
     }
@@ -262,7 +258,9 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
             break;
 
         const material_t *m = obj->material;
-        const bool two = transmits(m);
+        /* whether light from behind the surface can scatter toward the
+         * viewer (rho_t or rho_dt not black, found by material_init) */
+        const bool two = m->transmits;
         VECTOR3 wo;
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
         if (nee && !material_is_specular(m)) {

@@ -287,13 +287,16 @@ RADIANCE material_eval_pdf(const material_t *m, const VECTOR3 wi,
     if (m->lambert) {
         const RADIANCE rho = m->comp[0].rho;
         if (!brdf_same_side(wi, wo)) {
-            *pdf = 0;
+            if (pdf)
+                *pdf = 0;
             return black; /* 0 + 0 */
         }
-        *pdf = rad_luminance(rho) > 0 ? fabs(wi[Z]) * REAL_INV_PI : 0;
+        if (pdf)
+            *pdf = rad_luminance(rho) > 0 ? fabs(wi[Z]) * REAL_INV_PI : 0;
         return rad_add(black, rad_scale(rho, REAL_INV_PI));
     }
-    *pdf = material_pdf(m, wi, wo);
+    if (pdf)
+        *pdf = material_pdf(m, wi, wo);
     return material_eval(m, wi, wo);
 }
 
