@@ -160,7 +160,10 @@ bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax);
  * force's parallelograms; accel.c gives the argument): a ray can meet a
  * curved or closed surface it leaves again. The answers are those of the
  * queries without skip, bit for bit (tests/test_accel.c compares them on
- * spawned rays). This function can't fail. */
+ * spawned rays). The renderer reaches these queries as accel_tracer_*()
+ * below, through tracer_t's untyped context; these two stay public as
+ * the typed ones for a program that holds an accel_t, and state the
+ * contract of skip once, here. This function can't fail. */
 bool accel_intersect_skip(const accel_t *a, const ray_t *r, real tmin,
                           real tmax, const COBJECT *const skip[2],
                           accel_hit_t *h);
@@ -182,16 +185,18 @@ bool accel_tracer_occluded(const void *a, const ray_t *r, real tmin,
 
 /* Whether a query takes ray r over (tmin, tmax) at all: all six
  * coordinates finite, d nonzero, tmin < tmax (a query answers "no hit"
- * otherwise). accel_ray_ok_plain is the same test without SIMD, for
- * tests. These functions can't fail. */
+ * otherwise). accel_ray_ok_plain is the same test without SIMD.
+ * Test hooks: tests/test_accel.c checks both against the definition (the
+ * queries make the test inline). These functions can't fail. */
 bool accel_ray_ok(const ray_t *r, real tmin, real tmax);
 bool accel_ray_ok_plain(const ray_t *r, real tmin, real tmax);
 
-/* For tests: bit k set when ray r passes the k-th culling sphere of a's
- * fast brute force (those of the objects given to accel_build() that
+/* Bit k set when ray r passes the k-th culling sphere of a's fast brute
+ * force (those of the objects given to accel_build() that
  * xform_culling_sphere() gives one, in their order; k < 64), as its
- * vector test finds it; 0 when a has no fast brute force. This function
- * can't fail. */
+ * vector test finds it; 0 when a has no fast brute force. Test hook:
+ * tests/test_accel.c compares each bit with xform_sphere_misses_ray().
+ * This function can't fail. */
 uint64_t accel_spheres_passed(const accel_t *a, const ray_t *r);
 
 /* Work done by one query, for the heat maps of ch. 7. */

@@ -158,12 +158,6 @@ RADIANCE material_eval_pdf(const material_t *m, const VECTOR3 wi,
 bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
                      brdf_sample_t *s);
 
-/* material_sample() without its shortcut for a single Lambert lobe: the
- * same answers, bit for bit, for any material (tests/test_material.c
- * compares them). This function can't fail. */
-bool material_sample_general(const material_t *m, const VECTOR3 wo,
-                             const real u[3], brdf_sample_t *s);
-
 /* The density of wi under material_sample, per unit solid angle, over the
  * non-delta components only: sum over them of P_k pdf_k(wi, wo). This
  * function can't fail. */

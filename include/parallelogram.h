@@ -72,8 +72,9 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
 
 /* The same answer, bit for bit, by a plain loop over the parallelograms:
  * what parallelogram_batch_cull runs where SSE2 is missing (it runs
- * several at once with SSE2 or AVX where they are there). For tests. This function
- * can't fail. */
+ * several at once with SSE2 or AVX where they are there). Test hook:
+ * tests/test_parallelogram.c compares the two. This function can't
+ * fail. */
 uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
                                         const ray_t *r, real tmin, real tmax,
                                         uint64_t want);

@@ -192,7 +192,8 @@ bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
 
 /* xform_intersect_unculled() without its shortcut for a box's slab that
  * the ray starts beyond and moves away from (leaves_box() in xform.c):
- * the same answers, bit for bit. For tests. This function can't fail. */
+ * the same answers, bit for bit. Test hook: tests/test_xform.c compares
+ * the two. This function can't fail. */
 bool xform_intersect_unseparated(const COBJECT *obj, int prim,
                                  const ray_t *r, real tmin, real tmax,
                                  hit_t *hit);
@@ -200,7 +201,8 @@ bool xform_intersect_unseparated(const COBJECT *obj, int prim,
 /* The surface() of an object from xform_new the general way: the inner
  * primitive's normals, derivatives and frame mapped to the world at every
  * hit. surface() gives the same bits; for a box it takes them from a
- * table made once per face. For tests. This function can't fail. */
+ * table made once per face. Test hook: tests/test_xform.c compares the
+ * two. This function can't fail. */
 void xform_surface_generic(const COBJECT *obj, const ray_t *r,
                            const hit_t *hit, PATHPOINT *pp);
 

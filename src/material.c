@@ -324,8 +324,11 @@ static inline bool sample_start(const VECTOR3 wo, brdf_sample_t *s)
     return fabs(wo[Z]) >= BRDF_COS_MIN;
 }
 
-bool material_sample_general(const material_t *m, const VECTOR3 wo,
-                             const real u[3], brdf_sample_t *s)
+/* material_sample() without its shortcut for a single Lambert lobe: the
+ * same answers, bit for bit, for any material (tests/test_material.c
+ * compares material_sample() on a material with m->lambert cleared). */
+static bool sample_general(const material_t *m, const VECTOR3 wo,
+                           const real u[3], brdf_sample_t *s)
 {
     if (!sample_start(wo, s))
         return false;
@@ -378,6 +381,6 @@ bool material_sample(const material_t *m, const VECTOR3 wo, const real u[3],
     /* the general way in a function of its own, so that the shortcut's
      * path saves none of the registers that one needs */
     if (!m->lambert)
-        return material_sample_general(m, wo, u, s);
+        return sample_general(m, wo, u, s);
     return sample_start(wo, s) && lambert_sample(m, wo, u, s);
 }
