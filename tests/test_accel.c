@@ -185,11 +185,44 @@ static void random_scene(scene_t_ *s, pcg32_t *g, int n, bool with_plane)
     }
 }
 
-/* Compare every kind with brute force on one ray; count hits. */
+/* Compare every kind with brute force on one ray, through accel_*() and
+ * the tracer's entries; count hits. */
 typedef struct {
     accel_t *a[NKIND];
     long rays, hits, mismatches;
 } bench_t;
+
+/* The tracer's entries (render.c calls them through tracer_t) on kind
+ * k: the answers of accel_intersect() and accel_occluded(), found and h,
+ * to the last bit, with and without an empty skip; on a miss the
+ * caller's hit and object keep what they held (a pattern of 0xa5 bytes
+ * and a pointer to the bench). */
+static void tracer_agrees(const bench_t *b, int k, const ray_t *r, real tmin,
+                          real tmax, bool found, const accel_hit_t *h)
+{
+    const COBJECT *const none[2] = { NULL, NULL };
+    for (int pass = 0; pass < 2; pass++) {
+        const COBJECT *const *skip = pass ? none : NULL;
+        hit_t th, mark;
+        memset(&mark, 0xa5, sizeof mark);
+        th = mark;
+        const COBJECT *obj = (const COBJECT *)(const void *)b;
+        bool f = accel_tracer_intersect(b->a[k], r, tmin, tmax, skip, &th,
+                                        &obj);
+        ck_assert_msg(f == found, "kind %d: the tracer found %d, "
+                      "accel_intersect %d", k, f, found);
+        if (f)
+            ck_assert(obj == h->obj && th.prim == h->hit.prim &&
+                      memcmp(&th.t, &h->hit.t, sizeof th.t) == 0 &&
+                      memcmp(th.b, h->hit.b, sizeof th.b) == 0);
+        else
+            ck_assert_msg(obj == (const COBJECT *)(const void *)b &&
+                          memcmp(&th, &mark, sizeof th) == 0,
+                          "kind %d: a miss wrote the caller's hit", k);
+        ck_assert(accel_tracer_occluded(b->a[k], r, tmin, tmax, skip) ==
+                  found);
+    }
+}
 
 static void compare(bench_t *b, const ray_t *r, real tmin, real tmax)
 {
@@ -201,6 +234,7 @@ static void compare(bench_t *b, const ray_t *r, real tmin, real tmax)
         ck_assert_msg(occ == found[k],
                       "kind %d: occluded %d but nearest found %d", k, occ,
                       found[k]);
+        tracer_agrees(b, k, r, tmin, tmax, found[k], &h[k]);
     }
     for (int k = 1; k < NKIND; k++) {
         bool same = found[k] == found[0];
