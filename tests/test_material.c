@@ -823,6 +823,66 @@ START_TEST(lambert_shortcut_answers_as_the_general_way_bit_for_bit)
 }
 END_TEST
 
+START_TEST(eval_pdf_answers_as_eval_and_pdf_on_every_kind_of_material)
+{
+    /* material_eval_pdf() outside the Lambert shortcut: on glass (delta
+     * lobes only: f black, pdf 0), Ward under a diffuse base (bounded
+     * and the book's), Phong with diffuse transmission, and a black
+     * material (no component), f and the pdf are material_eval()'s and
+     * material_pdf()'s bit for bit, and with a NULL pdf f alone is the
+     * same. Directions on both sides, grazing and in the tangent plane. */
+    material_t m[6];
+    material_params p;
+    ck_assert(material_glass(&m[0], rad_grey(REAL_C(0.1)), rad_grey(REAL_C(0.9)),
+                             REAL_C(1.5), NULL) == SVET_OK);
+    ck_assert(material_ward(&m[1], rad_grey(REAL_C(0.4)), rad_grey(REAL_C(0.5)),
+                            REAL_C(0.05), REAL_C(0.3), NULL) == SVET_OK);
+    material_params_default(&p);
+    p.rho_d = rad_make(REAL_C(0.2), REAL_C(0.3), REAL_C(0.1));
+    p.rho_g = rad_grey(REAL_C(0.6));
+    p.gloss = MATERIAL_GLOSS_WARD;
+    p.alpha_x = p.alpha_y = REAL_C(0.2);
+    ck_assert(material_init(&m[2], &p, NULL) == SVET_OK);
+    material_params_default(&p);
+    ck_assert(material_init(&m[3], &p, NULL) == SVET_OK); /* black */
+    material_params_default(&p);
+    p.rho_d = rad_grey(REAL_C(0.3));
+    p.rho_g = rad_grey(REAL_C(0.3));
+    p.rho_dt = rad_grey(REAL_C(0.3));
+    ck_assert(material_init(&m[4], &p, NULL) == SVET_OK);
+    material_params_default(&p); /* glass with a diffuse part */
+    p.rho_d = rad_grey(REAL_C(0.2));
+    p.rho_s = rad_grey(REAL_C(0.1));
+    p.rho_t = rad_grey(REAL_C(0.6));
+    p.eta = REAL_C(1.33);
+    ck_assert(material_init(&m[5], &p, NULL) == SVET_OK);
+    ck_assert(m[3].ncomp == 0 && !m[1].lambert && !m[2].lambert);
+    pcg32_t g;
+    pcg32_seed(&g, 71, 72);
+    long n = 0, nonzero = 0;
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 20000; j++, n++) {
+            VECTOR3 wi, wo;
+            random_dir(wi, &g);
+            random_dir(wo, &g);
+            if (j % 7 == 0)
+                wi[Z] = j % 14 == 0 ? 0 : REAL_C(1e-13);
+            if (j % 11 == 0) /* the mirror direction */
+                vec_set(wi, -wo[X], -wo[Y], wo[Z]);
+            real pe, pd = material_pdf(&m[i], wi, wo);
+            RADIANCE f = material_eval(&m[i], wi, wo);
+            ck_assert_msg(same_rad(material_eval_pdf(&m[i], wi, wo, &pe), f) &&
+                          same_bits(&pe, &pd, sizeof pe),
+                          "material %d, case %d", i, j);
+            ck_assert(same_rad(material_eval_pdf(&m[i], wi, wo, NULL), f));
+            nonzero += pd > 0;
+        }
+    ck_assert(nonzero > n / 4);
+    test_report_cases("eval_pdf_answers_as_eval_and_pdf_on_every_kind_of_"
+                      "material", n);
+}
+END_TEST
+
 START_TEST(transmits_and_specular_flags_say_what_the_material_holds)
 {
     /* material_t.transmits and .specular, set once by material_init,
@@ -891,6 +951,7 @@ Suite *test_suite(void)
     tcase_add_test(t, mixed_materials_sample_wi_with_their_pdf);
     tcase_add_test(t, a_wrong_mixture_pdf_fails_the_chi2_test);
     tcase_add_test(t, lambert_shortcut_answers_as_the_general_way_bit_for_bit);
+    tcase_add_test(t, eval_pdf_answers_as_eval_and_pdf_on_every_kind_of_material);
     tcase_add_test(t, transmits_and_specular_flags_say_what_the_material_holds);
     suite_add_tcase(s, t);
     return s;
