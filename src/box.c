@@ -44,6 +44,11 @@ static inline bool slab(const box_shape *s, const ray_t *r, int k, real *lo,
     if (t1 < *hi) {
         *hi = t1;
         *face_hi = f1;
+    } else if (t1 != t1) {
+        /* an exit that overflowed to -infinity (a ray far beyond the
+         * slab, moving away slowly) comes out of the push as NaN, which
+         * no comparison would keep: the slab lies behind the ray */
+        return false;
     }
     return true;
 }

@@ -98,6 +98,38 @@ START_TEST(box_respects_the_open_interval)
 }
 END_TEST
 
+START_TEST(a_ray_whose_slab_times_overflow_never_hits)
+{
+    /* A ray far beyond the x slab, moving away from it slowly: its slab
+     * times (1 - o_x) / d_x overflow to -infinity, and the other slabs
+     * alone would let it in at t = 4. It never reaches the box; nor do
+     * the rays moving toward it from there, whose entry overflows to
+     * +infinity. Origins from 2^100 to REAL_MAX (float: all overflow at
+     * d_x = 2^-40; double: those from 2^984). */
+    COBJECT *o = box(-1, -1, -1, 1, 1, 1);
+    hit_t h;
+    long n = 0;
+    for (int e = 100; e <= REAL_MAX_EXP; e += 4) {
+        for (int s = -1; s <= 1; s += 2, n++) {
+            real far = e == REAL_MAX_EXP ? REAL_MAX : ldexp(REAL_C(1.0), e - 1);
+            ray_t away = { { s * far, 5, 0 },
+                           { s * ldexp(REAL_C(1.0), -40), -1, 0 } };
+            ray_t toward = away;
+            toward.d[X] = -away.d[X];
+            ck_assert_msg(!cobject_intersect(o, &away, 0, (real)INFINITY, &h),
+                          "o_x %a moving away: hit at %a", (double)away.o[X],
+                          (double)h.t);
+            ck_assert_msg(!cobject_intersect(o, &toward, 0, (real)INFINITY,
+                                             &h),
+                          "o_x %a moving toward: hit at %a",
+                          (double)toward.o[X], (double)h.t);
+        }
+    }
+    test_report_cases("a_ray_whose_slab_times_overflow_never_hits", 2 * n);
+    cobject_free(o);
+}
+END_TEST
+
 START_TEST(rays_parallel_to_a_face_and_in_its_plane)
 {
     COBJECT *o = box(0, 0, 0, 1, 1, 1);
@@ -341,6 +373,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, box_entry_and_exit_hits_are_exact);
     tcase_add_test(tc, every_face_has_an_outward_right_handed_frame);
     tcase_add_test(tc, box_respects_the_open_interval);
+    tcase_add_test(tc, a_ray_whose_slab_times_overflow_never_hits);
     tcase_add_test(tc, rays_parallel_to_a_face_and_in_its_plane);
     tcase_add_test(tc, no_ray_slips_through_the_edges_of_a_box);
     tcase_add_test(tc, box_rejects_bad_input_and_allows_a_flat_box);
