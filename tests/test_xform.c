@@ -660,6 +660,51 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 }
 END_TEST
 
+/* One ray r over (tmin, tmax) of the slab test below, on the transformed
+ * box o (inner: the same box untransformed): xform_intersect_unculled()
+ * and xform_intersect_unseparated() give the same answer and hit bytes;
+ * where d needs no rescaling, the answer is also the box's own on the
+ * ray mapped to object space by the plain rows (xform_point() and
+ * xform_vector() with the inverse; xform.c maps it with SSE in float).
+ * Adds 1 to *turned on a miss; returns whether the mapped check ran. */
+static bool as_plain_rows(const COBJECT *o, const COBJECT *inner,
+                          const ray_t *r, real tmin, real tmax, long *turned)
+{
+    hit_t h1, h2;
+    memset(&h1, 0x5a, sizeof h1);
+    memset(&h2, 0x5a, sizeof h2);
+    bool a = xform_intersect_unculled(o, 0, r, tmin, tmax, &h1);
+    bool b = xform_intersect_unseparated(o, 0, r, tmin, tmax, &h2);
+    ck_assert_msg(a == b, "o (%a %a %a) d (%a %a %a) (%a, %a): %d, "
+                  "unseparated %d", (double)r->o[X], (double)r->o[Y],
+                  (double)r->o[Z], (double)r->d[X], (double)r->d[Y],
+                  (double)r->d[Z], (double)tmin, (double)tmax, (int)a, (int)b);
+    ck_assert(memcmp(&h1, &h2, sizeof h1) == 0);
+    *turned += !a;
+    real dm = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
+    if (!(dm >= REAL_C(0x1p-16) && dm < REAL_C(0x1p17)))
+        return false;
+    const xform_t *xf = xform_of(o);
+    xform_t back = *xf;
+    memcpy(back.m, xf->inv, sizeof back.m);
+    ray_t ro;
+    xform_point(&back, ro.o, r->o);
+    xform_vector(&back, ro.d, r->d);
+    hit_t h3 = { 0, 0, { 0, 0, 0 } };
+    bool c = vec_is_finite(ro.o) && vec_is_finite(ro.d) &&
+             (ro.d[X] != 0 || ro.d[Y] != 0 || ro.d[Z] != 0) &&
+             inner->ops->intersect(inner, 0, &ro, tmin, tmax, &h3) &&
+             h3.t > tmin && h3.t < tmax;
+    ck_assert_msg(c == b, "o (%a %a %a) d (%a %a %a): %d, plain rows %d",
+                  (double)r->o[X], (double)r->o[Y], (double)r->o[Z],
+                  (double)r->d[X], (double)r->d[Y], (double)r->d[Z], (int)b,
+                  (int)c);
+    ck_assert(!c || (memcmp(&h3.t, &h2.t, sizeof h3.t) == 0 &&
+                     h3.prim == h2.prim &&
+                     memcmp(h3.b, h2.b, sizeof h3.b) == 0));
+    return true;
+}
+
 START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
 {
     /* xform_intersect_unculled() turns away, for a transformed box, a ray
@@ -674,10 +719,13 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
      * or short; random maps (mirrors included), thin boxes, scales 2^-20
      * to 2^20. Where d needs no rescaling, the answer is also the box's
      * own on the ray mapped to object space by the plain rows (the SSE
-     * object-space ray of xform.c against them). */
+     * object-space ray of xform.c against them). A quarter of the rays
+     * again with a NaN, an infinity, REAL_MAX or 2^120 in o or d (their
+     * object-space images overflow under the smaller scales): the same
+     * answers as the plain rows give. */
     pcg32_t g;
     pcg32_seed(&g, 91, 92);
-    long n = 0, turned = 0, mapped = 0;
+    long n = 0, turned = 0, mapped = 0, extreme = 0, extreme_missed = 0;
     for (int i = 0; i < 300; i++) {
         VECTOR3 lo, hi, s3;
         random_box(&g, i, lo, hi, s3);
@@ -717,37 +765,20 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
                 real tmin = tmins[pcg32_bounded(&g, 3)];
                 real tmax = pcg32_next(&g) % 4 ? (real)INFINITY
                                                : 4 * pcg32_real(&g);
-                hit_t h1, h2;
-                memset(&h1, 0x5a, sizeof h1);
-                memset(&h2, 0x5a, sizeof h2);
-                bool a = xform_intersect_unculled(o, 0, &r, tmin, tmax, &h1);
-                bool b = xform_intersect_unseparated(o, 0, &r, tmin, tmax, &h2);
-                ck_assert(a == b);
-                ck_assert(memcmp(&h1, &h2, sizeof h1) == 0);
                 n++;
-                turned += !a;
-                /* and the box's own test on the ray mapped by
-                 * xform_point() and xform_vector() with the inverse (the
-                 * plain rows; xform.c maps it with SSE in float) */
-                real dm = real_max(fabs(r.d[X]),
-                                   real_max(fabs(r.d[Y]), fabs(r.d[Z])));
-                if (dm >= REAL_C(0x1p-16) && dm < REAL_C(0x1p17)) {
-                    xform_t back = *xf;
-                    memcpy(back.m, xf->inv, sizeof back.m);
-                    ray_t ro;
-                    xform_point(&back, ro.o, r.o);
-                    xform_vector(&back, ro.d, r.d);
-                    hit_t h3 = { 0, 0, { 0, 0, 0 } };
-                    bool c = vec_is_finite(ro.o) && vec_is_finite(ro.d) &&
-                             (ro.d[X] != 0 || ro.d[Y] != 0 || ro.d[Z] != 0) &&
-                             inner->ops->intersect(inner, 0, &ro, tmin, tmax,
-                                                   &h3) &&
-                             h3.t > tmin && h3.t < tmax;
-                    ck_assert(c == b);
-                    ck_assert(!c || (memcmp(&h3.t, &h2.t, sizeof h3.t) == 0 &&
-                                     h3.prim == h2.prim &&
-                                     memcmp(h3.b, h2.b, sizeof h3.b) == 0));
-                    mapped++;
+                mapped += as_plain_rows(o, inner, &r, tmin, tmax, &turned);
+                if (j % 4 == 0) {
+                    /* a NaN, an infinity, or a number whose image in
+                     * object space may overflow, in o or d */
+                    const real bad[6] = { (real)NAN, (real)INFINITY,
+                                          -(real)INFINITY, REAL_MAX,
+                                          -REAL_MAX, REAL_C(0x1p120) };
+                    ray_t e = r;
+                    real *c = pcg32_next(&g) % 2 ? e.o : e.d;
+                    c[pcg32_bounded(&g, 3)] = bad[pcg32_bounded(&g, 6)];
+                    extreme++;
+                    mapped += as_plain_rows(o, inner, &e, tmin, tmax,
+                                            &extreme_missed);
                 }
                 /* then a ray spawned from the hit, outward or inward */
                 hit_t h = { 0, 0, { 0, 0, 0 } };
@@ -776,8 +807,9 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
     ck_assert(n > 200000);
     ck_assert(turned > n / 10);
     ck_assert(mapped > n / 2);
+    ck_assert(extreme > n / 8 && extreme_missed > extreme / 2);
     test_report_cases("leaving_a_box_slab_answers_as_the_full_test_bit_for_bit",
-                      n);
+                      n + extreme);
 }
 END_TEST
 
