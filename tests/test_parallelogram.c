@@ -653,6 +653,66 @@ START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
 }
 END_TEST
 
+START_TEST(parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays)
+{
+    /* The vector batch and its plain loop on rays whose coordinates and
+     * interval ends are drawn from zeros of both signs, the smallest
+     * subnormal, 1, numbers whose products overflow (2^70, REAL_MAX),
+     * infinities and NaN (one to six of them at once), over the Cornell
+     * box's walls and random parallelograms: the same bits. */
+    const real pick[] = { 0, REAL_C(-0.0), REAL_TRUE_MIN, 1, REAL_C(-2.5),
+                          REAL_C(0x1p70), -REAL_C(0x1p70), REAL_MAX,
+                          -REAL_MAX, (real)INFINITY, -(real)INFINITY,
+                          (real)NAN };
+    const uint32_t np = (uint32_t)(sizeof pick / sizeof pick[0]);
+    pcg32_t g;
+    pcg32_seed(&g, 53, 54);
+    COBJECT *o[PARALLELOGRAM_BATCH_MAX];
+    int m = 0;
+    while (m < 21) {
+        VECTOR3 c0, c1, c3;
+        for (int a = 0; a < 3; a++) {
+            c0[a] = m < 7 ? cbox[m][0][a] : 4 * pcg32_real(&g) - 2;
+            c1[a] = m < 7 ? cbox[m][1][a] : c0[a] + 2 * pcg32_real(&g) - 1;
+            c3[a] = m < 7 ? cbox[m][3][a] : c0[a] + 2 * pcg32_real(&g) - 1;
+        }
+        svet_error err;
+        o[m] = parallelogram_new(c0, c1, c3, &err);
+        if (o[m])
+            m++;
+    }
+    parallelogram_batch_t *all =
+        parallelogram_batch_new((const COBJECT *const *)o, m);
+    ck_assert_ptr_nonnull(all);
+    long n = 0, kept = 0;
+    for (int j = 0; j < 200000; j++, n++) {
+        real v[8];
+        for (int k = 0; k < 8; k++)
+            v[k] = pcg32_next(&g) % 3 ? 6 * pcg32_real(&g) - 3
+                                      : pick[pcg32_bounded(&g, np)];
+        ray_t r;
+        vec_set(r.o, v[0], v[1], v[2]);
+        vec_set(r.d, v[3], v[4], v[5]);
+        real tmin = j % 2 ? 0 : v[6], tmax = j % 3 ? (real)INFINITY : v[7];
+        uint64_t want = ~(uint64_t)0;
+        uint64_t mask = parallelogram_batch_cull(all, &r, tmin, tmax, want);
+        ck_assert_msg(mask == parallelogram_batch_cull_plain(all, &r, tmin,
+                                                             tmax, want),
+                      "o (%a %a %a) d (%a %a %a) (%a, %a)", (double)r.o[X],
+                      (double)r.o[Y], (double)r.o[Z], (double)r.d[X],
+                      (double)r.d[Y], (double)r.d[Z], (double)tmin,
+                      (double)tmax);
+        kept += mask != 0;
+    }
+    ck_assert(kept > n / 20 && kept < n - n / 20);
+    parallelogram_batch_free(all);
+    for (int i = 0; i < m; i++)
+        cobject_free(o[i]);
+    test_report_cases("parallelogram_batch_answers_as_its_plain_loop_on_"
+                      "extreme_rays", n);
+}
+END_TEST
+
 START_TEST(parallelogram_rejects_degenerate_and_non_parallelogram_input)
 {
     svet_error err;
@@ -833,6 +893,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, segments_that_end_before_the_plane_lose_no_hit);
     tcase_add_test(tc,
                    parallelogram_batch_answers_as_each_parallelogram_bit_for_bit);
+    tcase_add_test(tc,
+                   parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays);
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);
