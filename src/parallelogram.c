@@ -267,9 +267,10 @@ static inline bool rejects(const para_cull_t *k, const ray_t *r,
 {
     plane_ray_t pl;
     plane_ray(k, r, rs, &pl);
-    return ((tmin >= 0) &
-            (leaves_plane(k, &pl) | stays_before(k, &pl, tmax))) |
-           misses_quad(k, r, &pl);
+    /* & and | on purpose: every test made, no branch between them */
+    return ((int)(tmin >= 0) &
+            ((int)leaves_plane(k, &pl) | (int)stays_before(k, &pl, tmax))) |
+           (int)misses_quad(k, r, &pl);
 }
 
 /* A sheared corner in a slot of four reals, so that a vector of four
@@ -668,9 +669,9 @@ static void dual_vectors(const para_shape *sh, para_cull_t *kc)
 {
     long double E1[3], E2[3], n[3], x[3], y[3];
     for (int k = 0; k < 3; k++) {
-        E1[k] = (long double)sh->c[1][k] - sh->c[0][k];
-        E2[k] = (long double)sh->c[3][k] - sh->c[0][k];
-        n[k] = sh->n[k];
+        E1[k] = (long double)sh->c[1][k] - (long double)sh->c[0][k];
+        E2[k] = (long double)sh->c[3][k] - (long double)sh->c[0][k];
+        n[k] = (long double)sh->n[k];
     }
     for (int k = 0; k < 3; k++) {
         int i = (k + 1) % 3, j = (k + 2) % 3;
@@ -700,13 +701,13 @@ static void dual_vectors(const para_shape *sh, para_cull_t *kc)
  * positive or 2 / T overflows. */
 static real k_area(const para_shape *sh)
 {
-    long double T = INFINITY;
+    long double T = (long double)INFINITY;
     for (int tri = 0; tri < 2; tri++) {
         const real *p = sh->c[0], *q = sh->c[1 + tri], *w = sh->c[2 + tri];
         long double a[3], b[3], c2 = 0;
         for (int k = 0; k < 3; k++) {
-            a[k] = (long double)q[k] - p[k];
-            b[k] = (long double)w[k] - p[k];
+            a[k] = (long double)q[k] - (long double)p[k];
+            b[k] = (long double)w[k] - (long double)p[k];
         }
         for (int k = 0; k < 3; k++) {
             int i = (k + 1) % 3, j = (k + 2) % 3;

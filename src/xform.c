@@ -114,7 +114,7 @@ static void affine_mul(real *out, const real *a, const real *b)
         for (int j = 0; j < 4; j++) {
             ld sum = j == 3 ? (ld)AT(a, i, 3) : 0;
             for (int k = 0; k < 3; k++)
-                sum += (ld)AT(a, i, k) * AT(b, k, j);
+                sum += (ld)AT(a, i, k) * (ld)AT(b, k, j);
             r[i][j] = (real)sum;
         }
     memcpy(out, r, sizeof r);
@@ -136,13 +136,17 @@ xform_t xform_compose(xform_t first, xform_t then)
  * product of the column lengths; the ratio is scale-free). */
 static ld det3(const real *m, bool *regular)
 {
-    ld d = (ld)AT(m, 0, 0) * ((ld)AT(m, 1, 1) * AT(m, 2, 2) - (ld)AT(m, 1, 2) * AT(m, 2, 1)) -
-           (ld)AT(m, 0, 1) * ((ld)AT(m, 1, 0) * AT(m, 2, 2) - (ld)AT(m, 1, 2) * AT(m, 2, 0)) +
-           (ld)AT(m, 0, 2) * ((ld)AT(m, 1, 0) * AT(m, 2, 1) - (ld)AT(m, 1, 1) * AT(m, 2, 0));
+    ld a[3][3]; /* the entries, widened (exactly) */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            a[i][j] = (ld)AT(m, i, j);
+    ld d = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     ld h = 1;
     for (int j = 0; j < 3; j++)
-        h *= sqrtl((ld)AT(m, 0, j) * AT(m, 0, j) + (ld)AT(m, 1, j) * AT(m, 1, j) +
-                   (ld)AT(m, 2, j) * AT(m, 2, j));
+        h *= sqrtl(a[0][j] * a[0][j] + a[1][j] * a[1][j] +
+                   a[2][j] * a[2][j]);
     *regular = isfinite(d) && fabsl(d) > 64 * (ld)REAL_EPSILON * h;
     return d;
 }
@@ -165,15 +169,15 @@ static svet_status inverse_of(const real *m, real *out,
             /* cofactor of AT(m, j, i), the adjugate's (i, j) entry */
             int r0 = (j + 1) % 3, r1 = (j + 2) % 3;
             int c0 = (i + 1) % 3, c1 = (i + 2) % 3;
-            a[i][j] = ((ld)AT(m, r0, c0) * AT(m, r1, c1) -
-                       (ld)AT(m, r0, c1) * AT(m, r1, c0)) / d;
+            a[i][j] = ((ld)AT(m, r0, c0) * (ld)AT(m, r1, c1) -
+                       (ld)AT(m, r0, c1) * (ld)AT(m, r1, c0)) / d;
         }
     real r[3][4];
     for (int i = 0; i < 3; i++) {
         ld t = 0;
         for (int k = 0; k < 3; k++) {
             r[i][k] = (real)a[i][k];
-            t -= a[i][k] * AT(m, k, 3);
+            t -= a[i][k] * (ld)AT(m, k, 3);
         }
         r[i][3] = (real)t;
     }
@@ -815,7 +819,7 @@ static bool is_similarity(const real *m)
         for (int j = 0; j < 3; j++) {
             g[i][j] = 0;
             for (int k = 0; k < 3; k++)
-                g[i][j] += (ld)AT(m, k, i) * AT(m, k, j);
+                g[i][j] += (ld)AT(m, k, i) * (ld)AT(m, k, j);
         }
     tr = (g[0][0] + g[1][1] + g[2][2]) / 3;
     for (int i = 0; i < 3; i++)
@@ -891,13 +895,13 @@ static real transformed_area(const xf_shape *sh)
     const char *name = in->ops->name;
     VECTOR3 z = { 0, 0, 1 };
     if (is_similarity(MAT(sh->x.m)))
-        return (real)(area_scale(sh, z) * a);
+        return (real)(area_scale(sh, z) * (ld)a);
     if (!strcmp(name, "triangle") || !strcmp(name, "parallelogram") ||
         !strcmp(name, "disk")) {
         real u[2] = { REAL_C(0.5), REAL_C(0.5) };
         cobject_sample_t s;
         in->ops->sample(in, u, &s);
-        return (real)(area_scale(sh, s.n) * a);
+        return (real)(area_scale(sh, s.n) * (ld)a);
     }
     if (!strcmp(name, "box")) {
         bbox_t b;
@@ -906,8 +910,8 @@ static real transformed_area(const xf_shape *sh)
         for (int k = 0; k < 3; k++) {
             VECTOR3 n = { 0, 0, 0 };
             n[k] = 1;
-            ld fa = ((ld)b.max[(k + 1) % 3] - b.min[(k + 1) % 3]) *
-                    ((ld)b.max[(k + 2) % 3] - b.min[(k + 2) % 3]);
+            ld fa = ((ld)b.max[(k + 1) % 3] - (ld)b.min[(k + 1) % 3]) *
+                    ((ld)b.max[(k + 2) % 3] - (ld)b.min[(k + 2) % 3]);
             sum += 2 * fa * area_scale(sh, n);
         }
         return (real)sum;
@@ -961,9 +965,10 @@ static void set_culling(xf_shape *sh)
         return;
     ld c[3], r2 = 0, box = 0, mt = 0, cmax = 0;
     for (int i = 0; i < 3; i++) {
-        c[i] = AT(m, i, 3);
+        c[i] = (ld)AT(m, i, 3);
         for (int j = 0; j < 3; j++)
-            c[i] += (ld)AT(m, i, j) * (0.5L * b.min[j] + 0.5L * b.max[j]);
+            c[i] += (ld)AT(m, i, j) *
+                    (0.5L * (ld)b.min[j] + 0.5L * (ld)b.max[j]);
         mt = fmaxl(mt, fabsl((ld)AT(m, i, 3)));
         box = fmaxl(box, fmaxl(fabsl((ld)b.min[i]), fabsl((ld)b.max[i])));
         cmax = fmaxl(cmax, fabsl(c[i]));
@@ -971,7 +976,7 @@ static void set_culling(xf_shape *sh)
     for (int corner = 0; corner < 8; corner++) {
         ld d2 = 0;
         for (int i = 0; i < 3; i++) {
-            ld p = AT(m, i, 3);
+            ld p = (ld)AT(m, i, 3);
             for (int j = 0; j < 3; j++)
                 p += (ld)AT(m, i, j) *
                      ((corner >> j) & 1 ? (ld)b.max[j] : (ld)b.min[j]);
@@ -1016,7 +1021,7 @@ static svet_status check(const xform_t *x, svet_error *err)
         for (int j = 0; j < 4; j++) {
             ld s = j == 3 ? (ld)x->m[i][3] : 0, row = 0, col = 0;
             for (int k = 0; k < 3; k++) {
-                s += (ld)x->m[i][k] * x->inv[k][j];
+                s += (ld)x->m[i][k] * (ld)x->inv[k][j];
                 row += fabsl((ld)x->m[i][k]);
                 col += fabsl((ld)x->inv[k][j]);
             }
