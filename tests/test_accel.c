@@ -1036,7 +1036,10 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
      * (1 + delta) times its padded radius, delta 0 or +-2^-k (k <= 28),
      * from origins 1 to 2048 radii before or past the nearest point;
      * rays from (1 + delta) padded radii moving away from the centre or
-     * along the surface (tilted by +-2^-k, k < 30); random rays. */
+     * along the surface (tilted by +-2^-k, k < 30); random rays; and a
+     * tenth of them with a NaN, an infinity or a coordinate whose square
+     * overflows (2^70 in float, REAL_MAX in double), where the vector
+     * lanes must fail their comparisons as C's do. */
     pcg32_t g;
     pcg32_seed(&g, 777, 3);
     COBJECT *objs[14];
@@ -1119,6 +1122,14 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
         }
         if (i % 7 == 0) /* a direction of any length */
             vec_scale(r.d, r.d, uni(&g, REAL_C(0.01), 100));
+        if (i % 10 == 9) { /* a NaN, an infinity or a coordinate whose
+                              square overflows, in o or d */
+            const real bad[6] = { (real)NAN, (real)INFINITY, -(real)INFINITY,
+                                  REAL_MAX, -REAL_MAX,
+                                  REAL_C(0x1p70) };
+            real *c = pcg32_next(&g) % 2 ? r.o : r.d;
+            c[pcg32_bounded(&g, 3)] = bad[pcg32_bounded(&g, 6)];
+        }
         xform_sphere_ray_t rs;
         xform_sphere_ray(&r, &rs);
         uint64_t got = accel_spheres_passed(a, &r);
