@@ -962,14 +962,16 @@ static bool slab(const walk_t *w, const double min[3], const double max[3],
     return lo <= hi;
 }
 
-/* Inlined where compilers allow: with the packets as its second caller
- * gcc made it a call, which cost single rays 1.2% more instructions
- * (callgrind, incoherent rays at 1e6). */
+/* The ray's walk_t (the wide ray only where wide) as at the start of a
+ * query whose tmax was tmax_q. Inlined where compilers allow: with the
+ * packets as its second caller gcc made it a call, which cost single rays
+ * 1.2% more instructions (callgrind, incoherent rays at 1e6). */
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
 #endif
-static inline void walk_init(walk_t *w, const grid_t *g,
-                             const primset_query_t *q)
+static inline void walk_init_at(walk_t *w, const grid_t *g,
+                                const primset_query_t *q, real tmax_q,
+                                bool wide)
 {
     const ray_t *r = q->r;
     double len2 = 0;
@@ -981,13 +983,25 @@ static inline void walk_init(walk_t *w, const grid_t *g,
         len2 += w->d[a] * w->d[a];
     }
     w->bias = WALK_SLACK * g->diag / sqrt(len2);
-    double tmin = (double)q->tmin, tmax = (double)q->tmax;
+    double tmin = (double)q->tmin, tmax = (double)tmax_q;
     w->t0 = tmin - WALK_SLACK * fabs(tmin) - w->bias;
     w->t1 = tmax + WALK_SLACK * fabs(tmax) + w->bias;
 #if GRID_QUADS && MESH_WIDE
-    if (g->quads)
+    if (wide && g->quads)
         mesh_wide_ray_prepare(&w->wr, &q->mr);
+#else
+    (void)wide;
 #endif
+}
+
+/* The walk of q from its start, (tmin, tmax). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+static inline void walk_init(walk_t *w, const grid_t *g,
+                             const primset_query_t *q)
+{
+    walk_init_at(w, g, q, q->tmax, true);
 }
 
 /* Where the walk may stop once the nearest hit so far is at tmax: a cell
@@ -995,13 +1009,19 @@ static inline void walk_init(walk_t *w, const grid_t *g,
  * tmax, the stopping rule at the top of the file (x + 2 s |x| >=
  * x / (1 - s) for either sign of x = tmax + bias; the double rounding of
  * this line is far below s). Never beyond t1. */
-static double walk_end(const walk_t *w, const primset_query_t *q, double t1)
+static double walk_end_at(double bias, const primset_query_t *q, double t1)
 {
     if (!q->found)
         return t1;
-    double x = (double)q->tmax + w->bias;
+    double x = (double)q->tmax + bias;
     x += 2 * WALK_SLACK * fabs(x);
     return x < t1 ? x : t1;
+}
+
+/* walk_end_at() with the walk's own bias. */
+static double walk_end(const walk_t *w, const primset_query_t *q, double t1)
+{
+    return walk_end_at(w->bias, q, t1);
 }
 
 /* The t at which the ray crosses plane p (x_a = min_a + p w_a) of nd:
@@ -1543,6 +1563,17 @@ typedef struct {
     double iad[PK_N], adk[PK_N]; /* 1 / |d_k|, |d_k| */
     double tol[PK_N];            /* margin (|mu| + |mv|): pk_slice() */
     double tend[PK_N], t1[PK_N]; /* walk_end(), and the walk's t1 */
+    double bias[PK_N];           /* the walk's bias (walk_end_at()) */
+    real tmax0[PK_N];            /* tmax when the packet began */
+    uint64_t wset;               /* the rays whose walk_t is made: only
+                                    those the single walk's code needs
+                                    (pk_walk()), so that the packet's
+                                    state stays within the first-level
+                                    cache */
+#if GRID_QUADS && MESH_WIDE
+    vwreal wo[3];                /* the origin, permuted (o_u, o_v, o_k),
+                                    in every lane: the wide rays' o */
+#endif
     /* ray i's box on (u, v) within the current slice, relative to o,
      * widened; empty (+inf, -inf) where the ray is not in the slice */
     double ul[PK_N], uh[PK_N], vl[PK_N], vh[PK_N];
@@ -1794,6 +1825,31 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
     return m;
 }
 
+/* Ray i's walk_t, made on first use: the one walk_init() made when the
+ * packet began (the same tmax), for the single walk's code (child grids,
+ * a cell's other items, cells without quads). */
+static const walk_t *pk_walk(const grid_t *g, packet_t *p, walk_t *w,
+                             const primset_query_t *q, int i)
+{
+    if (!(p->wset >> i & 1)) {
+        walk_init_at(&w[i], g, &q[i], p->tmax0[i], true);
+        p->wset |= UINT64_C(1) << i;
+    }
+    return &w[i];
+}
+
+/* Where compilers allow, an empty statement that may read x and write any
+ * memory: the corner vectors t of pk_test_cell() are then read from
+ * memory for each ray, as operands of its arithmetic, instead of being
+ * held in nine of the sixteen vector registers while the sign test's
+ * temporaries spill around them (gcc 12, AVX2: 72 -> 48 instructions a
+ * ray and pair of quads, 53 -> 45 a ray and quad; the same operations). */
+#if defined(__GNUC__) || defined(__clang__)
+#define GRID_FROM_MEMORY(x) __asm__("" : : "r"(x) : "memory")
+#else
+#define GRID_FROM_MEMORY(x) ((void)0)
+#endif
+
 /* Test non-empty cell f for the packet's rays `rays`: test_full() of
  * each, with the loops turned inside out where the cell has quads: each
  * pair of quads (or quad) taken once and the rays run through it, so that
@@ -1801,7 +1857,7 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
  * The same per-ray tests (mesh_wide_reject_soa2, mesh_lanes_reject_soa,
  * test_lanes, test_cell: the same bits and the same mailbox), in another
  * order, which the nearest-hit rule does not see. */
-static void pk_test_cell(const grid_t *g, const walk_t *w,
+static void pk_test_cell(const grid_t *g, packet_t *p, walk_t *w,
                          primset_query_t *q, uint32_t f, uint64_t rays)
 {
 #if GRID_QUADS
@@ -1823,7 +1879,7 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
         const int r0 = bits_lowest(rays);
         const int *pm = perm[q[r0].mr.kz];
 #if MESH_WIDE
-        const vwreal *o = w[r0].wr.o;
+        const vwreal *o = p->wo;
         const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
         for (; i + 1 < nq; i += 2) {
             vwreal t[9];
@@ -1833,11 +1889,13 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
                               o[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
+                GRID_FROM_MEMORY(t);
                 /* every ray of a packet is fast (packet()) */
                 unsigned left = ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
                                                        t[4], t[5], t[6], t[7],
-                                                       t[8], zo, w[r].wr.sx,
-                                                       w[r].wr.sy) &
+                                                       t[8], zo,
+                                                       VW_SET1(q[r].mr.sx),
+                                                       VW_SET1(q[r].mr.sy)) &
                                 ((1u << (2 * MESH_BATCH)) - 1);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
@@ -1852,6 +1910,7 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
                              q[r0].mr.vo[j % 3]);
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
+                GRID_FROM_MEMORY(t);
                 unsigned left = ~mesh_lanes_reject_perm(t[0], t[1], t[2], t[3],
                                                         t[4], t[5], t[6], t[7],
                                                         t[8], zo4,
@@ -1866,7 +1925,8 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
             return;
         for (uint64_t m = rays; m; m &= m - 1) {
             int r = bits_lowest(m);
-            test_cell(g, &w[r], &q[r], g->items + g->cstart[f],
+            test_cell(g, pk_walk(g, p, w, q, r), &q[r],
+                      g->items + g->cstart[f],
                       g->cstart[f + 1] - g->cstart[f], false);
         }
         return;
@@ -1874,7 +1934,7 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
 #endif
     for (uint64_t m = rays; m; m &= m - 1) {
         int r = bits_lowest(m);
-        test_full(g, &w[r], &q[r], f, false);
+        test_full(g, pk_walk(g, p, w, q, r), &q[r], f, false);
     }
 }
 
@@ -2044,14 +2104,14 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
             uint64_t in = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
             if (!in)
                 continue;
-            pk_test_cell(g, w, q, full_cell(bb[blk], bm[blk], bit), in);
+            pk_test_cell(g, p, w, q, full_cell(bb[blk], bm[blk], bit), in);
             for (; in; in &= in - 1) {
                 int i = bits_lowest(in);
                 q[i].cells++;
                 if (q[i].found) {
                     /* the ray's segment now ends at its walk_end():
                      * beyond it no cell can hold a better hit */
-                    p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
+                    p->tend[i] = walk_end_at(p->bias[i], &q[i], p->t1[i]);
                     p->s1[i] = p->tend[i] * p->adk[i] + p->margin;
                     pk_box(p, i, a, b);
                 }
@@ -2111,8 +2171,14 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     p.margin = g->ps->pad;
     p.n = n > 16 ? (n + 15) / 16 * 16 : (n + 3) / 4 * 4;
     p.live = 0;
-    walk_t w[PK_N];
+    p.wset = 0;
+    walk_t w[PK_N]; /* made by pk_walk() where needed */
     const int k = p.k, u = p.u, v = p.v;
+#if GRID_QUADS && MESH_WIDE
+    p.wo[0] = VW_SET1(o[u]);
+    p.wo[1] = VW_SET1(o[v]);
+    p.wo[2] = VW_SET1(o[k]);
+#endif
     for (int i = 0; i < p.n; i++) {
         p.s0[i] = (double)INFINITY;
         p.s1[i] = -(double)INFINITY;
@@ -2130,11 +2196,14 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
             grid_intersect(g, &q[i]);
             continue;
         }
-        walk_init(&w[i], g, &q[i]);
+        walk_t wl; /* walk_init()'s values, but for the wide ray */
+        walk_init_at(&wl, g, &q[i], q[i].tmax, false);
         double t0, t1;
-        if (!(w[i].t0 <= w[i].t1) ||
-            !slab(&w[i], nd->min, nd->max, w[i].t0, w[i].t1, &t0, &t1))
+        if (!(wl.t0 <= wl.t1) ||
+            !slab(&wl, nd->min, nd->max, wl.t0, wl.t1, &t0, &t1))
             continue; /* misses the grid: q[i] as query() leaves it */
+        p.bias[i] = wl.bias;
+        p.tmax0[i] = q[i].tmax;
         p.iad[i] = 1 / dk;
         p.adk[i] = dk;
         p.mu[i] = (double)r->d[u] / dk;
@@ -2143,7 +2212,7 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
         p.s0[i] = t0 * dk - p.margin;
         p.s1[i] = t1 * dk + p.margin;
         p.t1[i] = t1;
-        p.tend[i] = walk_end(&w[i], &q[i], t1);
+        p.tend[i] = walk_end_at(wl.bias, &q[i], t1);
         p.live |= UINT64_C(1) << i;
     }
     if (!p.live)
