@@ -2120,6 +2120,158 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
     }
 }
 
+/* Whether the packet takes query qi: its ray starts at the common origin
+ * o (finite), moves along the packet's major axis k in its direction,
+ * with |d_k| its largest component, and is fast for the triangle test
+ * (mesh_ray_prepare()); the others are traced alone. */
+static inline bool pk_admits(const packet_t *p, const primset_query_t *qi,
+                             const real *o, bool o_ok)
+{
+    const ray_t *r = qi->r;
+    double dk = (double)r->d[p->k] * p->sg;
+    /* & rather than &&: one branch, not eleven */
+    return o_ok & (r->o[0] == o[0]) & (r->o[1] == o[1]) & (r->o[2] == o[2]) &
+           (dk > 0) & (dk < (double)INFINITY) &
+           (dk >= fabs((double)r->d[p->u])) &
+           (dk >= fabs((double)r->d[p->v])) & (qi->mr.kz == p->k) &
+           qi->mr.fast;
+}
+
+/* Ray i's values once it is set up: its part [t0, t1] of the grid (from
+ * slab()), the walk's bias; it is live. */
+static inline void pk_enter(packet_t *p, const primset_query_t *q, int i,
+                            double t0, double t1, double bias)
+{
+    p->bias[i] = bias;
+    p->tmax0[i] = q[i].tmax;
+    p->s0[i] = t0 * p->adk[i] - p->margin;
+    p->s1[i] = t1 * p->adk[i] + p->margin;
+    p->t1[i] = t1;
+    p->tend[i] = walk_end_at(bias, &q[i], t1);
+}
+
+#ifdef __AVX__
+/* |x|, as fabs: the sign bit cleared. */
+static inline __m256d pk_abs4(__m256d x)
+{
+    return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+}
+
+/* x where m is set, else y (m from a comparison: all ones or zeros). */
+static inline __m256d pk_sel4(__m256d m, __m256d x, __m256d y)
+{
+    return _mm256_blendv_pd(y, x, m);
+}
+#endif
+
+/* Set up rays i .. i + 3 of the packet (the lanes of `ok`; the others
+ * are nowhere): walk_init_at()'s bias, t0 and t1, slab() against the
+ * grid's box, the slopes and the segment along k. Returns the lanes
+ * whose ray meets the grid (made live by the caller). With AVX four rays
+ * at a time, each lane by the scalar operations in their order (the
+ * vector operations are IEEE's, and the comparisons and selections answer
+ * as C's, NaN included), so the same bits. */
+static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
+                     int i, int ok)
+{
+    const grid_node_t *nd = &g->nodes[0];
+    const int k = p->k, u = p->u, v = p->v;
+    int in = 0;
+#ifdef __AVX__
+    double d[3][4], tn[4], tx[4];
+    for (int l = 0; l < 4; l++) {
+        bool y = ok >> l & 1;
+        const ray_t *r = q[i + (y ? l : 0)].r;
+        for (int a = 0; a < 3; a++)
+            d[a][l] = y ? (double)r->d[a] : 1;
+        tn[l] = y ? (double)q[i + l].tmin : 0;
+        tx[l] = y ? (double)q[i + l].tmax : -1; /* t0 > t1: out */
+    }
+    const __m256d one = _mm256_set1_pd(1);
+    const __m256d sl = _mm256_set1_pd(WALK_SLACK);
+    __m256d D[3], len2 = _mm256_setzero_pd(), inv[3];
+    for (int a = 0; a < 3; a++) { /* walk_init_at() */
+        D[a] = _mm256_loadu_pd(d[a]);
+        inv[a] = _mm256_div_pd(one, D[a]);
+        len2 = _mm256_add_pd(len2, _mm256_mul_pd(D[a], D[a]));
+    }
+    __m256d bias = _mm256_div_pd(_mm256_set1_pd(WALK_SLACK * g->diag),
+                                 _mm256_sqrt_pd(len2));
+    __m256d tmin = _mm256_loadu_pd(tn), tmax = _mm256_loadu_pd(tx);
+    __m256d t0 = _mm256_sub_pd(
+        _mm256_sub_pd(tmin, _mm256_mul_pd(sl, pk_abs4(tmin))), bias);
+    __m256d t1 = _mm256_add_pd(
+        _mm256_add_pd(tmax, _mm256_mul_pd(sl, pk_abs4(tmax))), bias);
+    __m256d lo = t0, hi = t1;
+    for (int a = 0; a < 3; a++) { /* slab() */
+        __m256d n0 = _mm256_mul_pd(_mm256_set1_pd(nd->min[a] - p->o[a]),
+                                   inv[a]);
+        __m256d f0 = _mm256_mul_pd(_mm256_set1_pd(nd->max[a] - p->o[a]),
+                                   inv[a]);
+        __m256d sw = _mm256_cmp_pd(n0, f0, _CMP_GT_OQ);
+        __m256d n1 = pk_sel4(sw, f0, n0), f1 = pk_sel4(sw, n0, f0);
+        lo = pk_sel4(_mm256_cmp_pd(n1, lo, _CMP_GT_OQ), n1, lo);
+        hi = pk_sel4(_mm256_cmp_pd(f1, hi, _CMP_LT_OQ), f1, hi);
+    }
+    in = ok & _mm256_movemask_pd(
+                  _mm256_and_pd(_mm256_cmp_pd(t0, t1, _CMP_LE_OQ),
+                                _mm256_cmp_pd(lo, hi, _CMP_LE_OQ)));
+    const __m256d live = _mm256_castsi256_pd(_mm256_set_epi64x(
+        -(in >> 3 & 1), -(in >> 2 & 1), -(in >> 1 & 1), -(in & 1)));
+    const __m256d zero = _mm256_setzero_pd();
+    __m256d dk = _mm256_mul_pd(D[k], _mm256_set1_pd(p->sg));
+    __m256d mu = _mm256_div_pd(D[u], dk), mv = _mm256_div_pd(D[v], dk);
+    _mm256_storeu_pd(p->iad + i, pk_sel4(live, _mm256_div_pd(one, dk), zero));
+    _mm256_storeu_pd(p->adk + i, pk_sel4(live, dk, zero));
+    _mm256_storeu_pd(p->mu + i, pk_sel4(live, mu, zero));
+    _mm256_storeu_pd(p->mv + i, pk_sel4(live, mv, zero));
+    _mm256_storeu_pd(p->tol + i,
+                     pk_sel4(live,
+                             _mm256_mul_pd(_mm256_set1_pd(p->margin),
+                                           _mm256_add_pd(pk_abs4(mu),
+                                                         pk_abs4(mv))),
+                             zero));
+    _mm256_storeu_pd(p->tend + i, zero);
+    _mm256_storeu_pd(p->t1 + i, zero);
+    _mm256_storeu_pd(p->s0 + i, _mm256_set1_pd((double)INFINITY));
+    _mm256_storeu_pd(p->s1 + i, _mm256_set1_pd(-(double)INFINITY));
+    double l0[4], l1[4], b[4];
+    _mm256_storeu_pd(l0, lo);
+    _mm256_storeu_pd(l1, hi);
+    _mm256_storeu_pd(b, bias);
+    for (int m = in; m; m &= m - 1) {
+        int l = bits_lowest((uint64_t)m);
+        pk_enter(p, q, i + l, l0[l], l1[l], b[l]);
+    }
+#else
+    for (int l = 0; l < 4; l++) {
+        int j = i + l;
+        p->s0[j] = (double)INFINITY;
+        p->s1[j] = -(double)INFINITY;
+        p->mu[j] = p->mv[j] = p->iad[j] = p->adk[j] = p->tol[j] =
+            p->tend[j] = p->t1[j] = 0;
+        if (!(ok >> l & 1))
+            continue;
+        walk_t wl; /* walk_init()'s values, but for the wide ray */
+        walk_init_at(&wl, g, &q[j], q[j].tmax, false);
+        double t0, t1;
+        if (!(wl.t0 <= wl.t1) ||
+            !slab(&wl, nd->min, nd->max, wl.t0, wl.t1, &t0, &t1))
+            continue; /* misses the grid: q[j] as query() leaves it */
+        const ray_t *r = q[j].r;
+        double dk = (double)r->d[k] * p->sg;
+        p->iad[j] = 1 / dk;
+        p->adk[j] = dk;
+        p->mu[j] = (double)r->d[u] / dk;
+        p->mv[j] = (double)r->d[v] / dk;
+        p->tol[j] = p->margin * (fabs(p->mu[j]) + fabs(p->mv[j]));
+        pk_enter(p, q, j, t0, t1, wl.bias);
+        in |= 1 << l;
+    }
+#endif
+    return in;
+}
+
 /* One packet of n <= GRID_PACKET_MAX rays (grid_intersect_packet()).
  *
  * Why each ray gets grid_intersect()'s answer. Both answers are the
@@ -2153,14 +2305,15 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
 static void packet(const grid_t *g, primset_query_t *q, int n)
 {
     const grid_node_t *nd = &g->nodes[0];
-    double sum[3] = { 0, 0, 0 };
-    for (int i = 0; i < n; i++)
-        for (int a = 0; a < 3; a++)
-            sum[a] += (double)q[i].r->d[a];
+    /* the major axis: that of the first and the last ray's directions
+     * summed (a tile's corners), by vec_max_axis()'s rule, which the
+     * rays' own kz follow */
+    double sum[3];
+    for (int a = 0; a < 3; a++)
+        sum[a] = (double)q[0].r->d[a] + (double)q[n - 1].r->d[a];
     packet_t p;
-    p.k = fabs(sum[0]) >= fabs(sum[1])
-              ? (fabs(sum[0]) >= fabs(sum[2]) ? 0 : 2)
-              : (fabs(sum[1]) >= fabs(sum[2]) ? 1 : 2);
+    double ax = fabs(sum[0]), ay = fabs(sum[1]), az = fabs(sum[2]);
+    p.k = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     p.u = p.k == 2 ? 0 : p.k + 1;
     p.v = p.u == 2 ? 0 : p.u + 1;
     p.sg = sum[p.k] < 0 ? -1 : 1;
@@ -2173,48 +2326,25 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     p.live = 0;
     p.wset = 0;
     walk_t w[PK_N]; /* made by pk_walk() where needed */
-    const int k = p.k, u = p.u, v = p.v;
+    const int k = p.k;
 #if GRID_QUADS && MESH_WIDE
-    p.wo[0] = VW_SET1(o[u]);
-    p.wo[1] = VW_SET1(o[v]);
+    p.wo[0] = VW_SET1(o[p.u]);
+    p.wo[1] = VW_SET1(o[p.v]);
     p.wo[2] = VW_SET1(o[k]);
 #endif
-    for (int i = 0; i < p.n; i++) {
-        p.s0[i] = (double)INFINITY;
-        p.s1[i] = -(double)INFINITY;
-        p.mu[i] = p.mv[i] = p.iad[i] = p.adk[i] = p.tol[i] = p.tend[i] = p.t1[i] = 0;
-        if (i >= n)
-            continue;
-        const ray_t *r = q[i].r;
-        double dk = (double)r->d[k] * p.sg;
-        bool ok = o_ok && r->o[0] == o[0] && r->o[1] == o[1] &&
-                  r->o[2] == o[2] && dk > 0 && dk < (double)INFINITY &&
-                  dk >= fabs((double)r->d[u]) &&
-                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k &&
-                  q[i].mr.fast;
-        if (!ok) {
-            grid_intersect(g, &q[i]);
-            continue;
+    uint64_t alone = 0;
+    for (int i = 0; i < p.n; i += 4) {
+        int ok = 0;
+        for (int l = 0; l < 4 && i + l < n; l++) {
+            if (pk_admits(&p, &q[i + l], o, o_ok))
+                ok |= 1 << l;
+            else
+                alone |= UINT64_C(1) << (i + l);
         }
-        walk_t wl; /* walk_init()'s values, but for the wide ray */
-        walk_init_at(&wl, g, &q[i], q[i].tmax, false);
-        double t0, t1;
-        if (!(wl.t0 <= wl.t1) ||
-            !slab(&wl, nd->min, nd->max, wl.t0, wl.t1, &t0, &t1))
-            continue; /* misses the grid: q[i] as query() leaves it */
-        p.bias[i] = wl.bias;
-        p.tmax0[i] = q[i].tmax;
-        p.iad[i] = 1 / dk;
-        p.adk[i] = dk;
-        p.mu[i] = (double)r->d[u] / dk;
-        p.mv[i] = (double)r->d[v] / dk;
-        p.tol[i] = p.margin * (fabs(p.mu[i]) + fabs(p.mv[i]));
-        p.s0[i] = t0 * dk - p.margin;
-        p.s1[i] = t1 * dk + p.margin;
-        p.t1[i] = t1;
-        p.tend[i] = walk_end_at(wl.bias, &q[i], t1);
-        p.live |= UINT64_C(1) << i;
+        p.live |= (uint64_t)pk_setup4(g, &p, q, i, ok) << i;
     }
+    for (; alone; alone &= alone - 1)
+        grid_intersect(g, &q[bits_lowest(alone)]);
     if (!p.live)
         return;
     pk_bounds(&p);
