@@ -1682,6 +1682,8 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
     const __m256d ninf = _mm256_set1_pd(-inf);
     __m256d lo_u = pinf, hi_u = ninf, lo_v = pinf, hi_v = ninf;
     for (int i = 0; i < p->n; i += 4) {
+        if (!(p->live >> i & 15))
+            continue; /* their boxes stay empty (pk_drop()) */
         __m256d sa = _mm256_max_pd(va, _mm256_loadu_pd(p->s0 + i));
         __m256d sb = _mm256_min_pd(vb, _mm256_loadu_pd(p->s1 + i));
         __m256d in = _mm256_cmp_pd(sa, sb, _CMP_LE_OQ);
@@ -1838,6 +1840,26 @@ static const walk_t *pk_walk(const grid_t *g, packet_t *p, walk_t *w,
     return &w[i];
 }
 
+#if GRID_QUADS
+/* t = the nine corner vectors c0 .. c8 (permuted by MESH_PERMUTED) less
+ * the origin o (in the same order), for pk_test_cell(): written out, so
+ * that every load has a constant offset. */
+#define PK_DEFINE_LESS_ORIGIN(NAME, T, P)                                     \
+    static inline void NAME(T c0, T c1, T c2, T c3, T c4, T c5, T c6, T c7,  \
+                            T c8, T t[9], const T o[3])                       \
+    {                                                                         \
+        t[0] = P##_SUB(c0, o[0]), t[1] = P##_SUB(c1, o[1]);                   \
+        t[2] = P##_SUB(c2, o[2]), t[3] = P##_SUB(c3, o[0]);                   \
+        t[4] = P##_SUB(c4, o[1]), t[5] = P##_SUB(c5, o[2]);                   \
+        t[6] = P##_SUB(c6, o[0]), t[7] = P##_SUB(c7, o[1]);                   \
+        t[8] = P##_SUB(c8, o[2]);                                             \
+    }
+PK_DEFINE_LESS_ORIGIN(pk_less_origin, vreal, V)
+#if MESH_WIDE
+PK_DEFINE_LESS_ORIGIN(pk_less_origin_w, vwreal, VW)
+#endif
+#endif
+
 /* Where compilers allow, an empty statement that may read x and write any
  * memory: the corner vectors t of pk_test_cell() are then read from
  * memory for each ray, as operands of its arithmetic, instead of being
@@ -1873,20 +1895,14 @@ static void pk_test_cell(const grid_t *g, packet_t *p, walk_t *w,
          * with a zero origin (x - 0 is x, bit for bit), the same
          * operations as mesh_wide_reject_soa2() (mesh_lanes_reject_soa())
          * and so the same mask. */
-        static const int perm[3][9] = { { 1, 2, 0, 4, 5, 3, 7, 8, 6 },
-                                        { 2, 0, 1, 5, 3, 4, 8, 6, 7 },
-                                        { 0, 1, 2, 3, 4, 5, 6, 7, 8 } };
-        const int r0 = bits_lowest(rays);
-        const int *pm = perm[q[r0].mr.kz];
+        const int r0 = bits_lowest(rays), kz = p->k; /* = every q.mr.kz */
 #if MESH_WIDE
-        const vwreal *o = p->wo;
         const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
         for (; i + 1 < nq; i += 2) {
             vwreal t[9];
-            for (int j = 0; j < 9; j++)
-                t[j] = VW_SUB(VW_LOAD2(qd[i].c + pm[j] * VLANES,
-                                       qd[i + 1].c + pm[j] * VLANES),
-                              o[j % 3]);
+#define PK_PAIR_(j) VW_LOAD2(qd[i].c + (j) * VLANES, qd[i + 1].c + (j) * VLANES)
+            MESH_PERMUTED(kz, pk_less_origin_w, PK_PAIR_, t, p->wo);
+#undef PK_PAIR_
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
                 GRID_FROM_MEMORY(t);
@@ -1905,9 +1921,9 @@ static void pk_test_cell(const grid_t *g, packet_t *p, walk_t *w,
         const vreal zo4[3] = { V_SET1(0), V_SET1(0), V_SET1(0) };
         for (; i < nq; i++) {
             vreal t[9];
-            for (int j = 0; j < 9; j++)
-                t[j] = V_SUB(V_LOAD(qd[i].c + pm[j] * VLANES),
-                             q[r0].mr.vo[j % 3]);
+#define PK_QUAD_(j) V_LOAD(qd[i].c + (j) * VLANES)
+            MESH_PERMUTED(kz, pk_less_origin, PK_QUAD_, t, q[r0].mr.vo);
+#undef PK_QUAD_
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
                 GRID_FROM_MEMORY(t);
@@ -1942,8 +1958,8 @@ static void pk_test_cell(const grid_t *g, packet_t *p, walk_t *w,
 static void pk_drop(packet_t *p, int i)
 {
     p->live &= ~(UINT64_C(1) << i);
-    p->s0[i] = (double)INFINITY;
-    p->s1[i] = -(double)INFINITY;
+    p->s0[i] = p->ul[i] = p->vl[i] = (double)INFINITY;
+    p->s1[i] = p->uh[i] = p->vh[i] = -(double)INFINITY;
 }
 
 /* After the slices up to far plane s = b are done: every live ray whose
@@ -2233,8 +2249,14 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
                              zero));
     _mm256_storeu_pd(p->tend + i, zero);
     _mm256_storeu_pd(p->t1 + i, zero);
-    _mm256_storeu_pd(p->s0 + i, _mm256_set1_pd((double)INFINITY));
-    _mm256_storeu_pd(p->s1 + i, _mm256_set1_pd(-(double)INFINITY));
+    const __m256d pinf = _mm256_set1_pd((double)INFINITY);
+    const __m256d ninf = _mm256_set1_pd(-(double)INFINITY);
+    _mm256_storeu_pd(p->s0 + i, pinf);
+    _mm256_storeu_pd(p->s1 + i, ninf);
+    _mm256_storeu_pd(p->ul + i, pinf); /* empty until its first slice */
+    _mm256_storeu_pd(p->vl + i, pinf);
+    _mm256_storeu_pd(p->uh + i, ninf);
+    _mm256_storeu_pd(p->vh + i, ninf);
     double l0[4], l1[4], b[4];
     _mm256_storeu_pd(l0, lo);
     _mm256_storeu_pd(l1, hi);
