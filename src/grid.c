@@ -2188,15 +2188,18 @@ static inline __m256d pk_sel4(__m256d m, __m256d x, __m256d y)
  * vector operations are IEEE's, and the comparisons and selections answer
  * as C's, NaN included), so the same bits. */
 static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
-                     int i, int ok)
+                     int i, int n, const real *o, bool o_ok, uint64_t *alone)
 {
     const grid_node_t *nd = &g->nodes[0];
     const int k = p->k, u = p->u, v = p->v;
-    int in = 0;
+    int ok = 0, in = 0;
 #ifdef __AVX__
     double d[3][4], tn[4], tx[4];
     for (int l = 0; l < 4; l++) {
-        bool y = ok >> l & 1;
+        bool y = i + l < n && pk_admits(p, &q[i + l], o, o_ok);
+        if (i + l < n && !y)
+            *alone |= UINT64_C(1) << (i + l);
+        ok |= y << l;
         const ray_t *r = q[i + (y ? l : 0)].r;
         for (int a = 0; a < 3; a++)
             d[a][l] = y ? (double)r->d[a] : 1;
@@ -2266,6 +2269,12 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
         pk_enter(p, q, i + l, l0[l], l1[l], b[l]);
     }
 #else
+    for (int l = 0; l < 4 && i + l < n; l++) {
+        if (pk_admits(p, &q[i + l], o, o_ok))
+            ok |= 1 << l;
+        else
+            *alone |= UINT64_C(1) << (i + l);
+    }
     for (int l = 0; l < 4; l++) {
         int j = i + l;
         p->s0[j] = (double)INFINITY;
@@ -2355,16 +2364,8 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     p.wo[2] = VW_SET1(o[k]);
 #endif
     uint64_t alone = 0;
-    for (int i = 0; i < p.n; i += 4) {
-        int ok = 0;
-        for (int l = 0; l < 4 && i + l < n; l++) {
-            if (pk_admits(&p, &q[i + l], o, o_ok))
-                ok |= 1 << l;
-            else
-                alone |= UINT64_C(1) << (i + l);
-        }
-        p.live |= (uint64_t)pk_setup4(g, &p, q, i, ok) << i;
-    }
+    for (int i = 0; i < p.n; i += 4)
+        p.live |= (uint64_t)pk_setup4(g, &p, q, i, n, o, o_ok, &alone) << i;
     for (; alone; alone &= alone - 1)
         grid_intersect(g, &q[bits_lowest(alone)]);
     if (!p.live)
