@@ -1601,6 +1601,28 @@ static inline __m256d pk_reduce4(__m256d a0, __m256d a1, __m256d a2,
 }
 #endif
 
+#ifdef __AVX__
+/* The lanes whose bit is set in b (0 to 15), as a mask. */
+static inline __m256d pk_mask4(unsigned b)
+{
+#define PK_M_(b) { -((b) & 1), -((b) >> 1 & 1), -((b) >> 2 & 1), -((b) >> 3 & 1) }
+    static const long long lanes[16][4] = {
+        PK_M_(0),  PK_M_(1),  PK_M_(2),  PK_M_(3),  PK_M_(4),  PK_M_(5),
+        PK_M_(6),  PK_M_(7),  PK_M_(8),  PK_M_(9),  PK_M_(10), PK_M_(11),
+        PK_M_(12), PK_M_(13), PK_M_(14), PK_M_(15)
+    };
+#undef PK_M_
+    return _mm256_castsi256_pd(
+        _mm256_loadu_si256((const __m256i *)(const void *)lanes[b]));
+}
+
+/* x where m is set, else y (m from a comparison or pk_mask4()). */
+static inline __m256d pk_sel4(__m256d m, __m256d x, __m256d y)
+{
+    return _mm256_blendv_pd(y, x, m);
+}
+#endif
+
 static inline double pk_min(double a, double b)
 {
     return a < b ? a : b;
@@ -1622,6 +1644,37 @@ static inline double pk_plane_s(const grid_node_t *nd, const packet_t *p,
 /* S0, S1 and the extreme slopes over the live rays. */
 static void pk_bounds(packet_t *p)
 {
+#ifdef __AVX__
+    /* four rays at a time, the others' lanes at +-inf: the least and the
+     * greatest of the same numbers (no rounding), so the same bounds */
+    const __m256d pinf = _mm256_set1_pd((double)INFINITY);
+    const __m256d ninf = _mm256_set1_pd(-(double)INFINITY);
+    __m256d lo0 = pinf, lo1 = pinf, lo2 = pinf, hi0 = ninf, hi1 = ninf,
+            hi2 = ninf;
+    for (int i = 0; i < p->n; i += 4) {
+        unsigned b = (unsigned)(p->live >> i & 15);
+        if (!b)
+            continue;
+        const __m256d m = pk_mask4(b);
+        __m256d mu = _mm256_loadu_pd(p->mu + i);
+        __m256d mv = _mm256_loadu_pd(p->mv + i);
+        lo0 = _mm256_min_pd(lo0, pk_sel4(m, _mm256_loadu_pd(p->s0 + i), pinf));
+        hi0 = _mm256_max_pd(hi0, pk_sel4(m, _mm256_loadu_pd(p->s1 + i), ninf));
+        lo1 = _mm256_min_pd(lo1, pk_sel4(m, mu, pinf));
+        hi1 = _mm256_max_pd(hi1, pk_sel4(m, mu, ninf));
+        lo2 = _mm256_min_pd(lo2, pk_sel4(m, mv, pinf));
+        hi2 = _mm256_max_pd(hi2, pk_sel4(m, mv, ninf));
+    }
+    double lo[4], hi[4];
+    _mm256_storeu_pd(lo, pk_reduce4(lo0, lo1, lo2, pinf, false));
+    _mm256_storeu_pd(hi, pk_reduce4(hi0, hi1, hi2, ninf, true));
+    p->S0 = lo[0];
+    p->S1 = hi[0];
+    p->mlo[0] = lo[1];
+    p->mhi[0] = hi[1];
+    p->mlo[1] = lo[2];
+    p->mhi[1] = hi[2];
+#else
     p->S0 = (double)INFINITY;
     p->S1 = -(double)INFINITY;
     p->mlo[0] = p->mlo[1] = (double)INFINITY;
@@ -1635,6 +1688,7 @@ static void pk_bounds(packet_t *p)
         p->mlo[1] = pk_min(p->mlo[1], p->mv[i]);
         p->mhi[1] = pk_max(p->mhi[1], p->mv[i]);
     }
+#endif
 }
 
 /* The cells [*c0, *c1] on axis u (j = 0) or v (j = 1) that the live
@@ -2172,12 +2226,6 @@ static inline __m256d pk_abs4(__m256d x)
 {
     return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
 }
-
-/* x where m is set, else y (m from a comparison: all ones or zeros). */
-static inline __m256d pk_sel4(__m256d m, __m256d x, __m256d y)
-{
-    return _mm256_blendv_pd(y, x, m);
-}
 #endif
 
 /* Set up rays i .. i + 3 of the packet (the lanes of `ok`; the others
@@ -2235,8 +2283,7 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
     in = ok & _mm256_movemask_pd(
                   _mm256_and_pd(_mm256_cmp_pd(t0, t1, _CMP_LE_OQ),
                                 _mm256_cmp_pd(lo, hi, _CMP_LE_OQ)));
-    const __m256d live = _mm256_castsi256_pd(_mm256_set_epi64x(
-        -(in >> 3 & 1), -(in >> 2 & 1), -(in >> 1 & 1), -(in & 1)));
+    const __m256d live = pk_mask4((unsigned)in);
     const __m256d zero = _mm256_setzero_pd();
     __m256d dk = _mm256_mul_pd(D[k], _mm256_set1_pd(p->sg));
     __m256d mu = _mm256_div_pd(D[u], dk), mv = _mm256_div_pd(D[v], dk);
