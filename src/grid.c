@@ -2231,8 +2231,10 @@ static inline bool pk_admits(const packet_t *p, const primset_query_t *qi,
            qi->mr.fast;
 }
 
+#ifndef __AVX__
 /* Ray i's values once it is set up: its part [t0, t1] of the grid (from
- * slab()), the walk's bias; it is live. */
+ * slab()), the walk's bias; it is live. (With AVX, pk_setup4() computes
+ * them four at a time.) */
 static inline void pk_enter(packet_t *p, const primset_query_t *q, int i,
                             double t0, double t1, double bias)
 {
@@ -2243,6 +2245,7 @@ static inline void pk_enter(packet_t *p, const primset_query_t *q, int i,
     p->t1[i] = t1;
     p->tend[i] = walk_end_at(bias, &q[i], t1);
 }
+#endif
 
 #ifdef __AVX__
 /* |x|, as fabs: the sign bit cleared. */
@@ -2321,23 +2324,28 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
                                            _mm256_add_pd(pk_abs4(mu),
                                                          pk_abs4(mv))),
                              zero));
-    _mm256_storeu_pd(p->tend + i, zero);
-    _mm256_storeu_pd(p->t1 + i, zero);
     const __m256d pinf = _mm256_set1_pd((double)INFINITY);
     const __m256d ninf = _mm256_set1_pd(-(double)INFINITY);
-    _mm256_storeu_pd(p->s0 + i, pinf);
-    _mm256_storeu_pd(p->s1 + i, ninf);
+    const __m256d mg = _mm256_set1_pd(p->margin);
+    /* pk_enter()'s values, the same operations */
+    _mm256_storeu_pd(p->bias + i, bias);
+    _mm256_storeu_pd(p->t1 + i, pk_sel4(live, hi, zero));
+    _mm256_storeu_pd(p->tend + i, pk_sel4(live, hi, zero)); /* no hit yet */
+    _mm256_storeu_pd(p->s0 + i,
+                     pk_sel4(live, _mm256_sub_pd(_mm256_mul_pd(lo, dk), mg),
+                             pinf));
+    _mm256_storeu_pd(p->s1 + i,
+                     pk_sel4(live, _mm256_add_pd(_mm256_mul_pd(hi, dk), mg),
+                             ninf));
     _mm256_storeu_pd(p->ul + i, pinf); /* empty until its first slice */
     _mm256_storeu_pd(p->vl + i, pinf);
     _mm256_storeu_pd(p->uh + i, ninf);
     _mm256_storeu_pd(p->vh + i, ninf);
-    double l0[4], l1[4], b[4];
-    _mm256_storeu_pd(l0, lo);
-    _mm256_storeu_pd(l1, hi);
-    _mm256_storeu_pd(b, bias);
     for (int m = in; m; m &= m - 1) {
-        int l = bits_lowest((uint64_t)m);
-        pk_enter(p, q, i + l, l0[l], l1[l], b[l]);
+        int j = i + bits_lowest((uint64_t)m);
+        p->tmax0[j] = q[j].tmax;
+        if (q[j].found) /* a query that came with a hit */
+            p->tend[j] = walk_end_at(p->bias[j], &q[j], p->t1[j]);
     }
 #else
     for (int l = 0; l < 4 && i + l < n; l++) {
