@@ -2223,9 +2223,11 @@ static inline bool pk_admits(const packet_t *p, const primset_query_t *qi,
 {
     const ray_t *r = qi->r;
     double dk = (double)r->d[p->k] * p->sg;
-    /* & rather than &&: one branch, not eleven */
-    return o_ok & (r->o[0] == o[0]) & (r->o[1] == o[1]) & (r->o[2] == o[2]) &
-           (dk > 0) & (dk < (double)INFINITY) &
+    /* & rather than &&: one branch, not ten. The origin's bytes: -0 for
+     * +0 sends a ray alone, which only costs time. |d_k| is finite where
+     * the ray is fast and k is its kz; the slopes' tests catch a NaN in
+     * d_u or d_v, which vec_max_axis() passes over. */
+    return o_ok & (memcmp(r->o, o, sizeof r->o) == 0) & (dk > 0) &
            (dk >= fabs((double)r->d[p->u])) &
            (dk >= fabs((double)r->d[p->v])) & (qi->mr.kz == p->k) &
            qi->mr.fast;
