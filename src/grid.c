@@ -652,14 +652,14 @@ static bool quad_candidate(const grid_t *g, uint32_t it)
     return it < g->ps->ntri && !(g->qout[it / 64] >> (it % 64) & 1);
 }
 
-/* The quads' array of `bytes`: 64-byte aligned, so that a quad's vectors
- * never straddle more cache lines than they must; where Linux offers
- * transparent huge pages and the array spans several, aligned to 2 MiB
- * and advised to use them, so that the walks' loads of corners miss the
- * TLB less (the 1e6 spheres' quads are 100 MB; chapters/ch07/README.md
- * measures it). The advice changes no byte and may be ignored. NULL when
- * out of memory; free() frees it. */
-static void *quads_alloc(size_t bytes)
+/* One of the grid's arrays that the walks read, of `bytes`: 64-byte
+ * aligned, so that a quad's vectors never straddle more cache lines than
+ * they must; where Linux offers transparent huge pages and the array spans
+ * several, aligned to 2 MiB and advised to use them, so that the walks'
+ * loads miss the TLB less (the 1e6 spheres' quads are 100 MB, their other
+ * arrays 30 MB; chapters/ch07/README.md measures it). The advice changes
+ * no byte and may be ignored. NULL when out of memory; free() frees it. */
+static void *grid_alloc(size_t bytes)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     const size_t huge = (size_t)2 << 20;
@@ -701,8 +701,8 @@ static svet_status make_quads(grid_t *g, svet_error *err)
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "grid: %llu quads: too many",
                               (unsigned long long)nq);
-    g->quads = quads_alloc((size_t)(nq ? nq : 1) * sizeof *g->quads);
-    g->qstart = malloc(((size_t)g->nfull + 1) * sizeof *g->qstart);
+    g->quads = grid_alloc((size_t)(nq ? nq : 1) * sizeof *g->quads);
+    g->qstart = grid_alloc(((size_t)g->nfull + 1) * sizeof *g->qstart);
     if (!g->quads || !g->qstart)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
     uint32_t q = 0;
@@ -759,12 +759,15 @@ static svet_status flatten(build_t *B, grid_t *g, long quad_min,
                               (unsigned long long)cells,
                               (unsigned long long)items);
     g->nodes = malloc(B->nnodes * sizeof *g->nodes);
-    g->bmask = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bmask);
-    g->bbase = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bbase);
-    g->cstart = malloc((size_t)(full + 1) * sizeof *g->cstart);
-    g->items = malloc((size_t)(items ? items : 1) * sizeof *g->items);
+    const size_t nb = (size_t)(blocks ? blocks : 1);
+    g->bmask = grid_alloc(nb * sizeof *g->bmask);
+    g->bbase = grid_alloc(nb * sizeof *g->bbase);
+    g->cstart = grid_alloc((size_t)(full + 1) * sizeof *g->cstart);
+    g->items = grid_alloc((size_t)(items ? items : 1) * sizeof *g->items);
     if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    memset(g->bmask, 0, nb * sizeof *g->bmask);
+    memset(g->bbase, 0, nb * sizeof *g->bbase);
     uint32_t c0 = 0, i0 = 0, b0 = 0, s0 = 0;
     g->depth = 0;
     g->max_items = 0;
