@@ -7,6 +7,7 @@
 #define SVET_BENCH_H
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -76,8 +77,10 @@ static inline void bench_print_machine(FILE *f)
 {
     char cpu[256];
     bench_cpu_model(cpu, sizeof cpu);
-    fprintf(f, "Machine: %s, %ld cores; compiler gcc-compatible %s", cpu,
-            sysconf(_SC_NPROCESSORS_ONLN), __VERSION__);
+    const char *wait = getenv("OMP_WAIT_POLICY");
+    fprintf(f, "Machine: %s, %ld cores; compiler gcc-compatible %s; "
+               "OMP_WAIT_POLICY=%s", cpu, sysconf(_SC_NPROCESSORS_ONLN),
+            __VERSION__, wait ? wait : "(unset)");
 }
 
 #endif

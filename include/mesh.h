@@ -257,15 +257,25 @@ static inline bool mesh_ray_intersect(const real q[9], const mesh_ray_t *mr,
 /* The edge functions of mesh_ray_intersect() for lane j of a batch and
  * whether its sign test rejects: exactly the scalar operations, in the
  * scalar order (the translation, the shear, the three 2D cross products,
- * the product of the three, the signs). */
+ * the product p of the three), then the signs, read from the sign bits: a
+ * lane is rejected when p is less or greater than zero (neither zero nor
+ * NaN) and two of the three sign bits differ. That is
+ * mesh_ray_intersect()'s rule, one negative and one positive where p is
+ * not zero, on every lane but those whose p is NaN (an edge function is
+ * NaN, or one is zero and another infinite), which are kept here and go
+ * on to mesh_ray_intersect(), where they find no hit either; where p is
+ * neither, none of the three is zero (a zero factor makes p zero or NaN),
+ * so the sign bits are the signs, infinite ones included. In vectors the
+ * sign bits cost two XORs and an OR instead of six comparisons and four
+ * ORs (3 to 4 sign tests a camera ray at 1e6 triangles). */
 static inline bool mesh_lane_rejects(const real q[9], const mesh_ray_t *mr)
 {
     mesh_edges_t v;
     mesh_edges(q, mr, &v);
     const real e0 = v.e[0], e1 = v.e[1], e2 = v.e[2];
-    return !(e0 * e1 * e2 == 0) &&
-           (((e0 < 0) | (e1 < 0) | (e2 < 0)) &
-            ((e0 > 0) | (e1 > 0) | (e2 > 0)));
+    real p = e0 * e1 * e2;
+    return ((p < 0) | (p > 0)) &&
+           ((signbit(e0) != signbit(e1)) | (signbit(e0) != signbit(e2)));
 }
 
 /* mesh_ray_reject() in plain C, lane by lane: kept for machines without
@@ -328,13 +338,9 @@ static inline void mesh_lanes_load(const real *const *q, vreal c[9])
         T e0 = P##_SUB(P##_MUL(x1, y2), P##_MUL(y1, x2));                     \
         T e1 = P##_SUB(P##_MUL(x2, y0), P##_MUL(y2, x0));                     \
         T e2 = P##_SUB(P##_MUL(x0, y1), P##_MUL(y0, x1));                     \
-        const T zero = P##_SET1(0);                                           \
-        T nz = P##_NEQ(P##_MUL(P##_MUL(e0, e1), e2), zero);                   \
-        T neg = P##_OR(P##_OR(P##_LT(e0, zero), P##_LT(e1, zero)),            \
-                       P##_LT(e2, zero));                                     \
-        T pos = P##_OR(P##_OR(P##_GT(e0, zero), P##_GT(e1, zero)),            \
-                       P##_GT(e2, zero));                                     \
-        return (unsigned)P##_MASK(P##_AND(nz, P##_AND(neg, pos)));            \
+        T nz = P##_NEQ(P##_MUL(P##_MUL(e0, e1), e2), P##_SET1(0));            \
+        T mixed = P##_OR(P##_XOR(e0, e1), P##_XOR(e0, e2));                   \
+        return (unsigned)P##_MASK(P##_AND(nz, mixed));                        \
     }
 
 /* F called with the 9 corner vectors L(0) ... L(8) (x0 y0 z0 x1 ... z2)

@@ -10,8 +10,9 @@
  * in plain C, as long as it keeps their order (neither has a fused
  * multiply-add, and the build has -ffp-contract=off); V_MAX(a, b) is
  * a > b ? a : b, real_max's answer, NaN included, and every comparison is
- * false when either side is NaN (AVX's _CMP_*_OQ, as SSE2's) but V_NEQ,
- * which is true then (_CMP_NEQ_UQ, as SSE2's cmpneq). VW_LOAD2(lo, hi),
+ * false when either side is NaN (AVX's _CMP_*_OQ, as SSE2's), V_NEQ
+ * included: a < b or a > b, ordered (_CMP_NEQ_OQ; SSE2 has no one
+ * instruction for it, so there it is the two). VW_LOAD2(lo, hi),
  * where the widest vectors hold twice SSE2's (AVX), loads VLANES reals
  * from lo into the low lanes and VLANES from hi into the high ones. Without
  * SSE2, SIMD_REAL is undefined and the callers run their plain loops.
@@ -26,6 +27,9 @@
 #ifdef __SSE2__
 #define SIMD_REAL 1
 #include <emmintrin.h>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 #ifdef SVET_DOUBLE
 typedef __m128d vreal;
 #define VLANES 2
@@ -45,7 +49,15 @@ typedef __m128d vreal;
 #define V_LT _mm_cmplt_pd
 #define V_LE _mm_cmple_pd
 #define V_MASK _mm_movemask_pd
-#define V_NEQ _mm_cmpneq_pd
+#ifdef __AVX__
+#define V_NEQ(a, b) _mm_cmp_pd(a, b, _CMP_NEQ_OQ)
+#else
+static inline vreal simd_neq_(vreal a, vreal b)
+{
+    return _mm_or_pd(_mm_cmplt_pd(a, b), _mm_cmpgt_pd(a, b));
+}
+#define V_NEQ simd_neq_
+#endif
 #else
 typedef __m128 vreal;
 #define VLANES 4
@@ -65,7 +77,15 @@ typedef __m128 vreal;
 #define V_LT _mm_cmplt_ps
 #define V_LE _mm_cmple_ps
 #define V_MASK _mm_movemask_ps
-#define V_NEQ _mm_cmpneq_ps
+#ifdef __AVX__
+#define V_NEQ(a, b) _mm_cmp_ps(a, b, _CMP_NEQ_OQ)
+#else
+static inline vreal simd_neq_(vreal a, vreal b)
+{
+    return _mm_or_ps(_mm_cmplt_ps(a, b), _mm_cmpgt_ps(a, b));
+}
+#define V_NEQ simd_neq_
+#endif
 #endif
 #endif
 
@@ -92,7 +112,7 @@ typedef __m256d vwreal;
 #define VW_LT(a, b) _mm256_cmp_pd(a, b, _CMP_LT_OQ)
 #define VW_LE(a, b) _mm256_cmp_pd(a, b, _CMP_LE_OQ)
 #define VW_MASK _mm256_movemask_pd
-#define VW_NEQ(a, b) _mm256_cmp_pd(a, b, _CMP_NEQ_UQ)
+#define VW_NEQ(a, b) _mm256_cmp_pd(a, b, _CMP_NEQ_OQ)
 #define VW_LOAD2(lo, hi) _mm256_loadu2_m128d(hi, lo)
 #else
 typedef __m256 vwreal;
@@ -113,7 +133,7 @@ typedef __m256 vwreal;
 #define VW_LT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
 #define VW_LE(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
 #define VW_MASK _mm256_movemask_ps
-#define VW_NEQ(a, b) _mm256_cmp_ps(a, b, _CMP_NEQ_UQ)
+#define VW_NEQ(a, b) _mm256_cmp_ps(a, b, _CMP_NEQ_OQ)
 #define VW_LOAD2(lo, hi) _mm256_loadu2_m128(hi, lo)
 #endif
 #else

@@ -45,11 +45,16 @@
  * and a hit beyond the current cell is kept, not discarded: the walk
  * simply goes on until a cell's exit passes it.
  */
+/* madvise()'s MADV_HUGEPAGE (Linux) is outside POSIX: quads_alloc() */
+#define _DEFAULT_SOURCE
 #include "grid.h"
 #include "bits.h"
 
 #include <stdlib.h>
 #include <string.h>
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 void grid_params_uniform(grid_params_t *p)
 {
@@ -647,6 +652,28 @@ static bool quad_candidate(const grid_t *g, uint32_t it)
     return it < g->ps->ntri && !(g->qout[it / 64] >> (it % 64) & 1);
 }
 
+/* One of the grid's arrays that the walks read, of `bytes`: 64-byte
+ * aligned, so that a quad's vectors never straddle more cache lines than
+ * they must; where Linux offers transparent huge pages and the array spans
+ * several, aligned to 2 MiB and advised to use them, so that the walks'
+ * loads miss the TLB less (the 1e6 spheres' quads are 100 MB, their other
+ * arrays 30 MB; chapters/ch07/README.md measures it). The advice changes
+ * no byte and may be ignored. NULL when out of memory; free() frees it. */
+static void *grid_alloc(size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const size_t huge = (size_t)2 << 20;
+    if (bytes >= 4 * huge) {
+        size_t n = (bytes + huge - 1) / huge * huge;
+        void *p = aligned_alloc(huge, n);
+        if (p)
+            (void)madvise(p, n, MADV_HUGEPAGE);
+        return p;
+    }
+#endif
+    return aligned_alloc(64, (bytes + 63) / 64 * 64);
+}
+
 static svet_status make_quads(grid_t *g, svet_error *err)
 {
     const primset_t *ps = g->ps;
@@ -674,11 +701,8 @@ static svet_status make_quads(grid_t *g, svet_error *err)
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "grid: %llu quads: too many",
                               (unsigned long long)nq);
-    /* 64-byte aligned: a quad's vectors never straddle more lines than
-     * they must */
-    size_t bytes = ((size_t)(nq ? nq : 1) * sizeof *g->quads + 63) / 64 * 64;
-    g->quads = aligned_alloc(64, bytes);
-    g->qstart = malloc(((size_t)g->nfull + 1) * sizeof *g->qstart);
+    g->quads = grid_alloc((size_t)(nq ? nq : 1) * sizeof *g->quads);
+    g->qstart = grid_alloc(((size_t)g->nfull + 1) * sizeof *g->qstart);
     if (!g->quads || !g->qstart)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
     uint32_t q = 0;
@@ -735,12 +759,15 @@ static svet_status flatten(build_t *B, grid_t *g, long quad_min,
                               (unsigned long long)cells,
                               (unsigned long long)items);
     g->nodes = malloc(B->nnodes * sizeof *g->nodes);
-    g->bmask = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bmask);
-    g->bbase = calloc((size_t)(blocks ? blocks : 1), sizeof *g->bbase);
-    g->cstart = malloc((size_t)(full + 1) * sizeof *g->cstart);
-    g->items = malloc((size_t)(items ? items : 1) * sizeof *g->items);
+    const size_t nb = (size_t)(blocks ? blocks : 1);
+    g->bmask = grid_alloc(nb * sizeof *g->bmask);
+    g->bbase = grid_alloc(nb * sizeof *g->bbase);
+    g->cstart = grid_alloc((size_t)(full + 1) * sizeof *g->cstart);
+    g->items = grid_alloc((size_t)(items ? items : 1) * sizeof *g->items);
     if (!g->nodes || !g->bmask || !g->bbase || !g->cstart || !g->items)
         return svet_error_set(err, SVET_ERR_NOMEM, "grid: out of memory");
+    memset(g->bmask, 0, nb * sizeof *g->bmask);
+    memset(g->bbase, 0, nb * sizeof *g->bbase);
     uint32_t c0 = 0, i0 = 0, b0 = 0, s0 = 0;
     g->depth = 0;
     g->max_items = 0;
@@ -962,14 +989,16 @@ static bool slab(const walk_t *w, const double min[3], const double max[3],
     return lo <= hi;
 }
 
-/* Inlined where compilers allow: with the packets as its second caller
- * gcc made it a call, which cost single rays 1.2% more instructions
- * (callgrind, incoherent rays at 1e6). */
+/* The ray's walk_t (the wide ray only where wide) as at the start of a
+ * query whose tmax was tmax_q. Inlined where compilers allow: with the
+ * packets as its second caller gcc made it a call, which cost single rays
+ * 1.2% more instructions (callgrind, incoherent rays at 1e6). */
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
 #endif
-static inline void walk_init(walk_t *w, const grid_t *g,
-                             const primset_query_t *q)
+static inline void walk_init_at(walk_t *w, const grid_t *g,
+                                const primset_query_t *q, real tmax_q,
+                                bool wide)
 {
     const ray_t *r = q->r;
     double len2 = 0;
@@ -981,13 +1010,25 @@ static inline void walk_init(walk_t *w, const grid_t *g,
         len2 += w->d[a] * w->d[a];
     }
     w->bias = WALK_SLACK * g->diag / sqrt(len2);
-    double tmin = (double)q->tmin, tmax = (double)q->tmax;
+    double tmin = (double)q->tmin, tmax = (double)tmax_q;
     w->t0 = tmin - WALK_SLACK * fabs(tmin) - w->bias;
     w->t1 = tmax + WALK_SLACK * fabs(tmax) + w->bias;
 #if GRID_QUADS && MESH_WIDE
-    if (g->quads)
+    if (wide && g->quads)
         mesh_wide_ray_prepare(&w->wr, &q->mr);
+#else
+    (void)wide;
 #endif
+}
+
+/* The walk of q from its start, (tmin, tmax). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+static inline void walk_init(walk_t *w, const grid_t *g,
+                             const primset_query_t *q)
+{
+    walk_init_at(w, g, q, q->tmax, true);
 }
 
 /* Where the walk may stop once the nearest hit so far is at tmax: a cell
@@ -995,13 +1036,19 @@ static inline void walk_init(walk_t *w, const grid_t *g,
  * tmax, the stopping rule at the top of the file (x + 2 s |x| >=
  * x / (1 - s) for either sign of x = tmax + bias; the double rounding of
  * this line is far below s). Never beyond t1. */
-static double walk_end(const walk_t *w, const primset_query_t *q, double t1)
+static double walk_end_at(double bias, const primset_query_t *q, double t1)
 {
     if (!q->found)
         return t1;
-    double x = (double)q->tmax + w->bias;
+    double x = (double)q->tmax + bias;
     x += 2 * WALK_SLACK * fabs(x);
     return x < t1 ? x : t1;
+}
+
+/* walk_end_at() with the walk's own bias. */
+static double walk_end(const walk_t *w, const primset_query_t *q, double t1)
+{
+    return walk_end_at(w->bias, q, t1);
 }
 
 /* The t at which the ray crosses plane p (x_a = min_a + p w_a) of nd:
@@ -1543,6 +1590,17 @@ typedef struct {
     double iad[PK_N], adk[PK_N]; /* 1 / |d_k|, |d_k| */
     double tol[PK_N];            /* margin (|mu| + |mv|): pk_slice() */
     double tend[PK_N], t1[PK_N]; /* walk_end(), and the walk's t1 */
+    double bias[PK_N];           /* the walk's bias (walk_end_at()) */
+    real tmax0[PK_N];            /* tmax when the packet began */
+    uint64_t wset;               /* the rays whose walk_t is made: only
+                                    those the single walk's code needs
+                                    (pk_walk()), so that the packet's
+                                    state stays within the first-level
+                                    cache */
+#if GRID_QUADS && MESH_WIDE
+    vwreal wo[3];                /* the origin, permuted (o_u, o_v, o_k),
+                                    in every lane: the wide rays' o */
+#endif
     /* ray i's box on (u, v) within the current slice, relative to o,
      * widened; empty (+inf, -inf) where the ray is not in the slice */
     double ul[PK_N], uh[PK_N], vl[PK_N], vh[PK_N];
@@ -1570,6 +1628,28 @@ static inline __m256d pk_reduce4(__m256d a0, __m256d a1, __m256d a2,
 }
 #endif
 
+#ifdef __AVX__
+/* The lanes whose bit is set in b (0 to 15), as a mask. */
+static inline __m256d pk_mask4(unsigned b)
+{
+#define PK_M_(b) { -((b) & 1), -((b) >> 1 & 1), -((b) >> 2 & 1), -((b) >> 3 & 1) }
+    static const long long lanes[16][4] = {
+        PK_M_(0),  PK_M_(1),  PK_M_(2),  PK_M_(3),  PK_M_(4),  PK_M_(5),
+        PK_M_(6),  PK_M_(7),  PK_M_(8),  PK_M_(9),  PK_M_(10), PK_M_(11),
+        PK_M_(12), PK_M_(13), PK_M_(14), PK_M_(15)
+    };
+#undef PK_M_
+    return _mm256_castsi256_pd(
+        _mm256_loadu_si256((const __m256i *)(const void *)lanes[b]));
+}
+
+/* x where m is set, else y (m from a comparison or pk_mask4()). */
+static inline __m256d pk_sel4(__m256d m, __m256d x, __m256d y)
+{
+    return _mm256_blendv_pd(y, x, m);
+}
+#endif
+
 static inline double pk_min(double a, double b)
 {
     return a < b ? a : b;
@@ -1591,6 +1671,37 @@ static inline double pk_plane_s(const grid_node_t *nd, const packet_t *p,
 /* S0, S1 and the extreme slopes over the live rays. */
 static void pk_bounds(packet_t *p)
 {
+#ifdef __AVX__
+    /* four rays at a time, the others' lanes at +-inf: the least and the
+     * greatest of the same numbers (no rounding), so the same bounds */
+    const __m256d pinf = _mm256_set1_pd((double)INFINITY);
+    const __m256d ninf = _mm256_set1_pd(-(double)INFINITY);
+    __m256d lo0 = pinf, lo1 = pinf, lo2 = pinf, hi0 = ninf, hi1 = ninf,
+            hi2 = ninf;
+    for (int i = 0; i < p->n; i += 4) {
+        unsigned b = (unsigned)(p->live >> i & 15);
+        if (!b)
+            continue;
+        const __m256d m = pk_mask4(b);
+        __m256d mu = _mm256_loadu_pd(p->mu + i);
+        __m256d mv = _mm256_loadu_pd(p->mv + i);
+        lo0 = _mm256_min_pd(lo0, pk_sel4(m, _mm256_loadu_pd(p->s0 + i), pinf));
+        hi0 = _mm256_max_pd(hi0, pk_sel4(m, _mm256_loadu_pd(p->s1 + i), ninf));
+        lo1 = _mm256_min_pd(lo1, pk_sel4(m, mu, pinf));
+        hi1 = _mm256_max_pd(hi1, pk_sel4(m, mu, ninf));
+        lo2 = _mm256_min_pd(lo2, pk_sel4(m, mv, pinf));
+        hi2 = _mm256_max_pd(hi2, pk_sel4(m, mv, ninf));
+    }
+    double lo[4], hi[4];
+    _mm256_storeu_pd(lo, pk_reduce4(lo0, lo1, lo2, pinf, false));
+    _mm256_storeu_pd(hi, pk_reduce4(hi0, hi1, hi2, ninf, true));
+    p->S0 = lo[0];
+    p->S1 = hi[0];
+    p->mlo[0] = lo[1];
+    p->mhi[0] = hi[1];
+    p->mlo[1] = lo[2];
+    p->mhi[1] = hi[2];
+#else
     p->S0 = (double)INFINITY;
     p->S1 = -(double)INFINITY;
     p->mlo[0] = p->mlo[1] = (double)INFINITY;
@@ -1604,6 +1715,7 @@ static void pk_bounds(packet_t *p)
         p->mlo[1] = pk_min(p->mlo[1], p->mv[i]);
         p->mhi[1] = pk_max(p->mhi[1], p->mv[i]);
     }
+#endif
 }
 
 /* The cells [*c0, *c1] on axis u (j = 0) or v (j = 1) that the live
@@ -1651,6 +1763,8 @@ static void pk_slice_boxes(packet_t *p, double a, double b)
     const __m256d ninf = _mm256_set1_pd(-inf);
     __m256d lo_u = pinf, hi_u = ninf, lo_v = pinf, hi_v = ninf;
     for (int i = 0; i < p->n; i += 4) {
+        if (!(p->live >> i & 15))
+            continue; /* their boxes stay empty (pk_drop()) */
         __m256d sa = _mm256_max_pd(va, _mm256_loadu_pd(p->s0 + i));
         __m256d sb = _mm256_min_pd(vb, _mm256_loadu_pd(p->s1 + i));
         __m256d in = _mm256_cmp_pd(sa, sb, _CMP_LE_OQ);
@@ -1794,6 +1908,51 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
     return m;
 }
 
+/* Ray i's walk_t, made on first use: the one walk_init() made when the
+ * packet began (the same tmax), for the single walk's code (child grids,
+ * a cell's other items, cells without quads). */
+static const walk_t *pk_walk(const grid_t *g, packet_t *p, walk_t *w,
+                             const primset_query_t *q, int i)
+{
+    if (!(p->wset >> i & 1)) {
+        walk_init_at(&w[i], g, &q[i], p->tmax0[i], true);
+        p->wset |= UINT64_C(1) << i;
+    }
+    return &w[i];
+}
+
+#if GRID_QUADS
+/* t = the nine corner vectors c0 .. c8 (permuted by MESH_PERMUTED) less
+ * the origin o (in the same order), for pk_test_cell(): written out, so
+ * that every load has a constant offset. */
+#define PK_DEFINE_LESS_ORIGIN(NAME, T, P)                                     \
+    static inline void NAME(T c0, T c1, T c2, T c3, T c4, T c5, T c6, T c7,  \
+                            T c8, T t[9], const T o[3])                       \
+    {                                                                         \
+        t[0] = P##_SUB(c0, o[0]), t[1] = P##_SUB(c1, o[1]);                   \
+        t[2] = P##_SUB(c2, o[2]), t[3] = P##_SUB(c3, o[0]);                   \
+        t[4] = P##_SUB(c4, o[1]), t[5] = P##_SUB(c5, o[2]);                   \
+        t[6] = P##_SUB(c6, o[0]), t[7] = P##_SUB(c7, o[1]);                   \
+        t[8] = P##_SUB(c8, o[2]);                                             \
+    }
+PK_DEFINE_LESS_ORIGIN(pk_less_origin, vreal, V)
+#if MESH_WIDE
+PK_DEFINE_LESS_ORIGIN(pk_less_origin_w, vwreal, VW)
+#endif
+#endif
+
+/* Where compilers allow, an empty statement that may read x and write any
+ * memory: the corner vectors t of pk_test_cell() are then read from
+ * memory for each ray, as operands of its arithmetic, instead of being
+ * held in nine of the sixteen vector registers while the sign test's
+ * temporaries spill around them (gcc 12, AVX2: 72 -> 48 instructions a
+ * ray and pair of quads, 53 -> 45 a ray and quad; the same operations). */
+#if defined(__GNUC__) || defined(__clang__)
+#define GRID_FROM_MEMORY(x) __asm__("" : : "r"(x) : "memory")
+#else
+#define GRID_FROM_MEMORY(x) ((void)0)
+#endif
+
 /* Test non-empty cell f for the packet's rays `rays`: test_full() of
  * each, with the loops turned inside out where the cell has quads: each
  * pair of quads (or quad) taken once and the rays run through it, so that
@@ -1801,7 +1960,7 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
  * The same per-ray tests (mesh_wide_reject_soa2, mesh_lanes_reject_soa,
  * test_lanes, test_cell: the same bits and the same mailbox), in another
  * order, which the nearest-hit rule does not see. */
-static void pk_test_cell(const grid_t *g, const walk_t *w,
+static void pk_test_cell(const grid_t *g, packet_t *p, walk_t *w,
                          primset_query_t *q, uint32_t f, uint64_t rays)
 {
 #if GRID_QUADS
@@ -1817,27 +1976,23 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
          * with a zero origin (x - 0 is x, bit for bit), the same
          * operations as mesh_wide_reject_soa2() (mesh_lanes_reject_soa())
          * and so the same mask. */
-        static const int perm[3][9] = { { 1, 2, 0, 4, 5, 3, 7, 8, 6 },
-                                        { 2, 0, 1, 5, 3, 4, 8, 6, 7 },
-                                        { 0, 1, 2, 3, 4, 5, 6, 7, 8 } };
-        const int r0 = bits_lowest(rays);
-        const int *pm = perm[q[r0].mr.kz];
+        const int r0 = bits_lowest(rays), kz = p->k; /* = every q.mr.kz */
 #if MESH_WIDE
-        const vwreal *o = w[r0].wr.o;
         const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
         for (; i + 1 < nq; i += 2) {
             vwreal t[9];
-            for (int j = 0; j < 9; j++)
-                t[j] = VW_SUB(VW_LOAD2(qd[i].c + pm[j] * VLANES,
-                                       qd[i + 1].c + pm[j] * VLANES),
-                              o[j % 3]);
+#define PK_PAIR_(j) VW_LOAD2(qd[i].c + (j) * VLANES, qd[i + 1].c + (j) * VLANES)
+            MESH_PERMUTED(kz, pk_less_origin_w, PK_PAIR_, t, p->wo);
+#undef PK_PAIR_
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
+                GRID_FROM_MEMORY(t);
                 /* every ray of a packet is fast (packet()) */
                 unsigned left = ~mesh_wide_reject_perm(t[0], t[1], t[2], t[3],
                                                        t[4], t[5], t[6], t[7],
-                                                       t[8], zo, w[r].wr.sx,
-                                                       w[r].wr.sy) &
+                                                       t[8], zo,
+                                                       VW_SET1(q[r].mr.sx),
+                                                       VW_SET1(q[r].mr.sy)) &
                                 ((1u << (2 * MESH_BATCH)) - 1);
                 if (left)
                     test_lanes(ps, &q[r], qd + i, left, false);
@@ -1847,11 +2002,12 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
         const vreal zo4[3] = { V_SET1(0), V_SET1(0), V_SET1(0) };
         for (; i < nq; i++) {
             vreal t[9];
-            for (int j = 0; j < 9; j++)
-                t[j] = V_SUB(V_LOAD(qd[i].c + pm[j] * VLANES),
-                             q[r0].mr.vo[j % 3]);
+#define PK_QUAD_(j) V_LOAD(qd[i].c + (j) * VLANES)
+            MESH_PERMUTED(kz, pk_less_origin, PK_QUAD_, t, q[r0].mr.vo);
+#undef PK_QUAD_
             for (uint64_t m = rays; m; m &= m - 1) {
                 int r = bits_lowest(m);
+                GRID_FROM_MEMORY(t);
                 unsigned left = ~mesh_lanes_reject_perm(t[0], t[1], t[2], t[3],
                                                         t[4], t[5], t[6], t[7],
                                                         t[8], zo4,
@@ -1866,7 +2022,8 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
             return;
         for (uint64_t m = rays; m; m &= m - 1) {
             int r = bits_lowest(m);
-            test_cell(g, &w[r], &q[r], g->items + g->cstart[f],
+            test_cell(g, pk_walk(g, p, w, q, r), &q[r],
+                      g->items + g->cstart[f],
                       g->cstart[f + 1] - g->cstart[f], false);
         }
         return;
@@ -1874,7 +2031,7 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
 #endif
     for (uint64_t m = rays; m; m &= m - 1) {
         int r = bits_lowest(m);
-        test_full(g, &w[r], &q[r], f, false);
+        test_full(g, pk_walk(g, p, w, q, r), &q[r], f, false);
     }
 }
 
@@ -1882,8 +2039,8 @@ static void pk_test_cell(const grid_t *g, const walk_t *w,
 static void pk_drop(packet_t *p, int i)
 {
     p->live &= ~(UINT64_C(1) << i);
-    p->s0[i] = (double)INFINITY;
-    p->s1[i] = -(double)INFINITY;
+    p->s0[i] = p->ul[i] = p->vl[i] = (double)INFINITY;
+    p->s1[i] = p->uh[i] = p->vh[i] = -(double)INFINITY;
 }
 
 /* After the slices up to far plane s = b are done: every live ray whose
@@ -2044,20 +2201,190 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
             uint64_t in = pk_cell_rays(p, lu, hu, lv, hv) & p->live;
             if (!in)
                 continue;
-            pk_test_cell(g, w, q, full_cell(bb[blk], bm[blk], bit), in);
+            pk_test_cell(g, p, w, q, full_cell(bb[blk], bm[blk], bit), in);
             for (; in; in &= in - 1) {
                 int i = bits_lowest(in);
                 q[i].cells++;
                 if (q[i].found) {
                     /* the ray's segment now ends at its walk_end():
                      * beyond it no cell can hold a better hit */
-                    p->tend[i] = walk_end(&w[i], &q[i], p->t1[i]);
+                    p->tend[i] = walk_end_at(p->bias[i], &q[i], p->t1[i]);
                     p->s1[i] = p->tend[i] * p->adk[i] + p->margin;
                     pk_box(p, i, a, b);
                 }
             }
         }
     }
+}
+
+/* Whether the packet takes query qi: its ray starts at the common origin
+ * o (finite), moves along the packet's major axis k in its direction,
+ * with |d_k| its largest component, and is fast for the triangle test
+ * (mesh_ray_prepare()); the others are traced alone. */
+static inline bool pk_admits(const packet_t *p, const primset_query_t *qi,
+                             const real *o, bool o_ok)
+{
+    const ray_t *r = qi->r;
+    double dk = (double)r->d[p->k] * p->sg;
+    /* & rather than &&: one branch, not ten. The origin's bytes: -0 for
+     * +0 sends a ray alone, which only costs time. |d_k| is finite where
+     * the ray is fast and k is its kz; the slopes' tests catch a NaN in
+     * d_u or d_v, which vec_max_axis() passes over. */
+    return o_ok & (memcmp(r->o, o, sizeof r->o) == 0) & (dk > 0) &
+           (dk >= fabs((double)r->d[p->u])) &
+           (dk >= fabs((double)r->d[p->v])) & (qi->mr.kz == p->k) &
+           qi->mr.fast;
+}
+
+#ifndef __AVX__
+/* Ray i's values once it is set up: its part [t0, t1] of the grid (from
+ * slab()), the walk's bias; it is live. (With AVX, pk_setup4() computes
+ * them four at a time.) */
+static inline void pk_enter(packet_t *p, const primset_query_t *q, int i,
+                            double t0, double t1, double bias)
+{
+    p->bias[i] = bias;
+    p->tmax0[i] = q[i].tmax;
+    p->s0[i] = t0 * p->adk[i] - p->margin;
+    p->s1[i] = t1 * p->adk[i] + p->margin;
+    p->t1[i] = t1;
+    p->tend[i] = walk_end_at(bias, &q[i], t1);
+}
+#endif
+
+#ifdef __AVX__
+/* |x|, as fabs: the sign bit cleared. */
+static inline __m256d pk_abs4(__m256d x)
+{
+    return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+}
+#endif
+
+/* Set up rays i .. i + 3 of the packet (the lanes of `ok`; the others
+ * are nowhere): walk_init_at()'s bias, t0 and t1, slab() against the
+ * grid's box, the slopes and the segment along k. Returns the lanes
+ * whose ray meets the grid (made live by the caller). With AVX four rays
+ * at a time, each lane by the scalar operations in their order (the
+ * vector operations are IEEE's, and the comparisons and selections answer
+ * as C's, NaN included), so the same bits. */
+static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
+                     int i, int n, const real *o, bool o_ok, uint64_t *alone)
+{
+    const grid_node_t *nd = &g->nodes[0];
+    const int k = p->k, u = p->u, v = p->v;
+    int ok = 0, in = 0;
+#ifdef __AVX__
+    double d[3][4], tn[4], tx[4];
+    for (int l = 0; l < 4; l++) {
+        bool y = i + l < n && pk_admits(p, &q[i + l], o, o_ok);
+        if (i + l < n && !y)
+            *alone |= UINT64_C(1) << (i + l);
+        ok |= y << l;
+        const ray_t *r = q[i + (y ? l : 0)].r;
+        for (int a = 0; a < 3; a++)
+            d[a][l] = y ? (double)r->d[a] : 1;
+        tn[l] = y ? (double)q[i + l].tmin : 0;
+        tx[l] = y ? (double)q[i + l].tmax : -1; /* t0 > t1: out */
+    }
+    const __m256d one = _mm256_set1_pd(1);
+    const __m256d sl = _mm256_set1_pd(WALK_SLACK);
+    __m256d D[3], len2 = _mm256_setzero_pd(), inv[3];
+    for (int a = 0; a < 3; a++) { /* walk_init_at() */
+        D[a] = _mm256_loadu_pd(d[a]);
+        inv[a] = _mm256_div_pd(one, D[a]);
+        len2 = _mm256_add_pd(len2, _mm256_mul_pd(D[a], D[a]));
+    }
+    __m256d bias = _mm256_div_pd(_mm256_set1_pd(WALK_SLACK * g->diag),
+                                 _mm256_sqrt_pd(len2));
+    __m256d tmin = _mm256_loadu_pd(tn), tmax = _mm256_loadu_pd(tx);
+    __m256d t0 = _mm256_sub_pd(
+        _mm256_sub_pd(tmin, _mm256_mul_pd(sl, pk_abs4(tmin))), bias);
+    __m256d t1 = _mm256_add_pd(
+        _mm256_add_pd(tmax, _mm256_mul_pd(sl, pk_abs4(tmax))), bias);
+    __m256d lo = t0, hi = t1;
+    for (int a = 0; a < 3; a++) { /* slab() */
+        __m256d n0 = _mm256_mul_pd(_mm256_set1_pd(nd->min[a] - p->o[a]),
+                                   inv[a]);
+        __m256d f0 = _mm256_mul_pd(_mm256_set1_pd(nd->max[a] - p->o[a]),
+                                   inv[a]);
+        __m256d sw = _mm256_cmp_pd(n0, f0, _CMP_GT_OQ);
+        __m256d n1 = pk_sel4(sw, f0, n0), f1 = pk_sel4(sw, n0, f0);
+        lo = pk_sel4(_mm256_cmp_pd(n1, lo, _CMP_GT_OQ), n1, lo);
+        hi = pk_sel4(_mm256_cmp_pd(f1, hi, _CMP_LT_OQ), f1, hi);
+    }
+    in = ok & _mm256_movemask_pd(
+                  _mm256_and_pd(_mm256_cmp_pd(t0, t1, _CMP_LE_OQ),
+                                _mm256_cmp_pd(lo, hi, _CMP_LE_OQ)));
+    const __m256d live = pk_mask4((unsigned)in);
+    const __m256d zero = _mm256_setzero_pd();
+    __m256d dk = _mm256_mul_pd(D[k], _mm256_set1_pd(p->sg));
+    __m256d mu = _mm256_div_pd(D[u], dk), mv = _mm256_div_pd(D[v], dk);
+    _mm256_storeu_pd(p->iad + i, pk_sel4(live, _mm256_div_pd(one, dk), zero));
+    _mm256_storeu_pd(p->adk + i, pk_sel4(live, dk, zero));
+    _mm256_storeu_pd(p->mu + i, pk_sel4(live, mu, zero));
+    _mm256_storeu_pd(p->mv + i, pk_sel4(live, mv, zero));
+    _mm256_storeu_pd(p->tol + i,
+                     pk_sel4(live,
+                             _mm256_mul_pd(_mm256_set1_pd(p->margin),
+                                           _mm256_add_pd(pk_abs4(mu),
+                                                         pk_abs4(mv))),
+                             zero));
+    const __m256d pinf = _mm256_set1_pd((double)INFINITY);
+    const __m256d ninf = _mm256_set1_pd(-(double)INFINITY);
+    const __m256d mg = _mm256_set1_pd(p->margin);
+    /* pk_enter()'s values, the same operations */
+    _mm256_storeu_pd(p->bias + i, bias);
+    _mm256_storeu_pd(p->t1 + i, pk_sel4(live, hi, zero));
+    _mm256_storeu_pd(p->tend + i, pk_sel4(live, hi, zero)); /* no hit yet */
+    _mm256_storeu_pd(p->s0 + i,
+                     pk_sel4(live, _mm256_sub_pd(_mm256_mul_pd(lo, dk), mg),
+                             pinf));
+    _mm256_storeu_pd(p->s1 + i,
+                     pk_sel4(live, _mm256_add_pd(_mm256_mul_pd(hi, dk), mg),
+                             ninf));
+    _mm256_storeu_pd(p->ul + i, pinf); /* empty until its first slice */
+    _mm256_storeu_pd(p->vl + i, pinf);
+    _mm256_storeu_pd(p->uh + i, ninf);
+    _mm256_storeu_pd(p->vh + i, ninf);
+    for (int m = in; m; m &= m - 1) {
+        int j = i + bits_lowest((uint64_t)m);
+        p->tmax0[j] = q[j].tmax;
+        if (q[j].found) /* a query that came with a hit */
+            p->tend[j] = walk_end_at(p->bias[j], &q[j], p->t1[j]);
+    }
+#else
+    for (int l = 0; l < 4 && i + l < n; l++) {
+        if (pk_admits(p, &q[i + l], o, o_ok))
+            ok |= 1 << l;
+        else
+            *alone |= UINT64_C(1) << (i + l);
+    }
+    for (int l = 0; l < 4; l++) {
+        int j = i + l;
+        p->s0[j] = (double)INFINITY;
+        p->s1[j] = -(double)INFINITY;
+        p->mu[j] = p->mv[j] = p->iad[j] = p->adk[j] = p->tol[j] =
+            p->tend[j] = p->t1[j] = 0;
+        if (!(ok >> l & 1))
+            continue;
+        walk_t wl; /* walk_init()'s values, but for the wide ray */
+        walk_init_at(&wl, g, &q[j], q[j].tmax, false);
+        double t0, t1;
+        if (!(wl.t0 <= wl.t1) ||
+            !slab(&wl, nd->min, nd->max, wl.t0, wl.t1, &t0, &t1))
+            continue; /* misses the grid: q[j] as query() leaves it */
+        const ray_t *r = q[j].r;
+        double dk = (double)r->d[k] * p->sg;
+        p->iad[j] = 1 / dk;
+        p->adk[j] = dk;
+        p->mu[j] = (double)r->d[u] / dk;
+        p->mv[j] = (double)r->d[v] / dk;
+        p->tol[j] = p->margin * (fabs(p->mu[j]) + fabs(p->mv[j]));
+        pk_enter(p, q, j, t0, t1, wl.bias);
+        in |= 1 << l;
+    }
+#endif
+    return in;
 }
 
 /* One packet of n <= GRID_PACKET_MAX rays (grid_intersect_packet()).
@@ -2093,14 +2420,15 @@ static void pk_slice(const grid_t *g, packet_t *p, walk_t *w,
 static void packet(const grid_t *g, primset_query_t *q, int n)
 {
     const grid_node_t *nd = &g->nodes[0];
-    double sum[3] = { 0, 0, 0 };
-    for (int i = 0; i < n; i++)
-        for (int a = 0; a < 3; a++)
-            sum[a] += (double)q[i].r->d[a];
+    /* the major axis: that of the first and the last ray's directions
+     * summed (a tile's corners), by vec_max_axis()'s rule, which the
+     * rays' own kz follow */
+    double sum[3];
+    for (int a = 0; a < 3; a++)
+        sum[a] = (double)q[0].r->d[a] + (double)q[n - 1].r->d[a];
     packet_t p;
-    p.k = fabs(sum[0]) >= fabs(sum[1])
-              ? (fabs(sum[0]) >= fabs(sum[2]) ? 0 : 2)
-              : (fabs(sum[1]) >= fabs(sum[2]) ? 1 : 2);
+    double ax = fabs(sum[0]), ay = fabs(sum[1]), az = fabs(sum[2]);
+    p.k = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     p.u = p.k == 2 ? 0 : p.k + 1;
     p.v = p.u == 2 ? 0 : p.u + 1;
     p.sg = sum[p.k] < 0 ? -1 : 1;
@@ -2111,41 +2439,19 @@ static void packet(const grid_t *g, primset_query_t *q, int n)
     p.margin = g->ps->pad;
     p.n = n > 16 ? (n + 15) / 16 * 16 : (n + 3) / 4 * 4;
     p.live = 0;
-    walk_t w[PK_N];
-    const int k = p.k, u = p.u, v = p.v;
-    for (int i = 0; i < p.n; i++) {
-        p.s0[i] = (double)INFINITY;
-        p.s1[i] = -(double)INFINITY;
-        p.mu[i] = p.mv[i] = p.iad[i] = p.adk[i] = p.tol[i] = p.tend[i] = p.t1[i] = 0;
-        if (i >= n)
-            continue;
-        const ray_t *r = q[i].r;
-        double dk = (double)r->d[k] * p.sg;
-        bool ok = o_ok && r->o[0] == o[0] && r->o[1] == o[1] &&
-                  r->o[2] == o[2] && dk > 0 && dk < (double)INFINITY &&
-                  dk >= fabs((double)r->d[u]) &&
-                  dk >= fabs((double)r->d[v]) && q[i].mr.kz == k &&
-                  q[i].mr.fast;
-        if (!ok) {
-            grid_intersect(g, &q[i]);
-            continue;
-        }
-        walk_init(&w[i], g, &q[i]);
-        double t0, t1;
-        if (!(w[i].t0 <= w[i].t1) ||
-            !slab(&w[i], nd->min, nd->max, w[i].t0, w[i].t1, &t0, &t1))
-            continue; /* misses the grid: q[i] as query() leaves it */
-        p.iad[i] = 1 / dk;
-        p.adk[i] = dk;
-        p.mu[i] = (double)r->d[u] / dk;
-        p.mv[i] = (double)r->d[v] / dk;
-        p.tol[i] = p.margin * (fabs(p.mu[i]) + fabs(p.mv[i]));
-        p.s0[i] = t0 * dk - p.margin;
-        p.s1[i] = t1 * dk + p.margin;
-        p.t1[i] = t1;
-        p.tend[i] = walk_end(&w[i], &q[i], t1);
-        p.live |= UINT64_C(1) << i;
-    }
+    p.wset = 0;
+    walk_t w[PK_N]; /* made by pk_walk() where needed */
+    const int k = p.k;
+#if GRID_QUADS && MESH_WIDE
+    p.wo[0] = VW_SET1(o[p.u]);
+    p.wo[1] = VW_SET1(o[p.v]);
+    p.wo[2] = VW_SET1(o[k]);
+#endif
+    uint64_t alone = 0;
+    for (int i = 0; i < p.n; i += 4)
+        p.live |= (uint64_t)pk_setup4(g, &p, q, i, n, o, o_ok, &alone) << i;
+    for (; alone; alone &= alone - 1)
+        grid_intersect(g, &q[bits_lowest(alone)]);
     if (!p.live)
         return;
     pk_bounds(&p);

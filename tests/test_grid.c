@@ -657,37 +657,55 @@ static int tile_rays(ray_t *out, const VECTOR3 o, const VECTOR3 f,
 
 /* Every ray of a packet answered by grid_intersect_packet() as
  * grid_intersect() answers it alone, and as brute force: found, the
- * primitive, t and the barycentrics bit for bit. Returns the hits. */
+ * primitive, t and the barycentrics bit for bit. With `pre`, every other
+ * query comes with a hit already, as a caller's query may: the ray's next
+ * hit beyond its nearest (brute force from there; primset_test() of its
+ * primitive before the walk: found, a lower tmax, the primitive in the
+ * mailbox), which the walk must beat. Returns the hits. */
 static long check_packet(const grid_t *g, const primset_t *ps,
-                         const ray_t *r, const real *tmax, int n)
+                         const ray_t *r, const real *tmax, int n, bool pre,
+                         long *pres)
 {
-    primset_query_t got[2 * GRID_PACKET_MAX];
+    primset_query_t got[2 * GRID_PACKET_MAX], one[2 * GRID_PACKET_MAX];
+    primset_query_t want[2 * GRID_PACKET_MAX];
     long hits = 0;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         primset_query_init(&got[i], &r[i], 0, tmax[i]);
+        primset_query_init(&one[i], &r[i], 0, tmax[i]);
+        brute_to(ps, &r[i], tmax[i], &want[i]);
+        if (pre && i % 2 && want[i].found) {
+            primset_query_t next;
+            primset_query_init(&next, &r[i], want[i].hit.t, tmax[i]);
+            for (uint32_t k = 0; k < ps->nrefs; k++)
+                primset_test(ps, &next, k);
+            if (next.found && next.ref != want[i].ref) {
+                ck_assert(primset_test(ps, &got[i], next.ref));
+                ck_assert(primset_test(ps, &one[i], next.ref));
+                (*pres)++;
+            }
+        }
+    }
     grid_intersect_packet(g, got, n);
     for (int i = 0; i < n; i++) {
-        primset_query_t one, want;
-        primset_query_init(&one, &r[i], 0, tmax[i]);
-        grid_intersect(g, &one);
-        brute_to(ps, &r[i], tmax[i], &want);
-        ck_assert_msg(got[i].found == one.found && one.found == want.found,
+        grid_intersect(g, &one[i]);
+        const primset_query_t *o1 = &one[i], *w = &want[i];
+        ck_assert_msg(got[i].found == o1->found && o1->found == w->found,
                       "ray %d of %d (%g %g %g) (%g %g %g): packet %d, "
                       "alone %d, brute force %d",
                       i, n, (double)r[i].o[0], (double)r[i].o[1],
                       (double)r[i].o[2], (double)r[i].d[0],
                       (double)r[i].d[1], (double)r[i].d[2], got[i].found,
-                      one.found, want.found);
-        if (!want.found)
+                      o1->found, w->found);
+        if (!w->found)
             continue;
         hits++;
-        ck_assert_msg(got[i].ref == one.ref && one.ref == want.ref,
+        ck_assert_msg(got[i].ref == o1->ref && o1->ref == w->ref,
                       "ray %d: primitive %u, alone %u, brute force %u", i,
-                      got[i].ref, one.ref, want.ref);
-        ck_assert(memcmp(&got[i].hit.t, &one.hit.t, sizeof one.hit.t) == 0);
-        ck_assert(memcmp(&got[i].hit.t, &want.hit.t, sizeof one.hit.t) == 0);
-        ck_assert(memcmp(got[i].hit.b, one.hit.b, sizeof one.hit.b) == 0);
-        ck_assert(memcmp(got[i].hit.b, want.hit.b, sizeof one.hit.b) == 0);
+                      got[i].ref, o1->ref, w->ref);
+        ck_assert(memcmp(&got[i].hit.t, &o1->hit.t, sizeof w->hit.t) == 0);
+        ck_assert(memcmp(&got[i].hit.t, &w->hit.t, sizeof w->hit.t) == 0);
+        ck_assert(memcmp(got[i].hit.b, o1->hit.b, sizeof w->hit.b) == 0);
+        ck_assert(memcmp(got[i].hit.b, w->hit.b, sizeof w->hit.b) == 0);
     }
     return hits;
 }
@@ -702,9 +720,10 @@ static long check_packet(const grid_t *g, const primset_t *ps,
  * packet of one) over the whole image, the border tiles included (rays that
  * miss everything, part-filled tiles); wide fields of view, whose tiles
  * straddle the change of major axis (those rays go alone); for a third
- * of the cameras rays of random lengths (tmax); and three rays in 64
- * that go alone (another origin, the other way, or a direction 2^-20 as
- * long: outside the triangle test's fast range, mesh_ray_prepare). */
+ * of the cameras rays of random lengths (tmax); three rays in 64 that
+ * go alone (another origin, the other way, or a direction 2^-20 as long:
+ * outside the triangle test's fast range, mesh_ray_prepare); and in a
+ * third of the packets, queries that come with their hit (check_packet). */
 START_TEST(packets_answer_as_single_rays_and_brute_force)
 {
     svet_error e;
@@ -728,7 +747,7 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
                               &e) == SVET_OK);
     primset_t ps;
     ck_assert(primset_build(&ps, objs, nobjs, &e) == SVET_OK);
-    long cases = 0, hits = 0, packets = 0;
+    long cases = 0, hits = 0, packets = 0, pres = 0;
     const int shapes[][2] = { { 4, 4 }, { 8, 2 }, { 8, 8 }, { 3, 5 },
                               { 16, 4 }, { 12, 10 }, { 1, 1 } };
     for (int variant = 0; variant < 4; variant++) {
@@ -786,7 +805,8 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
                                               test's fast range */
                             vec_scale(rays[i].d, rays[i].d, REAL_C(0x1p-20));
                     }
-                    hits += check_packet(g, &ps, rays, tmax, n);
+                    hits += check_packet(g, &ps, rays, tmax, n,
+                                         packets % 3 == 0, &pres);
                     cases += n;
                     packets++;
                 }
@@ -794,11 +814,13 @@ START_TEST(packets_answer_as_single_rays_and_brute_force)
         grid_free(g);
     }
     /* many rays hit, many miss */
-    ck_assert(hits > cases / 4 && hits < cases * 3 / 4);
+    ck_assert(hits > cases / 4 && hits < cases * 3 / 4 && pres > 1000);
     test_report_cases("packets_answer_as_single_rays_and_brute_force (rays)",
                       cases);
     test_report_cases("packets_answer_as_single_rays_and_brute_force "
                       "(packets)", packets);
+    test_report_cases("packets_answer_as_single_rays_and_brute_force "
+                      "(queries that came with a farther hit)", pres);
     primset_free(&ps);
     for (int i = 0; i < nobjs; i++)
         cobject_free(objs[i]);
@@ -843,7 +865,7 @@ START_TEST(packets_with_bad_rays_answer_as_single_rays)
             }
             if (bad == 6) /* the first ray's origin spoilt */
                 rays[0].o[0] = -inf;
-            hits += check_packet(g, &ps, rays, tmax, n);
+            hits += check_packet(g, &ps, rays, tmax, n, false, NULL);
             cases += n;
         }
         /* n = 0 and n < 0: nothing read, nothing written */
