@@ -1207,6 +1207,7 @@ static uint64_t skip_empty(const grid_node_t *nd, const walk_t *w,
 static bool walk(const grid_t *g, uint32_t ni, const walk_t *w,
                  primset_query_t *q, double t0, double t1, bool shadow);
 
+#if GRID_QUADS
 /* The full test of the lanes `left` of the quads qd (lane j in quad
  * j / MESH_BATCH), which the sign test could not reject, through the
  * mailbox. Returns true when a shadow query found a hit. */
@@ -1225,6 +1226,7 @@ static inline bool test_lanes(const primset_t *ps, primset_query_t *q,
     }
     return false;
 }
+#endif
 
 /* Test the nq quads qd of a cell (GRID_QUADS): the sign test of each
  * quad's triangles at once (mesh_lanes_reject_soa; where the widest
@@ -2230,10 +2232,10 @@ static inline bool pk_admits(const packet_t *p, const primset_query_t *qi,
      * +0 sends a ray alone, which only costs time. |d_k| is finite where
      * the ray is fast and k is its kz; the slopes' tests catch a NaN in
      * d_u or d_v, which vec_max_axis() passes over. */
-    return o_ok & (memcmp(r->o, o, sizeof r->o) == 0) & (dk > 0) &
+    return (int)o_ok & (memcmp(r->o, o, sizeof r->o) == 0) & (dk > 0) &
            (dk >= fabs((double)r->d[p->u])) &
            (dk >= fabs((double)r->d[p->v])) & (qi->mr.kz == p->k) &
-           qi->mr.fast;
+           (int)qi->mr.fast;
 }
 
 #ifndef __AVX__

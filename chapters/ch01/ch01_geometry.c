@@ -163,7 +163,7 @@ static int build_gallery(COBJECT **o)
     VECTOR3 lo = { -REAL_C(0.6), -REAL_C(0.6), -REAL_C(0.6) },
             hi = { REAL_C(0.6), REAL_C(0.6), REAL_C(0.6) };
     xform_t m = xform_compose(xform_rotate((VECTOR3){ 1, 1, 0 }, 30),
-                              xform_translate((VECTOR3){ -3, -2.2f, 0 }));
+                              xform_translate((VECTOR3){ -3, REAL_C(-2.2), 0 }));
     o[n++] = xform_new(box_new(lo, hi, NULL), &m, NULL);
     vec_set(a, -1, REAL_C(-2.9), 0);
     vec_set(b, -1, REAL_C(-1.4), REAL_C(-0.5));
@@ -172,9 +172,9 @@ static int build_gallery(COBJECT **o)
     vec_set(b, REAL_C(1.0), REAL_C(-1.3), REAL_C(0.3));
     o[n++] = cone_new(a, b, REAL_C(0.6), true, NULL);
     /* an ellipsoid: a unit sphere scaled and rotated, one line */
-    xform_t e = xform_compose(xform_compose(xform_scale((VECTOR3){ 0.9f, 0.45f, 0.5f }),
+    xform_t e = xform_compose(xform_compose(xform_scale((VECTOR3){ REAL_C(0.9), REAL_C(0.45), REAL_C(0.5) }),
                                             xform_rotate((VECTOR3){ 0, 0, 1 }, 30)),
-                              xform_translate((VECTOR3){ 3, -2.2f, 0 }));
+                              xform_translate((VECTOR3){ 3, REAL_C(-2.2), 0 }));
     vec_set(c, 0, 0, 0);
     o[n++] = xform_new(sphere_new(c, 1, NULL), &e, NULL);
     vec_set(c, 0, REAL_C(-3.2), 0);

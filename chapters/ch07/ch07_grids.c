@@ -66,7 +66,7 @@ static int write_maps(const char *dir, const scene_t_ *sc, accel_kind kind,
     }
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            double c = image_at(counts, x, y)[0];
+            double c = (double)image_at(counts, x, y)[0];
             heat_colour(log1p(c) / log1p(cmax), image_at(&img, x, y));
         }
     snprintf(path, sizeof path, "%s/ch07_%s_%s_cells.ppm", dir, sc->name,
