@@ -195,17 +195,19 @@ bool grid_occluded(const grid_t *g, primset_query_t *q);
 
 /* Nearest hits of n rays (q[0 .. n), each from primset_query_init()) at
  * once, for coherent rays with one origin (a pinhole camera's: a tile of
- * 4 x 4 pixels, say): each q[i] ends exactly as grid_intersect(g, &q[i])
- * leaves it (found, ref, t and bits of the hit), bit for bit. The
- * coherent grid traversal of Wald, Ize, Kensler, Knoll & Parker ("Ray
- * tracing animated scenes using coherent grid traversal", SIGGRAPH
- * 2006): one walk, slice by slice of cells along the packet's major axis,
- * over the cells the rays' frustum may cross; each non-empty cell tested,
- * with the single walk's own per-ray test, only for the rays that may
- * pass through it. Only the top level walks by packets: a cell holding a
- * child grid (hierarchical grid) is walked ray by ray with each ray's
- * best hit so far. Rays that do not share the first ray's origin, or
- * whose largest direction component is not on the packet's major axis
+ * 8 x 8 pixels, say, the fastest size at 1e6 triangles here; the rays in
+ * any order, which only the speed sees): each q[i] ends exactly as
+ * grid_intersect(g, &q[i]) leaves it (found, ref, t and bits of the
+ * hit), bit for bit. The coherent grid traversal of Wald, Ize, Kensler,
+ * Knoll & Parker ("Ray tracing animated scenes using coherent grid
+ * traversal", SIGGRAPH 2006): one walk, slice by slice of cells along the
+ * packet's major axis, over the cells the rays' frustum may cross; each
+ * non-empty cell tested, with the single walk's own per-ray test, only
+ * for the rays that may pass through it. Only the top level walks by
+ * packets: a cell holding a child grid (hierarchical grid) is walked ray
+ * by ray with each ray's best hit so far. Rays that do not share the
+ * first ray's origin (its bytes: -0 for +0 goes alone too), or whose
+ * largest direction component is not on the packet's major axis
  * with its sign (or is not finite, or ties with another axis that the
  * triangle test takes for the largest, or lies outside the triangle
  * test's fast range, 2^-16 to 2^17: mesh_ray_prepare), are traced alone by
