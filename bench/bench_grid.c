@@ -135,7 +135,8 @@ static int by_rate(const void *a, const void *b)
 }
 
 /* Passes of one_pass() for about TRACE_REPEAT seconds (one, when a pass
- * does not finish within the budget): the median pass by wall clock. */
+ * does not finish within the budget): the median pass by wall clock (of
+ * an even number, the slower middle one), whose CPU time goes with it. */
 static run_t timed(long n, int threads, chunk_fn chunk, const void *ctx)
 {
     run_t runs[TRACE_PASSES];
@@ -146,7 +147,7 @@ static run_t timed(long n, int threads, chunk_fn chunk, const void *ctx)
     while (k < TRACE_PASSES && runs[k - 1].rays == n &&
            bench_now() - t0 < TRACE_REPEAT);
     qsort(runs, (size_t)k, sizeof *runs, by_rate);
-    return runs[k / 2];
+    return runs[(k - 1) / 2];
 }
 
 typedef struct {

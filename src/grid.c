@@ -45,7 +45,7 @@
  * and a hit beyond the current cell is kept, not discarded: the walk
  * simply goes on until a cell's exit passes it.
  */
-/* madvise()'s MADV_HUGEPAGE (Linux) is outside POSIX: quads_alloc() */
+/* madvise()'s MADV_HUGEPAGE (Linux) is outside POSIX: grid_alloc() */
 #define _DEFAULT_SOURCE
 #include "grid.h"
 #include "bits.h"
@@ -1634,7 +1634,8 @@ static inline __m256d pk_reduce4(__m256d a0, __m256d a1, __m256d a2,
 /* The lanes whose bit is set in b (0 to 15), as a mask. */
 static inline __m256d pk_mask4(unsigned b)
 {
-#define PK_M_(b) { -((b) & 1), -((b) >> 1 & 1), -((b) >> 2 & 1), -((b) >> 3 & 1) }
+#define PK_M_(b)                                                              \
+    { -((b) & 1), -((b) >> 1 & 1), -((b) >> 2 & 1), -((b) >> 3 & 1) }
     static const long long lanes[16][4] = {
         PK_M_(0),  PK_M_(1),  PK_M_(2),  PK_M_(3),  PK_M_(4),  PK_M_(5),
         PK_M_(6),  PK_M_(7),  PK_M_(8),  PK_M_(9),  PK_M_(10), PK_M_(11),
@@ -1675,7 +1676,8 @@ static void pk_bounds(packet_t *p)
 {
 #ifdef __AVX__
     /* four rays at a time, the others' lanes at +-inf: the least and the
-     * greatest of the same numbers (no rounding), so the same bounds */
+     * greatest of the same numbers (no rounding), so the same bounds up
+     * to the sign of a zero, which no comparison with them sees */
     const __m256d pinf = _mm256_set1_pd((double)INFINITY);
     const __m256d ninf = _mm256_set1_pd(-(double)INFINITY);
     __m256d lo0 = pinf, lo1 = pinf, lo2 = pinf, hi0 = ninf, hi1 = ninf,
@@ -1983,7 +1985,8 @@ static void pk_test_cell(const grid_t *g, packet_t *p, walk_t *w,
         const vwreal zo[3] = { VW_SET1(0), VW_SET1(0), VW_SET1(0) };
         for (; i + 1 < nq; i += 2) {
             vwreal t[9];
-#define PK_PAIR_(j) VW_LOAD2(qd[i].c + (j) * VLANES, qd[i + 1].c + (j) * VLANES)
+#define PK_PAIR_(j)                                                           \
+    VW_LOAD2(qd[i].c + (j) * VLANES, qd[i + 1].c + (j) * VLANES)
             MESH_PERMUTED(kz, pk_less_origin_w, PK_PAIR_, t, p->wo);
 #undef PK_PAIR_
             for (uint64_t m = rays; m; m &= m - 1) {
@@ -2240,8 +2243,8 @@ static inline bool pk_admits(const packet_t *p, const primset_query_t *qi,
 
 #ifndef __AVX__
 /* Ray i's values once it is set up: its part [t0, t1] of the grid (from
- * slab()), the walk's bias; it is live. (With AVX, pk_setup4() computes
- * them four at a time.) */
+ * slab()), the walk's bias (the caller makes it live). With AVX,
+ * pk_setup4() computes them four at a time. */
 static inline void pk_enter(packet_t *p, const primset_query_t *q, int i,
                             double t0, double t1, double bias)
 {
@@ -2282,11 +2285,17 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
         if (i + l < n && !y)
             *alone |= UINT64_C(1) << (i + l);
         ok |= y << l;
-        const ray_t *r = q[i + (y ? l : 0)].r;
+        if (!y) { /* harmless values; `ok` keeps the lane out */
+            d[0][l] = d[1][l] = d[2][l] = 1;
+            tn[l] = 0;
+            tx[l] = 0;
+            continue; /* q[i + l] may lie past the caller's n queries */
+        }
+        const ray_t *r = q[i + l].r;
         for (int a = 0; a < 3; a++)
-            d[a][l] = y ? (double)r->d[a] : 1;
-        tn[l] = y ? (double)q[i + l].tmin : 0;
-        tx[l] = y ? (double)q[i + l].tmax : -1; /* t0 > t1: out */
+            d[a][l] = (double)r->d[a];
+        tn[l] = (double)q[i + l].tmin;
+        tx[l] = (double)q[i + l].tmax;
     }
     const __m256d one = _mm256_set1_pd(1);
     const __m256d sl = _mm256_set1_pd(WALK_SLACK);
@@ -2351,7 +2360,10 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
     for (int m = in; m; m &= m - 1) {
         int j = i + bits_lowest((uint64_t)m);
         p->tmax0[j] = q[j].tmax;
-        if (q[j].found) /* a query that came with a hit */
+        /* a query that came with a hit: walk_end(), as the scalar path
+         * makes it (where tmax >= 0 that is t1 already: it never ends
+         * before the walk's own t1 there) */
+        if (q[j].found)
             p->tend[j] = walk_end_at(p->bias[j], &q[j], p->t1[j]);
     }
 #else
