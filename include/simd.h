@@ -51,12 +51,6 @@ typedef __m128d vreal;
 #define V_MASK _mm_movemask_pd
 #ifdef __AVX__
 #define V_NEQ(a, b) _mm_cmp_pd(a, b, _CMP_NEQ_OQ)
-#else
-static inline vreal simd_neq_(vreal a, vreal b)
-{
-    return _mm_or_pd(_mm_cmplt_pd(a, b), _mm_cmpgt_pd(a, b));
-}
-#define V_NEQ simd_neq_
 #endif
 #else
 typedef __m128 vreal;
@@ -79,14 +73,17 @@ typedef __m128 vreal;
 #define V_MASK _mm_movemask_ps
 #ifdef __AVX__
 #define V_NEQ(a, b) _mm_cmp_ps(a, b, _CMP_NEQ_OQ)
-#else
+#endif
+#endif
+#endif
+
+#if defined(SIMD_REAL) && !defined(__AVX__)
+/* a < b or a > b: SSE2 has no ordered not-equal of its own */
 static inline vreal simd_neq_(vreal a, vreal b)
 {
-    return _mm_or_ps(_mm_cmplt_ps(a, b), _mm_cmpgt_ps(a, b));
+    return V_OR(V_LT(a, b), V_GT(a, b));
 }
 #define V_NEQ simd_neq_
-#endif
-#endif
 #endif
 
 /* The widest vectors: AVX where the compiler targets it, else SSE2's. */
