@@ -245,7 +245,7 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs count-render
+.PHONY: reference tradeoffs count-render count-grid
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
@@ -256,6 +256,11 @@ reference:
 # load-independent figure of bench/results/render.md.
 count-render: $(BUILD)/svet
 	sh tools/count-render.sh $(BUILD)/svet
+
+# `make count-grid`: instructions per ray of the grid at 1e6 triangles
+# (callgrind), the load-independent figures of chapters/ch07/README.md.
+count-grid: $(BUILD)/bench/bench_grid
+	sh tools/count-grid.sh $(BUILD)/bench/bench_grid
 
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet

@@ -12,6 +12,10 @@
  *   make bench-grid BENCH_ARGS=--quick    a smoke run
  *   make bench-grid BENCH_ARGS="--only 1000000"   one sphere size only
  *   make bench-grid BENCH_ARGS="--only stadium"   the teapot in a stadium
+ *   bench_grid --trace camera|packets4|packets8|incoherent [--passes N]
+ *       one kind of ray at 1e6 through grid.h alone, N passes (best
+ *       reported): the figures of `make count-grid` (tools/count-grid.sh
+ *       counts trace_pass() under callgrind) and of back-to-back timings
  * Camera rays are traced one at a time through accel.h (as the renderer
  * traces them), and in packets of 4 x 4 and 8 x 8 pixels through
  * grid_intersect_packet() (grid.h) on a grid built over the same scene.
@@ -571,12 +575,100 @@ static void tune(void)
     }
 }
 
+/* --- one kind of ray, for counting and back-to-back timing -------------- */
+
+static int usage(const char *why, const char *arg);
+
+/* One pass of `kind` over the n rays r (packets of m = side^2 rays in the
+ * order ix when m > 1), as a caller of grid.h traces them: each query set
+ * up, traced and finished. Kept out of line so that callgrind can count
+ * it alone (tools/count-grid.sh). Returns the hits. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static long trace_pass(const grid_t *g, const ray_t *r, const long *ix,
+                       long n, int m)
+{
+    long hits = 0;
+    if (m <= 1) {
+        for (long i = 0; i < n; i++) {
+            primset_query_t q;
+            primset_query_init(&q, &r[i], 0, (real)INFINITY);
+            grid_intersect(g, &q);
+            hits += primset_query_finish(g->ps, &q) != NULL;
+        }
+        return hits;
+    }
+    for (long i = 0; i < n; i += m) {
+        primset_query_t q[GRID_PACKET_MAX];
+        for (int j = 0; j < m; j++)
+            primset_query_init(&q[j], &r[ix[i + j]], 0, (real)INFINITY);
+        grid_intersect_packet(g, q, m);
+        for (int j = 0; j < m; j++)
+            hits += primset_query_finish(g->ps, &q[j]) != NULL;
+    }
+    return hits;
+}
+
+/* `bench_grid --trace KIND [--passes N]`: the 1e6 spheres' uniform grid
+ * (grid.h directly, without accel.c), the benchmark's camera or
+ * incoherent rays, N passes of one thread; prints the best pass. */
+static int trace_only(const char *kind, int passes)
+{
+    int side = strcmp(kind, "camera") == 0       ? 1
+               : strcmp(kind, "packets4") == 0   ? 4
+               : strcmp(kind, "packets8") == 0   ? 8
+               : strcmp(kind, "incoherent") == 0 ? 0
+                                                 : -1;
+    if (side < 0)
+        return usage("--trace takes camera, packets4, packets8 or "
+                     "incoherent", kind);
+    meshgen_scene_t s;
+    sphere_scene(1000000, &s);
+    bbox_t b;
+    scene_box(s.objs, s.nobjs, &b);
+    VECTOR3 eye, target;
+    default_view(&b, eye, target);
+    long n = (long)g_cam * g_cam;
+    ray_t *r = side ? camera_rays(eye, target, 40, g_cam)
+                    : random_rays(&b, n, 7);
+    long *ix = side > 1 ? packet_order(n, side, side) : NULL;
+    primset_t ps;
+    grid_params_t gp;
+    grid_t *g;
+    svet_error e;
+    grid_params_uniform(&gp);
+    if (primset_build(&ps, s.objs, s.nobjs, &e) != SVET_OK ||
+        grid_build(&g, &ps, &gp, &e) != SVET_OK) {
+        fprintf(stderr, "bench_grid: %s\n", e.msg);
+        return 1;
+    }
+    double best = 0;
+    long hits = 0;
+    for (int p = 0; p < passes; p++) {
+        double t0 = bench_now();
+        hits = trace_pass(g, r, ix, n, side * side);
+        double rate = (double)n / (bench_now() - t0) * 1e-6;
+        best = rate > best ? rate : best;
+    }
+    printf("%s: %ld rays, %ld hits, best of %d passes %.3f Mrays/s\n", kind,
+           n, hits, passes, best);
+    grid_free(g);
+    primset_free(&ps);
+    free(ix);
+    free(r);
+    meshgen_free_objects(&s);
+    return 0;
+}
+
 static int usage(const char *why, const char *arg)
 {
     fprintf(stderr,
             "bench_grid: %s%s%s\nusage: bench_grid [--quick] [--only "
             "1000|10000|100000|1000000|stadium] [FILE.obj]\n"
-            "       bench_grid --tune\n",
+            "       bench_grid --tune\n"
+            "       bench_grid --trace camera|packets4|packets8|incoherent "
+            "[--passes N]\n",
             why, arg ? ": " : "", arg ? arg : "");
     return 2;
 }
@@ -599,6 +691,8 @@ int main(int argc, char **argv)
     const char *objfile = NULL;
     const char *only = NULL; /* one sphere size, or "stadium" */
     bool quick = false, tuning = false;
+    const char *trace = NULL; /* one kind of ray alone */
+    int passes = 5;
     const long sizes[] = { 1000, 10000, 100000, 1000000 };
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--tune") == 0) {
@@ -613,6 +707,18 @@ int main(int argc, char **argv)
             only = argv[++i];
             if (!only_ok(only, sizes, 4))
                 return usage("--only takes a sphere size or stadium", only);
+        } else if (strcmp(argv[i], "--trace") == 0) {
+            if (i + 1 == argc)
+                return usage("--trace needs a kind of ray", NULL);
+            trace = argv[++i];
+        } else if (strcmp(argv[i], "--passes") == 0) {
+            char *end;
+            long v = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
+            if (i + 1 == argc || *end != '\0' || v < 1 || v > 1000)
+                return usage("--passes takes a whole number from 1 to 1000",
+                             i + 1 < argc ? argv[i + 1] : NULL);
+            passes = (int)v;
+            i++;
         } else if (argv[i][0] == '-') {
             return usage("unknown option", argv[i]);
         } else if (objfile) {
@@ -620,6 +726,11 @@ int main(int argc, char **argv)
         } else {
             objfile = argv[i];
         }
+    }
+    if (trace) {
+        if (tuning || quick || only || objfile)
+            return usage("--trace takes only --passes beside it", NULL);
+        return trace_only(trace, passes);
     }
     if (tuning) {
         if (argc != 2)
