@@ -12,6 +12,9 @@
  *   make bench-grid BENCH_ARGS=--quick    a smoke run
  *   make bench-grid BENCH_ARGS="--only 1000000"   one sphere size only
  *   make bench-grid BENCH_ARGS="--only stadium"   the teapot in a stadium
+ *   make bench-grid BENCH_ARGS=--render   the renderer on the 1e6
+ *       spheres (render.h): camera rays in packets against one at a time,
+ *       for three integrators, and whether the images are the same
  *   bench_grid --trace camera|packets4|packets8|incoherent [--passes N]
  *       one kind of ray at 1e6 through grid.h alone, N passes (best
  *       reported): the figures of `make count-grid` (tools/count-grid.sh
@@ -27,7 +30,10 @@
 #include "mesh.h"
 #include "meshgen.h"
 #include "obj.h"
+#include "allparts.h"
+#include "material.h"
 #include "primset.h"
+#include "render.h"
 #include "rng.h"
 
 #include <omp.h>
@@ -420,7 +426,8 @@ static void bench_scene(const char *name, COBJECT **objs, int n, long tris,
     free(inc);
 }
 
-static void machine(int argc, char **argv)
+/* The title, the machine, its load and the command. */
+static void machine_head(int argc, char **argv)
 {
     char load[160];
     printf("# Grid benchmark (ch. 7)\n\n- ");
@@ -430,7 +437,13 @@ static void machine(int argc, char **argv)
     printf("- command:");
     for (int i = 0; i < argc; i++)
         printf(" %s", argv[i]);
-    printf("\n- rays: camera %d x %d (pinhole, 40 degrees, pixel centres, "
+    printf("\n");
+}
+
+static void machine(int argc, char **argv)
+{
+    machine_head(argc, argv);
+    printf("- rays: camera %d x %d (pinhole, 40 degrees, pixel centres, "
            "in 16 x 16 tiles as the renderer traces them), "
            "incoherent %ld (origins uniform in the scene's box, "
            "directions uniform on the sphere); brute force traces a "
@@ -661,12 +674,156 @@ static int trace_only(const char *kind, int passes)
     return 0;
 }
 
+/* --- the renderer on the spheres (--render) ----------------------------- */
+
+/* Passes of one sample per pixel each measurement takes (the median is
+ * reported); the same number for packets and single rays, so that their
+ * images can be compared at the end. */
+#define RENDER_PASSES 3
+
+/* The 5 x 5 x 5 spheres of ntris triangles as a scene for render.h: grey
+ * diffuse (albedo 0.6), under a uniform sky of radiance 1, seen as the
+ * camera rays of the tables see them (default_view, 40 degrees, g_cam
+ * pixels a side); the integrator as asked. */
+static void render_scene(scene_t *sc, long ntris, scene_integrator mode,
+                         int max_depth)
+{
+    svet_error e;
+    meshgen_scene_t m;
+    sphere_scene(ntris, &m);
+    scene_init(sc);
+    sc->features = scene_features_all();
+    material_params p;
+    material_params_default(&p);
+    p.rho_d = rad_grey(REAL_C(0.6));
+    material_t *mat;
+    if (material_new(&p, &mat, &e) != SVET_OK ||
+        scene_add_anon_material(sc, mat, &e) != SVET_OK) {
+        fprintf(stderr, "%s\n", e.msg);
+        exit(1);
+    }
+    bbox_t b;
+    scene_box(m.objs, m.nobjs, &b);
+    for (int i = 0; i < m.nobjs; i++)
+        if (scene_add_object(sc, m.objs[i], mat, &e) != SVET_OK) {
+            fprintf(stderr, "%s\n", e.msg);
+            exit(1);
+        }
+    free(m.objs); /* the objects are the scene's now */
+    sc->has_environment = true;
+    sc->environment = rad_grey(1);
+    default_view(&b, sc->camera.position, sc->camera.target);
+    vec_set(sc->camera.up, 0, 0, 1);
+    sc->camera.fov = 40;
+    sc->camera.width = sc->camera.height = g_cam;
+    sc->render.integrator = mode;
+    sc->render.max_depth = max_depth;
+    sc->render.accel = SCENE_ACCEL_GRID;
+}
+
+typedef struct {
+    double wall[2], cpu[2]; /* median pass at 1 and 2 threads */
+    double rays_per_sample;
+} render_run_t;
+
+static int by_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* RENDER_PASSES passes of one sample per pixel at 1, then 2 threads. */
+static render_run_t render_runs(render_t *r)
+{
+    render_run_t out;
+    for (int t = 0; t < 2; t++) {
+        double w[RENDER_PASSES], c[RENDER_PASSES];
+        for (int k = 0; k < RENDER_PASSES; k++) {
+            double t0 = bench_now(), c0 = cpu_now();
+            render_pass(r, r->spp_done + 1, t + 1, NULL, NULL);
+            w[k] = bench_now() - t0;
+            c[k] = cpu_now() - c0;
+        }
+        qsort(w, RENDER_PASSES, sizeof *w, by_double);
+        qsort(c, RENDER_PASSES, sizeof *c, by_double);
+        out.wall[t] = w[RENDER_PASSES / 2];
+        out.cpu[t] = c[RENDER_PASSES / 2];
+    }
+    out.rays_per_sample = (double)r->stats.rays /
+                          ((double)r->spp_done * g_cam * g_cam);
+    return out;
+}
+
+static void render_row(const char *what, const char *how,
+                       const render_run_t *u, const char *same)
+{
+    double n = (double)g_cam * g_cam / 1e6;
+    printf("| %s | %s | %.2f | %.3f | %.3f | %.3f | %.3f | %s |\n", what, how,
+           u->rays_per_sample, n / u->wall[0], n / u->wall[1],
+           n / u->cpu[0], n * u->rays_per_sample / u->wall[0], same);
+}
+
+static int render_bench(bool quick)
+{
+    const long ntris = quick ? 10000 : 1000000;
+    const struct {
+        const char *name;
+        scene_integrator mode;
+        int depth;
+    } modes[3] = {
+        { "camera rays only (path, maxdepth 0)", SCENE_INTEGRATOR_PATH, 0 },
+        { "ambient occlusion (one shadow ray)", SCENE_INTEGRATOR_AO, 0 },
+        { "path tracing (maxdepth 3, sky light)", SCENE_INTEGRATOR_PATH, 3 },
+    };
+    printf("The renderer (render.h) on the 5 x 5 x 5 spheres of %ld "
+           "triangles, uniform grid, %d x %d pixels, one sample a pixel a "
+           "pass, the median of %d passes at each thread count; samples "
+           "in millions a second; \"same image\": the accumulated sums of "
+           "the %d samples a pixel compared byte for byte with the render "
+           "one ray at a time\n\n",
+           ntris, g_cam, g_cam, RENDER_PASSES, 2 * RENDER_PASSES);
+    printf("| integrator | camera rays | rays/sample | Msamples/s 1T | 2T | "
+           "1T per CPU-s | Mrays/s 1T | same image |\n"
+           "|---|---|---:|---:|---:|---:|---:|---|\n");
+    int rc = 0;
+    for (int m = 0; m < 3; m++) {
+        scene_t sc;
+        render_scene(&sc, ntris, modes[m].mode, modes[m].depth);
+        render_t one, pk;
+        svet_error e;
+        if (render_init(&one, &sc, &e) != SVET_OK ||
+            render_init(&pk, &sc, &e) != SVET_OK) {
+            fprintf(stderr, "%s\n", e.msg);
+            return 1;
+        }
+        one.packets = false;
+        render_run_t u1 = render_runs(&one);
+        render_run_t u2 = render_runs(&pk);
+        size_t n = (size_t)g_cam * (size_t)g_cam;
+        bool same = pk.packets &&
+                    memcmp(one.acc.sum, pk.acc.sum, 3 * n * sizeof(double)) == 0 &&
+                    memcmp(one.sum2, pk.sum2, 3 * n * sizeof(double)) == 0;
+        render_row(modes[m].name, "one at a time", &u1, "");
+        render_row(modes[m].name, "packets of 8 x 8", &u2,
+                   same ? "yes" : "NO");
+        if (!same)
+            rc = 1;
+        if (m == 0)
+            fprintf(stderr, "bench_grid: %s\n", pk.accel_choice);
+        render_free(&one);
+        render_free(&pk);
+        scene_free(&sc);
+    }
+    return rc;
+}
+
 static int usage(const char *why, const char *arg)
 {
     fprintf(stderr,
             "bench_grid: %s%s%s\nusage: bench_grid [--quick] [--only "
             "1000|10000|100000|1000000|stadium] [FILE.obj]\n"
             "       bench_grid --tune\n"
+            "       bench_grid --render [--quick]\n"
             "       bench_grid --trace camera|packets4|packets8|incoherent "
             "[--passes N]\n",
             why, arg ? ": " : "", arg ? arg : "");
@@ -690,13 +847,15 @@ int main(int argc, char **argv)
 {
     const char *objfile = NULL;
     const char *only = NULL; /* one sphere size, or "stadium" */
-    bool quick = false, tuning = false;
+    bool quick = false, tuning = false, rendering = false;
     const char *trace = NULL; /* one kind of ray alone */
     int passes = 5;
     const long sizes[] = { 1000, 10000, 100000, 1000000 };
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--tune") == 0) {
             tuning = true;
+        } else if (strcmp(argv[i], "--render") == 0) {
+            rendering = true;
         } else if (strcmp(argv[i], "--quick") == 0) {
             quick = true;
             g_cam = 128;
@@ -731,6 +890,13 @@ int main(int argc, char **argv)
         if (tuning || quick || only || objfile)
             return usage("--trace takes only --passes beside it", NULL);
         return trace_only(trace, passes);
+    }
+    if (rendering) {
+        if (tuning || only || objfile)
+            return usage("--render takes only --quick beside it", NULL);
+        machine_head(argc, argv);
+        printf("\n");
+        return render_bench(quick);
     }
     if (tuning) {
         if (argc != 2)

@@ -87,7 +87,15 @@ struct accel_ops {
     /* AUTO's measure (NULL when it has none): the fraction of its
      * primitive references in cells of more than `crowd` of them. */
     double (*crowded)(const void *s, long crowd);
+    /* Nearest hits of n <= ACCEL_PACKET_MAX queries at once, each left
+     * exactly as intersect() leaves it (grid_intersect_packet() of
+     * grid.h); NULL when the structure has no faster way than intersect()
+     * ray by ray. */
+    void (*intersect_packet)(const void *s, primset_query_t *q, int n);
 };
+
+/* The most queries an accel_ops_t.intersect_packet takes at once. */
+#define ACCEL_PACKET_MAX 64
 
 /* The structure of kind k in list (NULL-terminated; may be NULL), or NULL
  * when the program offers none. Inline, so that the scene file's checks
@@ -182,6 +190,25 @@ bool accel_tracer_intersect(const void *a, const ray_t *r, real tmin,
                             hit_t *hit, const COBJECT **obj);
 bool accel_tracer_occluded(const void *a, const ray_t *r, real tmin,
                            real tmax, const COBJECT *const skip[2]);
+
+/* Whether a's structure traces coherent rays faster in packets than one
+ * at a time (the grids: accel_ops_t.intersect_packet), so that a caller
+ * holding such rays (a pinhole camera's, a tile of pixels) should give
+ * them to accel_tracer_intersect_packet(). This function can't fail. */
+bool accel_has_packets(const accel_t *a);
+
+/* The nearest hits of the n rays r[0 .. n) over (tmin, tmax), at once:
+ * found[i] = accel_tracer_intersect(a, &r[i], tmin, tmax, NULL, &hit[i],
+ * &obj[i]), bit for bit, hit[i] and obj[i] untouched on a miss. The rays
+ * may be anything (any origins, any n >= 0); they go fastest with one
+ * origin and nearly one direction (a pinhole camera's rays over 8 x 8
+ * pixels: grid.h's grid_intersect_packet() walks them together). A
+ * structure without packets answers ray by ray. In the shape of
+ * integrator.h's tracer_t.intersect_packet (a: the accel_t). This
+ * function can't fail. */
+void accel_tracer_intersect_packet(const void *a, const ray_t *r, int n,
+                                   real tmin, real tmax, hit_t *hit,
+                                   const COBJECT **obj, bool *found);
 
 /* Whether a query takes ray r over (tmin, tmax) at all: all six
  * coordinates finite, d nonzero, tmin < tmax (a query answers "no hit"

@@ -30,6 +30,14 @@ typedef struct {
     /* Any hit in (tmin, tmax) (shadow rays); skip as for intersect. */
     bool (*occluded)(const void *ctx, const ray_t *r, real tmin, real tmax,
                      const COBJECT *const skip[2]);
+    /* The nearest hits of n rays at once, no skip: found[i] as intersect()
+     * answers r[i], bit for bit, hit[i] and obj[i] filled on a hit
+     * (accel.h's accel_tracer_intersect_packet()). NULL where the tracer
+     * has nothing faster than intersect() ray by ray (brute force); the
+     * renderer then traces its camera rays one at a time. */
+    void (*intersect_packet)(const void *ctx, const ray_t *r, int n,
+                             real tmin, real tmax, hit_t *hit,
+                             const COBJECT **obj, bool *found);
     const void *ctx;
 } tracer_t;
 
@@ -66,6 +74,22 @@ void integrator_init(integrator_t *it, const scene_t *s,
  * may be NaN only if the scene's data is (the caller counts those). */
 RADIANCE integrator_li(const integrator_t *it, const ray_t *r, pcg32_t *g,
                        integrator_stats_t *st);
+
+/* Where the camera ray meets the scene, traced by the caller (a packet of
+ * camera rays: tracer_t.intersect_packet): found, and then the hit and
+ * the object, as tracer_t.intersect over (0, inf) answers. */
+typedef struct {
+    bool found;
+    hit_t hit;
+    const COBJECT *obj;
+} integrator_first_t;
+
+/* integrator_li() of a camera ray r whose first hit is *first: the same
+ * estimate, bit for bit, and the same random numbers, without tracing r
+ * (it is still counted in st->rays). This function can't fail. */
+RADIANCE integrator_li_from(const integrator_t *it, const ray_t *r,
+                            const integrator_first_t *first, pcg32_t *g,
+                            integrator_stats_t *st);
 
 /* The power heuristic with beta = 2 for two strategies with densities a
  * (the one used) and b: a^2 / (a^2 + b^2), computed without overflow;

@@ -18,6 +18,10 @@
 #include "scene.h"
 
 #define RENDER_TILE 16
+/* Camera rays go to the tracer RENDER_PACKET x RENDER_PACKET pixels at a
+ * time (one sample of each) where it takes packets: the grids' fastest
+ * size at 1e6 triangles (chapters/ch07/README.md). */
+#define RENDER_PACKET 8
 
 /* Called after each finished tile, from whichever thread finished it, one
  * call at a time. */
@@ -33,7 +37,12 @@ typedef struct {
                                force, or one of those the scene's
                                features offer (the grids of ch. 7) */
     void (*accel_free)(void *);
-    char accel_choice[160]; /* what was chosen for tracing, and why */
+    char accel_choice[200]; /* what was chosen for tracing, and why */
+    bool packets;           /* camera rays in packets (tracer.intersect_
+                               packet): where the scene asks for them
+                               (scene_render_t.packets) and the structure
+                               takes them; a caller may clear it to trace
+                               them one at a time, for the same image */
     integrator_t integrator;
     image_accum_t acc;      /* per-pixel sums and counts (image.h) */
     double *sum2;           /* per pixel and channel: sum of squares of the

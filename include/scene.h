@@ -126,6 +126,10 @@ typedef struct {
     char *output_png;      /* tone-mapped output, or NULL (as above). Owned */
     scene_tonemap_t tonemap;
     scene_accel accel;
+    bool packets;          /* camera rays traced in packets of 8 x 8 pixels
+                              where the structure takes them (the grids of
+                              ch. 7); off: one at a time. The image is the
+                              same bit for bit */
     /* -- later chapters put their settings below, each in its own
      *    struct: photon maps (ch. 8), the irradiance cache (ch. 9). -- */
 } scene_render_t;

@@ -727,6 +727,51 @@ bool accel_intersect_counted(const accel_t *a, const ray_t *r, real tmin,
     return nearest(a, r, tmin, tmax, NULL, &h->hit, &h->obj, c);
 }
 
+bool accel_has_packets(const accel_t *a)
+{
+    return a && a->ops && a->ops->intersect_packet;
+}
+
+void accel_tracer_intersect_packet(const void *ctx, const ray_t *r, int n,
+                                   real tmin, real tmax, hit_t *hit,
+                                   const COBJECT **obj, bool *found)
+{
+    const accel_t *a = ctx;
+    if (!accel_has_packets(a)) {
+        for (int i = 0; i < n; i++)
+            found[i] = accel_tracer_intersect(a, &r[i], tmin, tmax, NULL,
+                                              &hit[i], &obj[i]);
+        return;
+    }
+    for (int i0 = 0; i0 < n; i0 += ACCEL_PACKET_MAX) {
+        const int i1 = n - i0 > ACCEL_PACKET_MAX ? i0 + ACCEL_PACKET_MAX : n;
+        primset_query_t q[ACCEL_PACKET_MAX];
+        int ray_of[ACCEL_PACKET_MAX];
+        int m = 0;
+        /* nearest()'s steps for each ray, the structure's part for all
+         * of them at once: the check, then the unbounded primitives
+         * (run()), so that each query reaches the structure as it would
+         * alone */
+        for (int i = i0; i < i1; i++) {
+            found[i] = false;
+            if (!ray_ok(&r[i], tmin, tmax))
+                continue;
+            primset_query_init(&q[m], &r[i], tmin, tmax);
+            test_range(&a->ps, &q[m], a->ps.nbounded, a->ps.nrefs, false);
+            ray_of[m++] = i;
+        }
+        a->ops->intersect_packet(a->s, q, m);
+        for (int j = 0; j < m; j++) {
+            if (!q[j].found)
+                continue;
+            const int i = ray_of[j];
+            obj[i] = primset_query_finish(&a->ps, &q[j]);
+            hit[i] = q[j].hit;
+            found[i] = true;
+        }
+    }
+}
+
 /* accel_occluded_skip() and accel_tracer_occluded(): the one shadow
  * query (inline in both). */
 static inline bool occluded(const accel_t *a, const ray_t *r, real tmin,

@@ -2569,6 +2569,11 @@ static bool ops_occluded(const void *g, primset_query_t *q)
     return grid_occluded(g, q);
 }
 
+static void ops_intersect_packet(const void *g, primset_query_t *q, int n)
+{
+    grid_intersect_packet(g, q, n);
+}
+
 static void ops_free(void *g)
 {
     grid_free(g);
@@ -2612,12 +2617,12 @@ static double ops_crowded(const void *v, long crowd)
 
 const accel_ops_t grid_uniform_accel = {
     ACCEL_GRID, build_uniform, ops_intersect, ops_occluded, ops_free,
-    ops_stats, ops_crowded
+    ops_stats, ops_crowded, ops_intersect_packet
 };
 
 const accel_ops_t grid_hierarchical_accel = {
     ACCEL_HGRID, build_hierarchical, ops_intersect, ops_occluded, ops_free,
-    ops_stats, ops_crowded
+    ops_stats, ops_crowded, ops_intersect_packet
 };
 
 const accel_ops_t *const grid_accels[] = {

@@ -56,7 +56,7 @@ static bool brute_occluded(const void *ctx, const ray_t *r, real tmin,
 
 tracer_t tracer_brute(const scene_t *s)
 {
-    tracer_t t = { brute_intersect, brute_occluded, s };
+    tracer_t t = { brute_intersect, brute_occluded, NULL, s };
     return t;
 }
 
@@ -148,7 +148,24 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     return rad_scale(rad_mul(f, ls.Li), scale);
 }
 
+/* The camera ray's first hit: *first when the caller traced it (NULL:
+ * traced here), so that both ways give the same bits. */
+static bool first_hit(const integrator_t *it, const ray_t *r,
+                      const integrator_first_t *first, hit_t *h,
+                      const COBJECT **obj)
+{
+    if (!first)
+        return it->tracer.intersect(it->tracer.ctx, r, 0, (real)INFINITY,
+                                    NULL, h, obj);
+    if (first->found) {
+        *h = first->hit;
+        *obj = first->obj;
+    }
+    return first->found;
+}
+
 static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
+                                  const integrator_first_t *first,
                                   pcg32_t *g, integrator_stats_t *st)
 {
     hit_t h;
@@ -156,8 +173,7 @@ static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
     real u[2];
     draw2(u, g);
     st->rays++;
-    if (!it->tracer.intersect(it->tracer.ctx, r, 0, (real)INFINITY, NULL, &h,
-                              &obj))
+    if (!first_hit(it, r, first, &h, &obj))
         return rad_grey(0);
     PATHPOINT pp;
     cobject_fill(obj, r, &h, &pp);
@@ -180,9 +196,16 @@ static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
 RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
                        pcg32_t *g, integrator_stats_t *st)
 {
+    return integrator_li_from(it, camera, NULL, g, st);
+}
+
+RADIANCE integrator_li_from(const integrator_t *it, const ray_t *camera,
+                            const integrator_first_t *first, pcg32_t *g,
+                            integrator_stats_t *st)
+{
     st->paths++;
     if (it->mode == SCENE_INTEGRATOR_AO)
-        return ambient_occlusion(it, camera, g, st);
+        return ambient_occlusion(it, camera, first, g, st);
 
     /* Light sampling runs in every mode but BSDF-only. The emitters that a
      * BSDF sample hits count, weighted by MIS where light sampling could
@@ -215,8 +238,10 @@ RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
         hit_t h;
         const COBJECT *obj = NULL;
         st->rays++;
-        bool hit = it->tracer.intersect(it->tracer.ctx, &r, 0, (real)INFINITY,
-                                        skip, &h, &obj);
+        bool hit = depth == 0 ? first_hit(it, &r, first, &h, &obj)
+                              : it->tracer.intersect(it->tracer.ctx, &r, 0,
+                                                     (real)INFINITY, skip,
+                                                     &h, &obj);
         /* Light found by this ray: counted in full from the camera and
          * after a delta bounce; after a sampled bounce weighted against
          * light sampling. */

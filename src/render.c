@@ -58,8 +58,18 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
     r->tracer.intersect = accel_tracer_intersect;
     r->tracer.occluded = accel_tracer_occluded;
     r->tracer.ctx = a;
-    snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
-             accel_describe(a));
+    /* packets of camera rays only where the structure is faster with
+     * them: brute force (the Cornell box) keeps the per-pixel loop */
+    if (accel_has_packets(a))
+        r->tracer.intersect_packet = accel_tracer_intersect_packet;
+    r->packets = s->render.packets && r->tracer.intersect_packet;
+    if (r->packets)
+        snprintf(r->accel_choice, sizeof r->accel_choice,
+                 "%s; camera rays in packets of %d x %d", accel_describe(a),
+                 RENDER_PACKET, RENDER_PACKET);
+    else
+        snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
+                 accel_describe(a));
     integrator_init(&r->integrator, s, &r->lights, r->tracer);
     st = image_accum_alloc(&r->acc, c->width, c->height, err);
     if (st != SVET_OK) {
@@ -84,17 +94,88 @@ void render_free(render_t *r)
     memset(r, 0, sizeof *r);
 }
 
+/* Sample `sample` of pixel (x, y): its numbers g and its camera ray. */
+static void camera_sample(const render_t *r, int x, int y, long sample,
+                          pcg32_t *g, ray_t *ray)
+{
+    uint64_t pixel = (uint64_t)y * (uint64_t)r->camera.width + (uint64_t)x;
+    rng_for_sample(g, r->scene->render.seed, pixel, (uint64_t)sample);
+    /* dimensions 0, 1: the position in the pixel (box filter) */
+    real jx = pcg32_real(g), jy = pcg32_real(g);
+    camera_ray(&r->camera, (real)x + jx, (real)y + jy, ray);
+}
+
 RADIANCE render_sample(const render_t *r, int x, int y, long sample,
                        integrator_stats_t *st)
 {
-    uint64_t pixel = (uint64_t)y * (uint64_t)r->camera.width + (uint64_t)x;
     pcg32_t g;
-    rng_for_sample(&g, r->scene->render.seed, pixel, (uint64_t)sample);
-    /* dimensions 0, 1: the position in the pixel (box filter) */
-    real jx = pcg32_real(&g), jy = pcg32_real(&g);
     ray_t ray;
-    camera_ray(&r->camera, (real)x + jx, (real)y + jy, &ray);
+    camera_sample(r, x, y, sample, &g, &ray);
     return integrator_li(&r->integrator, &ray, &g, st);
+}
+
+/* Add sample L to pixel (x, y): its sum, count and sum of squares. */
+static void accumulate(render_t *r, int x, int y, RADIANCE L)
+{
+    image_accum_add(&r->acc, x, y, L);
+    if (rad_is_finite(L)) {
+        double *q = r->sum2 + 3 * ((size_t)y * (size_t)r->camera.width +
+                                   (size_t)x);
+        q[0] += (double)L.r * (double)L.r;
+        q[1] += (double)L.g * (double)L.g;
+        q[2] += (double)L.b * (double)L.b;
+    }
+}
+
+/* Samples [s0, s1) of the pixels [x0, x1) x [y0, y1), one at a time. */
+static void pixels_one_by_one(render_t *r, int x0, int y0, int x1, int y1,
+                              long s0, long s1, integrator_stats_t *st)
+{
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++)
+            for (long s = s0; s < s1; s++)
+                accumulate(r, x, y, render_sample(r, x, y, s, st));
+}
+
+/* The same, with the camera rays of each sample of each block of
+ * RENDER_PACKET x RENDER_PACKET pixels traced at once
+ * (tracer.intersect_packet: one walk of the grid for them all). A pixel
+ * still adds its samples in index order and each sample draws its own
+ * numbers, and the packet gives each ray the hit it would find alone, so
+ * the image is pixels_one_by_one()'s, bit for bit. */
+static void pixels_in_packets(render_t *r, int x0, int y0, int x1, int y1,
+                              long s0, long s1, integrator_stats_t *st)
+{
+    enum { N = RENDER_PACKET * RENDER_PACKET };
+    ray_t ray[N];
+    pcg32_t g[N];
+    hit_t hit[N];
+    const COBJECT *obj[N];
+    bool found[N];
+    const tracer_t *t = &r->tracer;
+    for (int by = y0; by < y1; by += RENDER_PACKET)
+        for (int bx = x0; bx < x1; bx += RENDER_PACKET) {
+            int bx1 = bx + RENDER_PACKET < x1 ? bx + RENDER_PACKET : x1;
+            int by1 = by + RENDER_PACKET < y1 ? by + RENDER_PACKET : y1;
+            for (long s = s0; s < s1; s++) {
+                int n = 0;
+                for (int y = by; y < by1; y++)
+                    for (int x = bx; x < bx1; x++, n++)
+                        camera_sample(r, x, y, s, &g[n], &ray[n]);
+                t->intersect_packet(t->ctx, ray, n, 0, (real)INFINITY, hit,
+                                    obj, found);
+                n = 0;
+                for (int y = by; y < by1; y++)
+                    for (int x = bx; x < bx1; x++, n++) {
+                        integrator_first_t first = { found[n], hit[n],
+                                                     obj[n] };
+                        accumulate(r, x, y,
+                                   integrator_li_from(&r->integrator,
+                                                      &ray[n], &first,
+                                                      &g[n], st));
+                    }
+            }
+        }
 }
 
 void render_pass(render_t *r, long spp_end, int threads,
@@ -119,18 +200,10 @@ void render_pass(render_t *r, long spp_end, int threads,
         int x0 = (int)(t % tx) * RENDER_TILE, y0 = (int)(t / tx) * RENDER_TILE;
         int x1 = x0 + RENDER_TILE < W ? x0 + RENDER_TILE : W;
         int y1 = y0 + RENDER_TILE < H ? y0 + RENDER_TILE : H;
-        for (int y = y0; y < y1; y++)
-            for (int x = x0; x < x1; x++)
-                for (long s = s0; s < spp_end; s++) {
-                    RADIANCE L = render_sample(r, x, y, s, &st);
-                    image_accum_add(&r->acc, x, y, L);
-                    if (rad_is_finite(L)) {
-                        double *q = r->sum2 + 3 * ((size_t)y * (size_t)W + (size_t)x);
-                        q[0] += (double)L.r * (double)L.r;
-                        q[1] += (double)L.g * (double)L.g;
-                        q[2] += (double)L.b * (double)L.b;
-                    }
-                }
+        if (r->packets && r->tracer.intersect_packet)
+            pixels_in_packets(r, x0, y0, x1, y1, s0, spp_end, &st);
+        else
+            pixels_one_by_one(r, x0, y0, x1, y1, s0, spp_end, &st);
         rays += st.rays;
         paths += st.paths;
         if (progress) {

@@ -44,6 +44,7 @@ void scene_init(scene_t *s)
     r->tonemap.curve = SCENE_CURVE_SRGB;
     r->tonemap.gamma = REAL_C(2.2);
     r->accel = SCENE_ACCEL_AUTO;
+    r->packets = true;
 }
 
 void scene_free(scene_t *s)

@@ -875,7 +875,7 @@ static const char *const accels[] = { "auto", "brute", "grid", "hgrid",
 
 enum { R_SPP, R_MAXDEPTH, R_ROULETTE, R_RRDEPTH, R_SEED, R_INTEGRATOR,
        R_AO_DISTANCE, R_THREADS, R_TIME_LIMIT, R_PASSES, R_CHECKPOINT,
-       R_ACCEL, R_N };
+       R_ACCEL, R_PACKETS, R_N };
 static const spec_t render_spec[R_N] = {
     [R_SPP] = { "spp", V_INT, 0, 1, SCENE_MAX_SPP, NULL },
     [R_MAXDEPTH] = { "maxdepth", V_INT, 0, 0, SCENE_MAX_DEPTH, NULL },
@@ -889,6 +889,7 @@ static const spec_t render_spec[R_N] = {
     [R_PASSES] = { "passes", V_INT, 0, 1, SCENE_MAX_SPP, NULL },
     [R_CHECKPOINT] = { "checkpoint", V_ONOFF, 0, 0, 0, NULL },
     [R_ACCEL] = { "accel", V_WORD, 0, 0, 0, accels },
+    [R_PACKETS] = { "packets", V_ONOFF, 0, 0, 0, NULL },
 };
 
 static svet_status st_render(ctx_t *c)
@@ -929,6 +930,8 @@ static svet_status st_render(ctx_t *c)
                         accels[k], accel_kind_needs(k));
         r->accel = (scene_accel)k;
     }
+    if (v[R_PACKETS].set)
+        r->packets = v[R_PACKETS].on;
     return SVET_OK;
 }
 
@@ -1887,6 +1890,7 @@ static const struct {
     { "passes", "render", "passes" },
     { "checkpoint", "render", "checkpoint" },
     { "accel", "render", "accel" },
+    { "packets", "render", "packets" },
     { "width", "camera", "width" },
     { "height", "camera", "height" },
     { "resolution", "camera", NULL },

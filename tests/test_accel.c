@@ -1149,6 +1149,110 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
 }
 END_TEST
 
+/* accel_tracer_intersect_packet() answers each ray as
+ * accel_tracer_intersect() answers it alone, bit for bit, and as brute
+ * force (kind 0) does: packets of camera-like rays (one origin, nearly
+ * one direction) with the odd ray from elsewhere, in another direction,
+ * or unusable (NaN, zero direction), of 1 to 150 rays (more than
+ * ACCEL_PACKET_MAX goes in parts), over (0, inf) and shorter intervals,
+ * on every kind: the grids walk them together, brute force ray by ray. A
+ * miss leaves the caller's hit and object as they were. */
+START_TEST(packets_answer_as_each_ray_alone)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 2027, 11);
+    long rays = 0, hits = 0;
+    enum { M = 150 };
+    ray_t r[M];
+    hit_t h[M], mark;
+    const COBJECT *obj[M];
+    bool found[M];
+    memset(&mark, 0xa5, sizeof mark);
+    const COBJECT *const marker = (const COBJECT *)(const void *)&g;
+    for (int sc = 0; sc < 12; sc++) {
+        scene_t_ s = { 0 };
+        random_scene(&s, &g, 10 + (int)pcg32_bounded(&g, 50), sc % 3 == 0);
+        bench_t b;
+        build_all(&b, s.objs, s.n);
+        for (int k = 0; k < NKIND; k++)
+            ck_assert_int_eq(accel_has_packets(b.a[k]), k >= 1 && k <= 5);
+        for (int pk = 0; pk < 60; pk++) {
+            VECTOR3 o, c;
+            rand_point(o, &g, -14, 14);
+            VECTOR3 aim;
+            rand_point(aim, &g, -6, 6);
+            vec_sub(c, aim, o);
+            vec_normalize(c, c);
+            real spread = pk % 4 == 0 ? REAL_C(0.3) : REAL_C(0.03);
+            int n = pk % 7 == 0 ? 1 + (int)pcg32_bounded(&g, M)
+                                : 1 + (int)pcg32_bounded(&g, 64);
+            for (int i = 0; i < n; i++) {
+                vec_copy(r[i].o, o);
+                VECTOR3 jit;
+                rand_point(jit, &g, -spread, spread);
+                vec_add(r[i].d, c, jit);
+                uint32_t odd = pcg32_bounded(&g, 40);
+                if (odd == 0)
+                    rand_point(r[i].o, &g, -14, 14); /* another origin */
+                else if (odd == 1)
+                    geomcheck_random_dir(r[i].d, &g); /* any direction */
+                else if (odd == 2)
+                    r[i].d[i % 3] = (real)NAN;
+                else if (odd == 3)
+                    vec_set(r[i].d, 0, 0, 0);
+                else if (odd == 4)
+                    r[i].o[Y] = -r[i].o[Y] * 0; /* -0 or +0 for the origin */
+            }
+            real tmin = 0, tmax = (real)INFINITY;
+            if (pk % 5 == 1) {
+                tmin = uni(&g, 0, 1);
+                tmax = tmin + uni(&g, 0, 30);
+            }
+            for (int k = 0; k < NKIND; k++) {
+                for (int i = 0; i < n; i++) {
+                    h[i] = mark;
+                    obj[i] = marker;
+                }
+                accel_tracer_intersect_packet(b.a[k], r, n, tmin, tmax, h,
+                                              obj, found);
+                for (int i = 0; i < n; i++) {
+                    hit_t th = mark;
+                    const COBJECT *to = marker;
+                    bool f = accel_tracer_intersect(b.a[k], &r[i], tmin, tmax,
+                                                    NULL, &th, &to);
+                    accel_hit_t bh;
+                    bool bf = accel_intersect(b.a[0], &r[i], tmin, tmax, &bh);
+                    ck_assert_msg(found[i] == f && f == bf,
+                                  "kind %d, packet %d, ray %d of %d: found %d "
+                                  "in the packet, %d alone, %d by brute force",
+                                  k, pk, i, n, found[i], f, bf);
+                    /* field by field: a copy of a hit_t need not copy
+                     * its padding (double has some) */
+                    bool same = f ? obj[i] == to && h[i].prim == th.prim &&
+                                        memcmp(&h[i].t, &th.t, sizeof th.t) == 0 &&
+                                        memcmp(h[i].b, th.b, sizeof th.b) == 0
+                                  : obj[i] == marker &&
+                                        memcmp(&h[i], &mark, sizeof mark) == 0;
+                    ck_assert_msg(same, "kind %d, packet %d, ray %d of %d: "
+                                  "the packet's hit differs from the ray's "
+                                  "alone", k, pk, i, n);
+                    if (f)
+                        ck_assert(to == bh.obj && th.prim == bh.hit.prim &&
+                                  memcmp(&th.t, &bh.hit.t, sizeof th.t) == 0);
+                    rays++;
+                    hits += f;
+                }
+            }
+        }
+        free_all(&b);
+        free_scene(&s);
+    }
+    ck_assert(hits > rays / 5);
+    test_report_cases("packets_answer_as_each_ray_alone (rays x 7 "
+                      "structures)", rays);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("accel");
@@ -1159,6 +1263,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, empty_and_degenerate_scenes_never_hit);
     tcase_add_test(tc, a_single_huge_triangle_is_found_from_everywhere);
     tcase_add_test(tc, bad_rays_are_misses);
+    tcase_add_test(tc, packets_answer_as_each_ray_alone);
     tcase_add_test(tc, queries_from_two_threads_match_one);
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
     tcase_add_test(tc, no_structures_means_brute_force_and_refused_grids);

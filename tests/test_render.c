@@ -11,6 +11,7 @@
 #include "disk.h"
 #include "imgcompare.h"
 #include "material.h"
+#include "meshgen.h"
 #include "render.h"
 #include "sphere.h"
 
@@ -112,6 +113,86 @@ START_TEST(without_grids_auto_renders_with_brute_force_the_same_image)
                       (long)(4 * n));
     render_free(&brute);
     render_free(&grid);
+    scene_free(&s);
+}
+END_TEST
+
+/* Two renders' accumulators are the same, bit for bit, and so are their
+ * ray counts. */
+static void same_render(const render_t *a, const render_t *b, const char *what)
+{
+    size_t n = (size_t)a->camera.width * (size_t)a->camera.height;
+    ck_assert_msg(memcmp(a->acc.sum, b->acc.sum, 3 * n * sizeof(double)) == 0 &&
+                      memcmp(a->acc.count, b->acc.count,
+                             n * sizeof(uint64_t)) == 0 &&
+                      memcmp(a->sum2, b->sum2, 3 * n * sizeof(double)) == 0,
+                  "%s: the images differ", what);
+    ck_assert_msg(a->stats.rays == b->stats.rays && a->stats.paths ==
+                      b->stats.paths && a->stats.rays > 0,
+                  "%s: %llu against %llu rays", what,
+                  (unsigned long long)a->stats.rays,
+                  (unsigned long long)b->stats.rays);
+}
+
+/* Camera rays in packets of 8 x 8 (a grid's tracer) give the image of
+ * camera rays one at a time and the image brute force gives, bit for
+ * bit: a mesh among analytic objects, an image of 30 x 21 (blocks of 8 x
+ * 8 cut at the tiles' and the image's edges), the path tracer and
+ * ambient occlusion, two threads and passes. */
+START_TEST(packets_of_camera_rays_render_the_same_image)
+{
+    scene_t s;
+    crowded_scene(&s);
+    COBJECT *mesh;
+    VECTOR3 c = { REAL_C(0.5), REAL_C(0.2), REAL_C(-0.5) };
+    ck_assert_int_eq(meshgen_uv_sphere(&mesh, c, REAL_C(0.9), 40, 20, NULL),
+                     SVET_OK);
+    ck_assert_int_eq(scene_add_object(&s, mesh, s.anon_materials[0], NULL),
+                     SVET_OK);
+    s.features = scene_features_all();
+    s.camera.width = 30;
+    s.camera.height = 21;
+    const scene_integrator modes[2] = { SCENE_INTEGRATOR_PATH,
+                                        SCENE_INTEGRATOR_AO };
+    const scene_accel kinds[2] = { SCENE_ACCEL_GRID, SCENE_ACCEL_HGRID };
+    for (int m = 0; m < 2; m++) {
+        s.render.integrator = modes[m];
+        s.render.accel = SCENE_ACCEL_BRUTE;
+        render_t brute;
+        ck_assert_int_eq(render_init(&brute, &s, NULL), SVET_OK);
+        ck_assert(!brute.packets); /* brute force has none */
+        render_pass(&brute, 3, 2, NULL, NULL);
+        render_pass(&brute, 5, 2, NULL, NULL);
+        for (int k = 0; k < 2; k++) {
+            s.render.accel = kinds[k];
+            render_t pk, one;
+            ck_assert_int_eq(render_init(&pk, &s, NULL), SVET_OK);
+            ck_assert_int_eq(render_init(&one, &s, NULL), SVET_OK);
+            ck_assert(pk.packets);
+            ck_assert_msg(strstr(pk.accel_choice,
+                                 "; camera rays in packets of 8 x 8"),
+                          "%s", pk.accel_choice);
+            one.packets = false;
+            render_pass(&pk, 3, 2, NULL, NULL);
+            render_pass(&pk, 5, 1, NULL, NULL);
+            render_pass(&one, 5, 2, NULL, NULL);
+            same_render(&pk, &one, "packets against one at a time");
+            same_render(&pk, &brute, "packets against brute force");
+            render_free(&pk);
+            render_free(&one);
+        }
+        render_free(&brute);
+    }
+    /* the scene's `packets off` leaves them out, and says nothing of them */
+    s.render.packets = false;
+    s.render.accel = SCENE_ACCEL_GRID;
+    render_t off;
+    ck_assert_int_eq(render_init(&off, &s, NULL), SVET_OK);
+    ck_assert(!off.packets && !strstr(off.accel_choice, "packets"));
+    render_free(&off);
+    test_report_cases("packets_of_camera_rays_render_the_same_image (samples "
+                      "x 2 integrators x 2 grids)",
+                      5L * 30 * 21 * 2 * 2);
     scene_free(&s);
 }
 END_TEST
@@ -243,6 +324,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, rmse_falls_as_one_over_sqrt_spp);
     tcase_add_test(tc,
                    without_grids_auto_renders_with_brute_force_the_same_image);
+    tcase_add_test(tc, packets_of_camera_rays_render_the_same_image);
     suite_add_tcase(s, tc);
     return s;
 }

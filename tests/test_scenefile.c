@@ -145,7 +145,7 @@ START_TEST(render_keys_parse_to_their_values)
     parse_ok(&s, "render spp 1024 maxdepth 7 roulette off roulette_depth 9 "
                  "seed 18446744073709551615 integrator ao ao_distance 0.25 "
                  "threads 2 time_limit 12.5 passes 8 checkpoint on "
-                 "accel hgrid\n");
+                 "accel hgrid packets off\n");
     const scene_render_t *r = &s.render;
     ck_assert_int_eq(r->spp, 1024);
     ck_assert_int_eq(r->max_depth, 7);
@@ -159,6 +159,10 @@ START_TEST(render_keys_parse_to_their_values)
     ck_assert_int_eq(r->passes, 8);
     ck_assert(r->checkpoint);
     ck_assert_int_eq(r->accel, SCENE_ACCEL_HGRID);
+    ck_assert(!r->packets);
+    scene_free(&s);
+    parse_ok(&s, "render spp 4\n"); /* packets are on unless turned off */
+    ck_assert(s.render.packets);
     scene_free(&s);
     static const char *const names[] = { "path", "direct", "bsdf", "ao",
                                          "nee" };
@@ -1030,7 +1034,7 @@ START_TEST(overrides_set_one_value_each)
         "resolution=512x256", "fov=30", "fov_axis=x", "exr=out dir/#a.exr",
         "png=b.png", "tonemap=reinhard", "exposure=-2", "roulette=off",
         "threads=2", "time_limit=60", "passes=4", "checkpoint=on",
-        "accel=grid", "curve=none", "width=100",
+        "accel=grid", "curve=none", "width=100", "packets=off",
     };
     int n = (int)(sizeof ok / sizeof *ok);
     for (int i = 0; i < n; i++)
@@ -1054,6 +1058,7 @@ START_TEST(overrides_set_one_value_each)
     ck_assert_int_eq(s.render.passes, 4);
     ck_assert(s.render.checkpoint);
     ck_assert_int_eq(s.render.accel, SCENE_ACCEL_GRID);
+    ck_assert(!s.render.packets);
     ck_assert_int_eq(s.render.tonemap.curve, SCENE_CURVE_NONE);
     ck_assert_int_eq(s.nobjects, 1);
     test_report_cases("overrides_set_one_value_each", n);
