@@ -5,7 +5,9 @@
  * threads (OpenMP) and in passes over ranges of sample indices. Sample s of
  * pixel p draws its numbers from rng_for_sample(seed, p, s) and each pixel
  * adds its samples in index order, so the image is bit-identical for any
- * thread count, tile order and pass split.
+ * thread count, tile order and pass split. Where the tracer takes packets
+ * (the grids of ch. 7), the camera rays of 8 x 8 pixels go to it at once,
+ * one sample of each: the same image, bit for bit.
  * Tests: tests/test_render.c
  */
 #ifndef SVET_RENDER_H
