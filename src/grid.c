@@ -1391,9 +1391,16 @@ static GRID_NOINLINE bool test_full(const grid_t *g, const walk_t *w,
  * register; t grows by adding dt, in double: after n steps its rounding
  * error is below n 2^-53 of t, far inside the cells' padding (2^-20 of
  * the scene). The step picks its axis with plain branches: selects
- * without branches (and Amanatides & Woo's table) ran slower, measured
- * on this machine; the patterns of a ray's steps are regular enough for
- * the branch predictor. Stepping out of the last cell of a block loads
+ * without branches ran slower, measured on this machine, for incoherent
+ * rays as for camera rays. At 1e6 triangles, with the same comparisons
+ * and sums as masks (SSE2 on the t, integer masks on the counters and
+ * bits): 22% fewer mispredicts under callgrind's simulator, 20% more
+ * instructions, and incoherent rays 2% slower, camera rays 5% (each
+ * step then waits for its compare and select, where a predicted branch
+ * lets the next one start); with the t in an array indexed by the axis
+ * (Amanatides & Woo's table) incoherent rays ran 3.5% slower. Incoherent
+ * rays wait on memory more than on the predictor, and a ray's steps are
+ * regular enough for it. Stepping out of the last cell of a block loads
  * the next block's word; when it is 0, skip_empty() goes block by block
  * (the same DDA over the planes between blocks, whose t, tb, the walk
  * keeps all along: no set-up per empty run) until a block holds
