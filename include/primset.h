@@ -143,14 +143,16 @@ static inline bool primset_keep(const primset_t *ps, primset_query_t *q,
 }
 
 /* primset_test() of mesh triangle ref (ref < ps->ntri) without the
- * mailbox: the caller has asked primset_seen(). This function can't
- * fail. */
-static inline bool primset_test_tri(const primset_t *ps, primset_query_t *q,
-                                    uint32_t ref)
+ * mailbox (the caller has asked primset_seen()), on the corners c:
+ * ps->tri[ref], or a copy of its bits that the caller has at hand (the
+ * grid's quads), which gives the same answer. Returns true when ref was
+ * hit in (tmin, tmax). This function can't fail. */
+static inline bool primset_test_corners(const primset_t *ps,
+                                        primset_query_t *q, uint32_t ref,
+                                        const real c[9])
 {
     real t, b[3];
-    if (!mesh_ray_intersect(ps->tri[ref], &q->mr, q->tmin, q->tmax_tie, &t,
-                            b))
+    if (!mesh_ray_intersect(c, &q->mr, q->tmin, q->tmax_tie, &t, b))
         return false;
     if (primset_keep(ps, q, ref, t)) {
         q->hit.t = t;
@@ -160,6 +162,13 @@ static inline bool primset_test_tri(const primset_t *ps, primset_query_t *q,
         q->hit.b[2] = b[2];
     }
     return true;
+}
+
+/* primset_test_corners() on ps->tri[ref]. This function can't fail. */
+static inline bool primset_test_tri(const primset_t *ps, primset_query_t *q,
+                                    uint32_t ref)
+{
+    return primset_test_corners(ps, q, ref, ps->tri[ref]);
 }
 
 /* Test primitive `ref`. Nearest-hit rule: a hit replaces the best one
