@@ -685,7 +685,7 @@ static int trace_only(const char *kind, int passes)
  * diffuse (albedo 0.6), under a uniform sky of radiance 1, seen as the
  * camera rays of the tables see them (default_view, 40 degrees, g_cam
  * pixels a side); the integrator as asked. */
-static void render_scene(scene_t *sc, long ntris, scene_integrator mode,
+static long render_scene(scene_t *sc, long ntris, scene_integrator mode,
                          int max_depth)
 {
     svet_error e;
@@ -719,6 +719,7 @@ static void render_scene(scene_t *sc, long ntris, scene_integrator mode,
     sc->render.integrator = mode;
     sc->render.max_depth = max_depth;
     sc->render.accel = SCENE_ACCEL_GRID;
+    return m.ntris;
 }
 
 typedef struct {
@@ -775,20 +776,25 @@ static int render_bench(bool quick)
         { "ambient occlusion (one shadow ray)", SCENE_INTEGRATOR_AO, 0 },
         { "path tracing (maxdepth 3, sky light)", SCENE_INTEGRATOR_PATH, 3 },
     };
-    printf("The renderer (render.h) on the 5 x 5 x 5 spheres of %ld "
-           "triangles, uniform grid, %d x %d pixels, one sample a pixel a "
-           "pass, the median of %d passes at each thread count; samples "
-           "in millions a second; \"same image\": the accumulated sums of "
-           "the %d samples a pixel compared byte for byte with the render "
-           "one ray at a time\n\n",
-           ntris, g_cam, g_cam, RENDER_PASSES, 2 * RENDER_PASSES);
-    printf("| integrator | camera rays | rays/sample | Msamples/s 1T | 2T | "
-           "1T per CPU-s | Mrays/s 1T | same image |\n"
-           "|---|---|---:|---:|---:|---:|---:|---|\n");
+    bool head = false;
     int rc = 0;
     for (int m = 0; m < 3; m++) {
         scene_t sc;
-        render_scene(&sc, ntris, modes[m].mode, modes[m].depth);
+        long tris = render_scene(&sc, ntris, modes[m].mode, modes[m].depth);
+        if (!head) {
+            printf("The renderer (render.h) on the 5 x 5 x 5 spheres of %ld "
+                   "triangles, uniform grid, %d x %d pixels, one sample a "
+                   "pixel a pass, the median of %d passes at each thread "
+                   "count; samples in millions a second; \"same image\": "
+                   "the accumulated sums of the %d samples a pixel "
+                   "compared byte for byte with the render one ray at a "
+                   "time\n\n",
+                   tris, g_cam, g_cam, RENDER_PASSES, 2 * RENDER_PASSES);
+            printf("| integrator | camera rays | rays/sample | Msamples/s 1T "
+                   "| 2T | 1T per CPU-s | Mrays/s 1T | same image |\n"
+                   "|---|---|---:|---:|---:|---:|---:|---|\n");
+            head = true;
+        }
         render_t one, pk;
         svet_error e;
         if (render_init(&one, &sc, &e) != SVET_OK ||
