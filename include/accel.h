@@ -161,7 +161,8 @@ bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax);
 
 /* accel_intersect() and accel_occluded() told which surfaces the ray
  * cannot meet in (tmin, tmax), so that they may skip their exact tests:
- * skip[0], skip[1] (either may be NULL) name the object a ray spawned by
+ * skip[0], skip[1] (either may be NULL; skip itself may be NULL, the same
+ * as { NULL, NULL }: nothing skipped) name the object a ray spawned by
  * ray_spawn() leaves, traced from tmin = 0, or, for a shadow ray made by
  * ray_spawn_to() and traced over (0, its returned tmax), the objects of
  * both of its ends. Only planar primitives are ever skipped (brute

@@ -23,7 +23,8 @@
 typedef struct {
     /* Nearest hit in (tmin, tmax): fills *hit and *obj. skip: the objects
      * the ray cannot meet, which the tracer may leave out (accel.h's
-     * accel_intersect_skip(); each entry may be NULL). */
+     * accel_intersect_skip(); each entry may be NULL, and skip itself:
+     * nothing skipped). */
     bool (*intersect)(const void *ctx, const ray_t *r, real tmin, real tmax,
                       const COBJECT *const skip[2], hit_t *hit,
                       const COBJECT **obj);

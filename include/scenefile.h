@@ -56,7 +56,7 @@ svet_status scenefile_parse(scene_t *s, const char *text, size_t len,
 /* Apply one command-line override "key=value" to a parsed scene, with the
  * validation the file gets. Keys: spp, maxdepth, seed, integrator,
  * ao_distance, roulette, roulette_depth, threads, time_limit, passes,
- * checkpoint, accel, width, height, resolution (WxH), fov, fov_axis,
+ * checkpoint, accel, packets, width, height, resolution (WxH), fov, fov_axis,
  * exr, png, tonemap, exposure, key, white, bias, curve, gamma. Returns
  * SVET_OK, or SVET_ERR_PARSE / SVET_ERR_RANGE with "override 'spp=x': ..."
  * in err (SVET_ERR_UNSUPPORTED for an accel that s->features does not

@@ -167,8 +167,14 @@ static void pixels_in_packets(render_t *r, int x0, int y0, int x1, int y1,
                 n = 0;
                 for (int y = by; y < by1; y++)
                     for (int x = bx; x < bx1; x++, n++) {
-                        integrator_first_t first = { found[n], hit[n],
-                                                     obj[n] };
+                        /* hit[n], obj[n] were written only on a hit,
+                         * and are read only then */
+                        integrator_first_t first;
+                        first.found = found[n];
+                        if (found[n]) {
+                            first.hit = hit[n];
+                            first.obj = obj[n];
+                        }
                         accumulate(r, x, y,
                                    integrator_li_from(&r->integrator,
                                                       &ray[n], &first,

@@ -7,6 +7,7 @@
  * gives.
  */
 #include "testutil.h"
+#include "accel.h"
 #include "allparts.h"
 #include "disk.h"
 #include "imgcompare.h"
@@ -134,6 +135,21 @@ static void same_render(const render_t *a, const render_t *b, const char *what)
                   (unsigned long long)b->stats.rays);
 }
 
+/* The camera rays render_pass() gave to the tracer's packets, counted by
+ * a wrapper around accel_tracer_intersect_packet(). */
+static long packet_rays;
+
+static void counted_packet(const void *ctx, const ray_t *r, int n, real tmin,
+                           real tmax, hit_t *hit, const COBJECT **obj,
+                           bool *found)
+{
+#ifdef _OPENMP
+#pragma omp atomic
+#endif
+    packet_rays += n;
+    accel_tracer_intersect_packet(ctx, r, n, tmin, tmax, hit, obj, found);
+}
+
 /* Camera rays in packets of 8 x 8 (a grid's tracer) give the image of
  * camera rays one at a time and the image brute force gives, bit for
  * bit: a mesh among analytic objects, an image of 30 x 21 (blocks of 8 x
@@ -173,9 +189,18 @@ START_TEST(packets_of_camera_rays_render_the_same_image)
                                  "; camera rays in packets of 8 x 8"),
                           "%s", pk.accel_choice);
             one.packets = false;
+            /* every camera ray goes through the packets, once, or none */
+            ck_assert(pk.tracer.intersect_packet ==
+                      accel_tracer_intersect_packet);
+            pk.tracer.intersect_packet = counted_packet;
+            one.tracer.intersect_packet = counted_packet;
+            packet_rays = 0;
             render_pass(&pk, 3, 2, NULL, NULL);
             render_pass(&pk, 5, 1, NULL, NULL);
+            ck_assert_int_eq(packet_rays, 5L * 30 * 21);
+            packet_rays = 0;
             render_pass(&one, 5, 2, NULL, NULL);
+            ck_assert_int_eq(packet_rays, 0);
             same_render(&pk, &one, "packets against one at a time");
             same_render(&pk, &brute, "packets against brute force");
             render_free(&pk);
