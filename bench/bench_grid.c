@@ -790,8 +790,9 @@ static int render_bench(bool quick)
             printf("The renderer (render.h) on the 5 x 5 x 5 spheres of %ld "
                    "triangles, uniform grid, %d x %d pixels, one sample a "
                    "pixel a pass, the median of %d passes at each thread "
-                   "count; samples in millions a second; \"same image\": "
-                   "the accumulated sums of the %d samples a pixel "
+                   "count, the two renders' passes alternating; samples "
+                   "in millions a second; \"same image\": the accumulated "
+                   "sums, counts and rays of the %d samples a pixel "
                    "compared byte for byte with the render one ray at a "
                    "time\n\n",
                    tris, g_cam, g_cam, RENDER_PASSES, 2 * RENDER_PASSES);
