@@ -1,7 +1,7 @@
 /*
- * bench.h - what every benchmark shares: a monotonic clock and the machine
- * line each table is printed with (CPU model, cores, compiler), so that a
- * figure always says where it was measured.
+ * bench.h - what every benchmark shares: a monotonic clock, the process's
+ * CPU time, and the machine line each table is printed with (CPU model,
+ * cores, compiler), so that a figure always says where it was measured.
  */
 #ifndef SVET_BENCH_H
 #define SVET_BENCH_H
@@ -17,6 +17,15 @@ static inline double bench_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* CPU seconds of the whole process, every thread included: the rate per
+ * CPU-second that a machine shared with other work disturbs less. */
+static inline double bench_cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 

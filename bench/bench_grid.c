@@ -13,8 +13,9 @@
  *   make bench-grid BENCH_ARGS="--only 1000000"   one sphere size only
  *   make bench-grid BENCH_ARGS="--only stadium"   the teapot in a stadium
  *   make bench-grid BENCH_ARGS=--render   the renderer on the 1e6
- *       spheres (render.h): camera rays in packets against one at a time,
- *       for three integrators, and whether the images are the same
+ *       spheres (render.h; --only SIZE for another size): camera rays in
+ *       packets against one at a time, for three integrators, and whether
+ *       the images are the same
  *   bench_grid --trace camera|packets4|packets8|incoherent [--passes N]
  *       one kind of ray at 1e6 through grid.h alone, N passes (best
  *       reported): the figures of `make count-grid` (tools/count-grid.sh
@@ -44,13 +45,6 @@
 
 static int g_cam = 512;    /* camera image side */
 static long g_rays = 1L << 18; /* incoherent rays */
-
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* --- rays ------------------------------------------------------------------ */
 
@@ -122,7 +116,7 @@ static run_t one_pass(long n, int threads, chunk_fn chunk, const void *ctx)
 {
     run_t out;
     long hits = 0, done = 0;
-    double t0 = bench_now(), c0 = cpu_now();
+    double t0 = bench_now(), c0 = bench_cpu_now();
     while (done < n) {
         long m = n - done < 8192 ? n - done : 8192;
         hits += chunk(ctx, done, done + m, threads);
@@ -131,7 +125,7 @@ static run_t one_pass(long n, int threads, chunk_fn chunk, const void *ctx)
             break;
     }
     out.wall = bench_now() - t0;
-    out.cpu = cpu_now() - c0;
+    out.cpu = bench_cpu_now() - c0;
     out.rays = done;
     out.hits = hits;
     return out;
@@ -351,12 +345,12 @@ static void bench_one(const char *name, COBJECT **objs, int n, long tris,
     p.kind = kind;
     accel_t *a;
     svet_error e;
-    double c0 = cpu_now();
+    double c0 = bench_cpu_now();
     if (accel_build(&a, objs, n, &p, &e) != SVET_OK) {
         fprintf(stderr, "%s: %s\n", name, e.msg);
         exit(1);
     }
-    double build_cpu = cpu_now() - c0;
+    double build_cpu = bench_cpu_now() - c0;
     accel_stats_t st;
     accel_get_stats(a, &st);
     row_t *r = &rows[nrows < 63 ? nrows++ : 63];
@@ -727,32 +721,30 @@ typedef struct {
     double rays_per_sample;
 } render_run_t;
 
-static int by_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* RENDER_PASSES passes of one sample per pixel of each of the two renders
  * r[0], r[1], at 1, then 2 threads, alternating which goes first, so
- * that a drift of the machine's speed falls on both alike. */
+ * that a drift of the machine's speed falls on both alike; each reports
+ * its median pass by wall clock with that pass's CPU time, as timed()
+ * does. */
 static void render_runs(render_t *const r[2], render_run_t out[2])
 {
+    const long px = (long)g_cam * g_cam;
     for (int t = 0; t < 2; t++) {
-        double w[2][RENDER_PASSES], c[2][RENDER_PASSES];
+        run_t runs[2][RENDER_PASSES];
         for (int k = 0; k < RENDER_PASSES; k++)
             for (int i = 0; i < 2; i++) {
                 int j = (k + t) % 2 ? 1 - i : i;
-                double t0 = bench_now(), c0 = cpu_now();
+                double t0 = bench_now(), c0 = bench_cpu_now();
                 render_pass(r[j], r[j]->spp_done + 1, t + 1, NULL, NULL);
-                w[j][k] = bench_now() - t0;
-                c[j][k] = cpu_now() - c0;
+                runs[j][k].wall = bench_now() - t0;
+                runs[j][k].cpu = bench_cpu_now() - c0;
+                runs[j][k].rays = px; /* samples, for by_rate() */
+                runs[j][k].hits = 0;
             }
         for (int j = 0; j < 2; j++) {
-            qsort(w[j], RENDER_PASSES, sizeof w[j][0], by_double);
-            qsort(c[j], RENDER_PASSES, sizeof c[j][0], by_double);
-            out[j].wall[t] = w[j][RENDER_PASSES / 2];
-            out[j].cpu[t] = c[j][RENDER_PASSES / 2];
+            qsort(runs[j], RENDER_PASSES, sizeof runs[j][0], by_rate);
+            out[j].wall[t] = runs[j][(RENDER_PASSES - 1) / 2].wall;
+            out[j].cpu[t] = runs[j][(RENDER_PASSES - 1) / 2].cpu;
         }
     }
     for (int j = 0; j < 2; j++)
@@ -769,9 +761,9 @@ static void render_row(const char *what, const char *how,
            n / u->cpu[0], n * u->rays_per_sample / u->wall[0], same);
 }
 
-static int render_bench(bool quick)
+static int render_bench(bool quick, const char *only)
 {
-    const long ntris = quick ? 10000 : 1000000;
+    const long ntris = only ? atol(only) : quick ? 10000 : 1000000;
     const struct {
         const char *name;
         scene_integrator mode;
@@ -846,7 +838,7 @@ static int usage(const char *why, const char *arg)
             "bench_grid: %s%s%s\nusage: bench_grid [--quick] [--only "
             "1000|10000|100000|1000000|stadium] [FILE.obj]\n"
             "       bench_grid --tune\n"
-            "       bench_grid --render [--quick]\n"
+            "       bench_grid --render [--quick] [--only SIZE]\n"
             "       bench_grid --trace camera|packets4|packets8|incoherent "
             "[--passes N]\n",
             why, arg ? ": " : "", arg ? arg : "");
@@ -910,16 +902,17 @@ int main(int argc, char **argv)
         }
     }
     if (trace) {
-        if (tuning || quick || only || objfile)
+        if (tuning || quick || only || objfile || rendering)
             return usage("--trace takes only --passes beside it", NULL);
         return trace_only(trace, passes);
     }
     if (rendering) {
-        if (tuning || only || objfile)
-            return usage("--render takes only --quick beside it", NULL);
+        if (tuning || objfile || (only && strcmp(only, "stadium") == 0))
+            return usage("--render takes only --quick and --only SIZE "
+                         "beside it", NULL);
         machine_head(argc, argv);
         printf("\n");
-        return render_bench(quick);
+        return render_bench(quick, only);
     }
     if (tuning) {
         if (argc != 2)

@@ -32,14 +32,6 @@ static void die(const char *what, const svet_error *e)
     exit(1);
 }
 
-/* CPU seconds of the whole process, every thread included. */
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Render s at spp with threads; the image in *img (if not NULL); wall
  * and CPU seconds. */
 static void run_cpu(const scene_t *s, long spp, int threads, image_t *img,
@@ -49,10 +41,10 @@ static void run_cpu(const scene_t *s, long spp, int threads, image_t *img,
     render_t r;
     if (render_init(&r, s, &e) != SVET_OK)
         die("render_init", &e);
-    double t0 = bench_now(), c0 = cpu_now();
+    double t0 = bench_now(), c0 = bench_cpu_now();
     render_pass(&r, spp, threads, NULL, NULL);
     *secs = bench_now() - t0;
-    *cpu = cpu_now() - c0;
+    *cpu = bench_cpu_now() - c0;
     *rays = (double)r.stats.rays;
     if (img && render_image(&r, img, &e) != SVET_OK)
         die("render_image", &e);
