@@ -192,6 +192,17 @@ typedef struct {
     long rays, hits, mismatches;
 } bench_t;
 
+/* Two hits the same to the last bit: object, sub-primitive, t and the
+ * barycentrics (field by field: a copy of a hit_t need not copy its
+ * padding, which double has). */
+static bool same_hit(const COBJECT *oa, const hit_t *a, const COBJECT *ob,
+                     const hit_t *b)
+{
+    return oa == ob && a->prim == b->prim &&
+           memcmp(&a->t, &b->t, sizeof a->t) == 0 &&
+           memcmp(a->b, b->b, sizeof a->b) == 0;
+}
+
 /* The tracer's entries (render.c calls them through tracer_t) on kind
  * k: the answers of accel_intersect() and accel_occluded(), found and h,
  * to the last bit, with and without an empty skip; on a miss the
@@ -212,9 +223,7 @@ static void tracer_agrees(const bench_t *b, int k, const ray_t *r, real tmin,
         ck_assert_msg(f == found, "kind %d: the tracer found %d, "
                       "accel_intersect %d", k, f, found);
         if (f)
-            ck_assert(obj == h->obj && th.prim == h->hit.prim &&
-                      memcmp(&th.t, &h->hit.t, sizeof th.t) == 0 &&
-                      memcmp(th.b, h->hit.b, sizeof th.b) == 0);
+            ck_assert(same_hit(obj, &th, h->obj, &h->hit));
         else
             ck_assert_msg(obj == (const COBJECT *)(const void *)b &&
                           memcmp(&th, &mark, sizeof th) == 0,
@@ -1226,11 +1235,8 @@ START_TEST(packets_answer_as_each_ray_alone)
                                   "kind %d, packet %d, ray %d of %d: found %d "
                                   "in the packet, %d alone, %d by brute force",
                                   k, pk, i, n, found[i], f, bf);
-                    /* field by field: a copy of a hit_t need not copy
-                     * its padding (double has some) */
-                    bool same = f ? obj[i] == to && h[i].prim == th.prim &&
-                                        memcmp(&h[i].t, &th.t, sizeof th.t) == 0 &&
-                                        memcmp(h[i].b, th.b, sizeof th.b) == 0
+                    /* on a miss, untouched: the marks, byte for byte */
+                    bool same = f ? same_hit(obj[i], &h[i], to, &th)
                                   : obj[i] == marker &&
                                         memcmp(&h[i], &mark, sizeof mark) == 0;
                     ck_assert_msg(same, "kind %d, packet %d, ray %d of %d: "

@@ -45,6 +45,23 @@ static void small_scene(scene_t *s)
     s->render.seed = 42;
 }
 
+/* Two renders' accumulators are the same, bit for bit, and so are their
+ * ray counts. */
+static void same_render(const render_t *a, const render_t *b, const char *what)
+{
+    size_t n = (size_t)a->camera.width * (size_t)a->camera.height;
+    ck_assert_msg(memcmp(a->acc.sum, b->acc.sum, 3 * n * sizeof(double)) == 0 &&
+                      memcmp(a->acc.count, b->acc.count,
+                             n * sizeof(uint64_t)) == 0 &&
+                      memcmp(a->sum2, b->sum2, 3 * n * sizeof(double)) == 0,
+                  "%s: the images differ", what);
+    ck_assert_msg(a->stats.rays == b->stats.rays && a->stats.paths ==
+                      b->stats.paths && a->stats.rays > 0,
+                  "%s: %llu against %llu rays", what,
+                  (unsigned long long)a->stats.rays,
+                  (unsigned long long)b->stats.rays);
+}
+
 START_TEST(image_is_identical_for_any_threads_and_passes)
 {
     scene_t s;
@@ -57,10 +74,7 @@ START_TEST(image_is_identical_for_any_threads_and_passes)
     render_pass(&b, 5, 2, NULL, NULL);
     render_pass(&b, 8, 2, NULL, NULL);
     size_t n = (size_t)s.camera.width * (size_t)s.camera.height;
-    ck_assert(memcmp(a.acc.sum, b.acc.sum, 3 * n * sizeof(double)) == 0);
-    ck_assert(memcmp(a.acc.count, b.acc.count, n * sizeof(uint64_t)) == 0);
-    ck_assert(memcmp(a.sum2, b.sum2, 3 * n * sizeof(double)) == 0);
-    ck_assert(a.stats.rays == b.stats.rays && a.stats.rays > 0);
+    same_render(&a, &b, "one thread, one pass against two threads, three");
     ck_assert(image_accum_samples(&a.acc) == 8 * n);
     render_free(&a);
     render_free(&b);
@@ -106,10 +120,7 @@ START_TEST(without_grids_auto_renders_with_brute_force_the_same_image)
     render_pass(&brute, 4, 2, NULL, NULL);
     render_pass(&grid, 4, 2, NULL, NULL);
     size_t n = (size_t)s.camera.width * (size_t)s.camera.height;
-    ck_assert(memcmp(brute.acc.sum, grid.acc.sum, 3 * n * sizeof(double)) ==
-              0);
-    ck_assert(memcmp(brute.sum2, grid.sum2, 3 * n * sizeof(double)) == 0);
-    ck_assert(brute.stats.rays == grid.stats.rays && grid.stats.rays > 0);
+    same_render(&brute, &grid, "brute force against the grid");
     test_report_cases("without_grids_auto_renders_with_brute_force",
                       (long)(4 * n));
     render_free(&brute);
@@ -117,23 +128,6 @@ START_TEST(without_grids_auto_renders_with_brute_force_the_same_image)
     scene_free(&s);
 }
 END_TEST
-
-/* Two renders' accumulators are the same, bit for bit, and so are their
- * ray counts. */
-static void same_render(const render_t *a, const render_t *b, const char *what)
-{
-    size_t n = (size_t)a->camera.width * (size_t)a->camera.height;
-    ck_assert_msg(memcmp(a->acc.sum, b->acc.sum, 3 * n * sizeof(double)) == 0 &&
-                      memcmp(a->acc.count, b->acc.count,
-                             n * sizeof(uint64_t)) == 0 &&
-                      memcmp(a->sum2, b->sum2, 3 * n * sizeof(double)) == 0,
-                  "%s: the images differ", what);
-    ck_assert_msg(a->stats.rays == b->stats.rays && a->stats.paths ==
-                      b->stats.paths && a->stats.rays > 0,
-                  "%s: %llu against %llu rays", what,
-                  (unsigned long long)a->stats.rays,
-                  (unsigned long long)b->stats.rays);
-}
 
 /* The camera rays render_pass() gave to the tracer's packets, counted by
  * a wrapper around accel_tracer_intersect_packet(). */
