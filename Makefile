@@ -245,7 +245,7 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs count-render count-grid
+.PHONY: reference tradeoffs count-render count-grid ab-grid
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
@@ -261,6 +261,13 @@ count-render: $(BUILD)/svet
 # (callgrind), the load-independent figures of chapters/ch07/README.md.
 count-grid: $(BUILD)/bench/bench_grid
 	sh tools/count-grid.sh $(BUILD)/bench/bench_grid
+
+# `make ab-grid BASE=COMMIT [KINDS=incoherent,camera] [PAIRS=6]`: the
+# grid's rays per second against commit BASE's, alternating runs
+# (tools/ab-grid.sh; float, one thread).
+ab-grid: build/float/bench/bench_grid
+	$(if $(BASE),,$(error ab-grid: give BASE=COMMIT))
+	sh tools/ab-grid.sh build/float/bench/bench_grid $(BASE) $(KINDS) $(PAIRS)
 
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
@@ -292,6 +299,9 @@ help:
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
 	@echo "make reference       re-render tests/reference/ (converged references)"
 	@echo "make tradeoffs       measure speed against accuracy: docs/tradeoffs.md"
+	@echo "make count-render    instructions per Cornell-box sample (valgrind)"
+	@echo "make count-grid      instructions per ray of the grid at 1e6 (valgrind)"
+	@echo "make ab-grid BASE=C  the grid's rays/s against commit C's, alternating"
 	@echo "make install PREFIX=... DESTDIR=..."
 	@echo "chapters: $(CHAPTERS)"
 

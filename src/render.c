@@ -1,5 +1,7 @@
 /*
- * render.c - tiles, passes and threads around the integrator (ch. 5).
+ * render.c - tiles, passes and threads around the integrator (ch. 5), and
+ * the camera rays of 8 x 8 pixels given to the tracer at once where it
+ * takes packets (the grids of ch. 7: chapters/ch07/README.md).
  * Tests: tests/test_render.c
  */
 #include "render.h"
