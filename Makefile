@@ -1,7 +1,7 @@
 # svet - the build. `make` builds the library and every chapter program,
 # `make test` runs one check suite per module, `make chNN` one chapter with
 # only the modules it needs. `make REAL=double ...` builds everything with
-# double in place of the book's float (include/real.h); each REAL has its own
+# double in place of the book's float (include/core/real.h); each REAL has its own
 # build directory, so both can coexist. `make help` lists every target.
 
 REAL     ?= float
@@ -10,7 +10,7 @@ CC       ?= cc
 # (gcc vectorises only what IEEE allows without -ffast-math).
 OPT      ?= -O3
 # The instruction set of the machine that builds: AVX2 here, which the
-# vector code (include/simd.h) and gcc's own loops use. The bits do not
+# vector code (include/core/simd.h) and gcc's own loops use. The bits do not
 # change with it (-ffp-contract=off keeps gcc from fusing a multiply and an
 # add, and no reassociation is allowed); `make ARCH=` builds a binary for
 # any x86-64 (SSE2 only) to copy to another machine.
@@ -65,12 +65,18 @@ CHECK_LIBS   := $(shell $(PKG_CONFIG) --libs check 2>/dev/null)
 # that OpenEXR.pc lists.
 LDLIBS   = -Wl,--as-needed $(PKG_LIBS) -lm -fopenmp $(EXTRA_LDFLAGS)
 
-SRCS     := $(sort $(wildcard src/*.c))
-MODULES  := $(SRCS:src/%.c=%)
+# The library's modules, one folder per part of the book (src/core/vec.c,
+# include/core/vec.h, tests/core/test_vec.c); a module's name is unique
+# across the folders, so objects, suites and the chapters' .mk files name a
+# module by its name alone.
+PARTS    := $(sort $(notdir $(wildcard src/*)))
+SRCS     := $(sort $(wildcard src/*/*.c))
+MODULES  := $(notdir $(SRCS:.c=))
+HDRS     := $(sort $(wildcard include/*/*.h))
 OBJS     := $(MODULES:%=$(BUILD)/obj/%.o)
 LIB      := $(BUILD)/libsvet.a
-TESTSRCS := $(sort $(wildcard tests/test_*.c))
-TESTS    := $(TESTSRCS:tests/%.c=$(BUILD)/tests/%)
+TESTSRCS := $(sort $(wildcard tests/*/test_*.c))
+TESTS    := $(addprefix $(BUILD)/tests/,$(notdir $(TESTSRCS:.c=)))
 BENCHSRCS := $(sort $(wildcard bench/bench_*.c))
 BENCHES  := $(BENCHSRCS:bench/bench_%.c=bench-%)
 VECSRCS  := $(sort $(wildcard tools/vectors_*.c))
@@ -85,9 +91,12 @@ all: lib chapters $(BUILD)/svet
 
 lib: $(LIB)
 
-$(BUILD)/obj/%.o: src/%.c
-	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) -MMD -MP -c $< -o $@
+define object_rule
+$(BUILD)/obj/$(notdir $(1:.c=.o)): $(1)
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) -MMD -MP -c $$< -o $$@
+endef
+$(foreach s,$(SRCS),$(eval $(call object_rule,$(s))))
 
 $(LIB): $(OBJS)
 	@rm -f $@
@@ -108,13 +117,17 @@ $(BUILD)/svet:
 endif
 
 # --- unit tests: one check suite per module --------------------------------
-$(BUILD)/tests/%.o: tests/%.c
-	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $(CHECK_CFLAGS) -MMD -MP -c $< -o $@
+define test_object_rule
+$(BUILD)/tests/$(notdir $(1:.c=.o)): $(1)
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -Itests $$(PKG_CFLAGS) $$(CHECK_CFLAGS) -MMD -MP -c $$< -o $$@
+endef
+$(foreach s,$(TESTSRCS) $(wildcard tests/*.c),$(eval $(call test_object_rule,$(s))))
 
-# Test support: every tests/*.c that is not a suite (testutil.c, geomcheck.c,
-# chi2.c, ...) goes into one archive linked to every suite.
-TESTSUP_SRCS := $(filter-out $(TESTSRCS),$(wildcard tests/*.c))
+# Test support: every tests/*.c (testutil.c, geomcheck.c, chi2.c, ...; the
+# suites are in the parts' folders) goes into one archive linked to every
+# suite.
+TESTSUP_SRCS := $(wildcard tests/*.c)
 TESTSUP_OBJS := $(TESTSUP_SRCS:tests/%.c=$(BUILD)/tests/%.o)
 TESTSUP      := $(BUILD)/tests/libtestsupport.a
 $(TESTSUP): $(TESTSUP_OBJS)
@@ -227,9 +240,11 @@ fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
     rng shape triangle vec parallelogram xform
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 
-$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(wildcard src/*.c include/*.h)
+# the source of module M, wherever its part's folder is
+src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
+$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $< $(fuzz_$*_MODULES:%=src/%.c) \
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $< $(call src_of,$(fuzz_$*_MODULES)) \
 	    -lm -o $@
 
 fuzz-%: $(FUZZ_BUILD)/fuzz_%
@@ -276,10 +291,10 @@ tradeoffs:
 
 # --- install ---------------------------------------------------------------
 install: all
-	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/svet \
-	    $(DESTDIR)$(PREFIX)/bin
+	install -d $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/bin \
+	    $(PARTS:%=$(DESTDIR)$(PREFIX)/include/svet/%)
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/
-	install -m 644 include/*.h $(DESTDIR)$(PREFIX)/include/svet/
+	for p in $(PARTS); do install -m 644 include/$$p/*.h $(DESTDIR)$(PREFIX)/include/svet/$$p/; done
 	if [ -x $(BUILD)/svet ]; then install -m 755 $(BUILD)/svet $(DESTDIR)$(PREFIX)/bin/; fi
 
 uninstall:

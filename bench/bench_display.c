@@ -18,11 +18,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "exrio.h"
-#include "fileio.h"
-#include "pngio.h"
-#include "rng.h"
-#include "tonemap.h"
+#include "io/exrio.h"
+#include "io/fileio.h"
+#include "io/pngio.h"
+#include "core/rng.h"
+#include "colour/tonemap.h"
 
 #define BW 1024
 #define BH 768

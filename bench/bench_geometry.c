@@ -22,17 +22,17 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "box.h"
-#include "cone.h"
-#include "cylinder.h"
-#include "disk.h"
-#include "parallelogram.h"
-#include "plane.h"
-#include "rng.h"
-#include "sample.h"
-#include "sphere.h"
-#include "triangle.h"
-#include "xform.h"
+#include "geometry/box.h"
+#include "geometry/cone.h"
+#include "geometry/cylinder.h"
+#include "geometry/disk.h"
+#include "geometry/parallelogram.h"
+#include "geometry/plane.h"
+#include "core/rng.h"
+#include "core/sample.h"
+#include "geometry/sphere.h"
+#include "geometry/triangle.h"
+#include "geometry/xform.h"
 
 typedef long double ld;
 

@@ -24,18 +24,18 @@
  * traces them), and in packets of 4 x 4 and 8 x 8 pixels through
  * grid_intersect_packet() (grid.h) on a grid built over the same scene.
  */
-#include "accel.h"
+#include "accel/accel.h"
 #include "bench.h"
-#include "camera.h"
-#include "grid.h"
-#include "mesh.h"
-#include "meshgen.h"
-#include "obj.h"
-#include "allparts.h"
-#include "material.h"
-#include "primset.h"
-#include "render.h"
-#include "rng.h"
+#include "render/camera.h"
+#include "accel/grid.h"
+#include "mesh/mesh.h"
+#include "mesh/meshgen.h"
+#include "mesh/obj.h"
+#include "render/allparts.h"
+#include "materials/material.h"
+#include "accel/primset.h"
+#include "render/render.h"
+#include "core/rng.h"
 
 #include <omp.h>
 #include <stdio.h>

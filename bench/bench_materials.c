@@ -20,9 +20,9 @@
 #include <string.h>
 
 #include "bench.h"
-#include "material.h"
-#include "rng.h"
-#include "sample.h"
+#include "materials/material.h"
+#include "core/rng.h"
+#include "core/sample.h"
 
 #define PI_D 3.14159265358979323846
 

@@ -20,11 +20,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "exrio.h"
-#include "imgcompare.h"
-#include "render.h"
-#include "allparts.h"
-#include "scenefile.h"
+#include "io/exrio.h"
+#include "stats/imgcompare.h"
+#include "render/render.h"
+#include "render/allparts.h"
+#include "render/scenefile.h"
 
 static void die(const char *what, const svet_error *e)
 {

@@ -23,12 +23,12 @@ enum {
 int cmd_render(int argc, char **argv);
 void cmd_render_help(FILE *f);
 
-/* svet diff A B [options]: see cmd_diff_help (cmd/diff.c). */
+/* svet diff A B [options]: see cmd_diff_help (cmd/cmd_diff.c). */
 int cmd_diff(int argc, char **argv);
 void cmd_diff_help(FILE *f);
 
 /* svet converge SCENE --ref REF.exr [options], or --report CSV...: see
- * cmd_converge_help (cmd/converge.c). */
+ * cmd_converge_help (cmd/cmd_converge.c). */
 int cmd_converge(int argc, char **argv);
 void cmd_converge_help(FILE *f);
 

@@ -2,7 +2,7 @@
  * cmdutil.c - what the subcommands share: the clock, command-line numbers,
  * usage messages, file names and the scene options --threads, --seed and
  * --set (cmdutil.h). Not a subcommand itself.
- * Tests: tests/test_cmd_render.c, tests/test_converge.c, tests/test_svet.c
+ * Tests: tests/cmd/test_cmd_render.c, tests/stats/test_converge.c, tests/cmd/test_svet.c
  */
 #define _POSIX_C_SOURCE 200809L
 #include "cmdutil.h"
@@ -15,8 +15,8 @@
 #include <time.h>
 
 #include "cmd.h"
-#include "allparts.h"
-#include "scenefile.h"
+#include "render/allparts.h"
+#include "render/scenefile.h"
 
 double cmd_now(void)
 {

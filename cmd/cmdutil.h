@@ -2,15 +2,15 @@
  * cmdutil.h - what the subcommands of cmd/ share: the clock, numbers read
  * from the command line with their range checks, the usage messages, file
  * names, and the scene options of svet render and svet converge
- * (--threads, --seed, --set). Tests: tests/test_cmd_render.c,
- * tests/test_converge.c, tests/test_svet.c (end to end).
+ * (--threads, --seed, --set). Tests: tests/cmd/test_cmd_render.c,
+ * tests/stats/test_converge.c, tests/cmd/test_svet.c (end to end).
  */
 #ifndef SVET_CMDUTIL_H
 #define SVET_CMDUTIL_H
 
 #include <stdbool.h>
 
-#include "scene.h"
+#include "render/scene.h"
 
 #if defined(__GNUC__)
 #define CMD_PRINTF(f, a) __attribute__((format(printf, f, a)))

@@ -2,7 +2,7 @@
  * svet.c - main() of the svet command: a table of subcommands, each in its
  * own cmd/<name>.c (declared in cmd.h), plus `svet --help` and
  * `svet help NAME`. Adding a subcommand is one line in `commands` below.
- * Tests: tests/test_svet.c (runs the built command)
+ * Tests: tests/cmd/test_svet.c (runs the built command)
  */
 #include <stdio.h>
 #include <string.h>

@@ -12,11 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "accel.h"
-#include "grid.h"
-#include "mesh.h"
-#include "obj.h"
-#include "rng.h"
+#include "accel/accel.h"
+#include "accel/grid.h"
+#include "mesh/mesh.h"
+#include "mesh/obj.h"
+#include "core/rng.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -9,8 +9,8 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "allparts.h"
-#include "scenefile.h"
+#include "render/allparts.h"
+#include "render/scenefile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -4,7 +4,7 @@
  * Mitsuba 3 mitsuba/python/chi2.py), adaptive cubature of the pdf, the
  * incomplete gamma function and the Kolmogorov-Smirnov distribution
  * (Numerical Recipes 3rd ed., secs. 6.2 and 6.14).
- * Tests: tests/test_sample.c
+ * Tests: tests/core/test_sample.c
  */
 #include "chi2.h"
 

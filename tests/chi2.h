@@ -6,15 +6,15 @@
  * counts, pool bins expected to hold fewer than 5, and compare with the
  * chi-square distribution at a Sidak-corrected significance. Also the
  * Kolmogorov-Smirnov test for 1D samples (ch. 4's point samplers).
- * Implementation: tests/chi2.c; its own tests: tests/test_sample.c.
+ * Implementation: tests/chi2.c; its own tests: tests/core/test_sample.c.
  */
 #ifndef SVET_CHI2_H
 #define SVET_CHI2_H
 
 #include <math.h>
 #include <stdbool.h>
-#include "rng.h"
-#include "vec.h"
+#include "core/rng.h"
+#include "core/vec.h"
 
 /* Draw one direction: return false if the sampler produced no direction
  * (an absorbed sample); such draws count toward N but toward no bin. They

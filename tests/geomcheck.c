@@ -4,7 +4,7 @@
  * reproduces exactly; each message names the case.
  */
 #include "geomcheck.h"
-#include "frame.h"
+#include "core/frame.h"
 #include "testutil.h"
 
 #include <math.h>

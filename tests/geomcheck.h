@@ -12,8 +12,8 @@
 #ifndef SVET_GEOMCHECK_H
 #define SVET_GEOMCHECK_H
 
-#include "cobject.h"
-#include "rng.h"
+#include "materials/cobject.h"
+#include "core/rng.h"
 
 /* How the surface bounds space: decides which spawned rays must miss. */
 typedef enum {

@@ -9,8 +9,8 @@
 
 #include <stdbool.h>
 #include <stddef.h>
-#include "error.h"
-#include "image.h"
+#include "core/error.h"
+#include "io/image.h"
 
 /* "<scratch dir>/<name>". The directory is made on first use (mkdtemp
  * under $TMPDIR or /tmp) and removed with its files when the process

@@ -8,7 +8,7 @@
 #ifndef SVET_PRIMCHECK_H
 #define SVET_PRIMCHECK_H
 
-#include "cobject.h"
+#include "materials/cobject.h"
 #include "geomcheck.h"
 #include "testutil.h"
 

@@ -7,7 +7,7 @@
 #ifndef SVET_QUADCHECK_H
 #define SVET_QUADCHECK_H
 
-#include "cobject.h"
+#include "materials/cobject.h"
 #include "geomcheck.h"
 #include "primcheck.h"
 #include "testutil.h"

@@ -10,7 +10,7 @@
 #include <check.h>
 #include <stdbool.h>
 #include <stdio.h>
-#include "real.h"
+#include "core/real.h"
 
 /* Defined by each test file; testutil.c's main() runs it. */
 Suite *test_suite(void);

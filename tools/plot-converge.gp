@@ -1,6 +1,6 @@
 # plot-converge.gp - the log-log plot of error against render time of one or
 # more convergence series (CSV files of `svet converge`, format in
-# include/converge.h). `svet converge` runs it when gnuplot is installed;
+# include/stats/converge.h). `svet converge` runs it when gnuplot is installed;
 # by hand:
 #   gnuplot -e "files='out/converge/a.csv out/converge/b.csv'; out='plot.png'" \
 #           tools/plot-converge.gp

@@ -7,7 +7,7 @@
 # mean, 32-bit float, ZIP), NAME-var.exr (the per-pixel variance of the
 # mean), NAME.png (tone-mapped, to look at) and NAME.txt (the exact
 # command, seed, spp, build and render time, as "key = value" lines that
-# tests/test_reference.c reads).
+# tests/render/test_reference.c reads).
 #
 # usage: sh tools/reference.sh SVET [SCENE.scn ...]
 #   SVET     the svet binary (make reference passes build/float/svet)

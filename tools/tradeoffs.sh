@@ -237,7 +237,7 @@ scattering events; \`roulette=off\` paths run to the maximum depth;
 \`accel=...\` brute force, the uniform or the hierarchical grid (ch. 7) for
 finding hits, which must change only the speed. On the Cornell box
 \`baseline\` and \`accel=brute\` are the same computation (for 8 objects
-the renderer's automatic choice is brute force, include/accel.h): the
+the renderer's automatic choice is brute force, include/accel/accel.h): the
 difference between their rows is the noise of the measurement.
 
 EOF

@@ -3,7 +3,7 @@
  * into DIR/colour_*.csv: the sRGB transfer curve, RGB <-> XYZ matrices of
  * the standard spaces, adaptation matrices and adapted colours, CMF samples
  * and the analytic fit, and blackbody values. Expected values are computed
- * in long double by code of this file (not src/colour.c or src/spectrum.c)
+ * in long double by code of this file (not src/colour/colour.c or src/colour/spectrum.c)
  * from the published definitions, or are published numbers. The blackbody
  * integrals read the CIE 1931 table through spectrum_cmf_data() (the
  * published data in double, whatever real is; the suite checks it against
@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "spectrum.h"
+#include "colour/spectrum.h"
 #include "vectors.h"
 
 typedef long double ld;
@@ -92,7 +92,7 @@ static void white(ld x, ld y, ld w[3])
 
 /* The published definitions: primaries and whites (decimal literals read
  * as long double; the CIE RGB ones are the spectral locus of the 1-nm
- * table at 700, 546.1, 435.8 nm, as in src/colour.c). Index = the
+ * table at 700, 546.1, 435.8 nm, as in src/colour/colour.c). Index = the
  * colour_space_id and colour_white_id enums. */
 static const ld PRIM[4][6] = {
     { 0.64L, 0.33L, 0.30L, 0.60L, 0.15L, 0.06L },        /* IEC 61966-2-1 */
@@ -263,7 +263,7 @@ static void adapted(const char *dir)
 
 /* Published rows of the CIE 1931 table (CIE 018:2019; CIE 15:2004 Table
  * T.4 for 380-780 nm), every 10 nm: typed here from the standard,
- * independently of src/spectrum.c's table. */
+ * independently of src/colour/spectrum.c's table. */
 static const struct {
     int lambda;
     double x, y, z;

@@ -16,7 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "rng.h"
+#include "core/rng.h"
 #include "vectors.h"
 
 typedef long double ld;

@@ -6,7 +6,7 @@
  * in long double from the book's formulas, written afresh (angles by acos
  * and atan2 as the book states them, not the code's half-vector algebra),
  * and the albedo by adaptive Gauss-Kronrod quadrature in long double (not
- * Monte Carlo). Read back by tests/test_material.c. Usage:
+ * Monte Carlo). Read back by tests/materials/test_material.c. Usage:
  * vectors_materials DIR
  */
 #include <math.h>

@@ -1,19 +1,19 @@
 /*
  * vectors_rng.c - writes the test vectors of the random numbers of ch. 4
- * (include/rng.h) into DIR/rng_pcg32.csv and DIR/rng_sample.csv: raw PCG32
+ * (include/core/rng.h) into DIR/rng_pcg32.csv and DIR/rng_sample.csv: raw PCG32
  * outputs for several (initstate, initseq), and the first draws of
  * rng_for_sample(seed, pixel, sample) as 32-bit integers and as
  * pcg32_real in float and in double. Expected values come from a second
  * implementation written here from the PCG paper (O'Neill 2014) and
  * SplitMix64 (Steele, Lea, Flood 2014) with 32-bit limb arithmetic, checked
  * against the published first outputs of seeds 42/54 and against
- * src/rng.c (any disagreement aborts). Usage: vectors_rng DIR
+ * src/core/rng.c (any disagreement aborts). Usage: vectors_rng DIR
  */
 #include <inttypes.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include "rng.h"
+#include "core/rng.h"
 #include "vectors.h"
 
 /* --- the independent implementation --------------------------------------- */
@@ -93,7 +93,7 @@ static void pcg32_file(const char *dir)
                "initseq).\n"
                "# Seeds 42/54 indices 0-5: published (pcg-random.org, "
                "pcg32-demo). All rows: a second implementation in "
-               "tools/vectors_rng.c (32-bit limb multiply), equal to src/rng.c.\n"
+               "tools/vectors_rng.c (32-bit limb multiply), equal to src/core/rng.c.\n"
                "# Seeds are unsigned 64-bit decimal: parse as integers, not "
                "floats. output is exact (tol 0).\n"
                "initstate,initseq,index,output,output_hex,tol,source\n");
@@ -105,7 +105,7 @@ static void pcg32_file(const char *dir)
         for (int i = 0; i < 12; i++) {
             uint32_t x = ref_next(&r);
             if (x != pcg32_next(&g))
-                fail("src/rng.c disagrees with the reference PCG32");
+                fail("src/core/rng.c disagrees with the reference PCG32");
             bool pub = s == 0 && i < 6;
             if (pub && x != published[i])
                 fail("reference PCG32 disagrees with the published outputs");
@@ -131,7 +131,7 @@ static void sample_file(const char *dir)
                "2^-24, real_double = u32 * 2^-32 (exact; printed with 17 "
                "digits, which round-trip).\n"
                "# Expected from a second implementation of SplitMix64 and "
-               "PCG32 in tools/vectors_rng.c, equal to src/rng.c. Integers "
+               "PCG32 in tools/vectors_rng.c, equal to src/core/rng.c. Integers "
                "are unsigned 64-bit decimal. Exact: tol 0.\n"
                "seed,pixel,sample,k,u32,real_float,real_double,tol,source\n");
     for (size_t a = 0; a < sizeof seeds / sizeof seeds[0]; a++)
@@ -147,7 +147,7 @@ static void sample_file(const char *dir)
                     rng_for_sample(&g, seeds[a], pixels[b], samples[c]);
                     pcg32_advance(&g, dims[d]);
                     if (pcg32_next(&g) != x)
-                        fail("src/rng.c disagrees with the reference "
+                        fail("src/core/rng.c disagrees with the reference "
                              "rng_for_sample");
                     double rf = (double)(x >> 8) * 0x1p-24;
                     double rd = (double)x * 0x1p-32;

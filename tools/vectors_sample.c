@@ -1,10 +1,10 @@
 /*
  * vectors_sample.c - writes the test vectors of the samplers of ch. 4
- * (include/sample.h) into DIR/sample_directions.csv, sample_points.csv and
+ * (include/core/sample.h) into DIR/sample_directions.csv, sample_points.csv and
  * sample_sphere.csv: each sampler's output for a table of u (0 and the
  * largest float below 1 included), with expected values computed here in
  * long double from the closed forms of the sources (angles by atan2/acos
- * where the code avoids them), not by calling src/sample.c. Inputs are
+ * where the code avoids them), not by calling src/core/sample.c. Inputs are
  * floats, exact in both builds. Usage: vectors_sample DIR
  */
 #include <math.h>
@@ -168,7 +168,7 @@ static void directions_file(const char *dir)
     };
     FILE *f = vectors_open(dir, "sample_directions.csv");
     fprintf(f,
-            "# Direction samplers of ch. 4 (include/sample.h) at a table of "
+            "# Direction samplers of ch. 4 (include/core/sample.h) at a table of "
             "u: w = (wx, wy, wz) and the pdf per solid angle (sampler's pdf "
             "function at w).\n"
             "# a, b = parameters: cone a = cos_theta_max; phong a = e; ward "

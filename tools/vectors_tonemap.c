@@ -3,7 +3,7 @@
  * ch. 6 into DIR/tonemap.csv (make vectors; usage: vectors_tonemap DIR):
  * the exponential map, Reinhard et al. 2002 (eqs. 2-4) and Drago et al.
  * 2003, one luminance at a time. Expected values are the papers' formulas
- * written plainly in long double here (not src/tonemap.c, which rearranges
+ * written plainly in long double here (not src/colour/tonemap.c, which rearranges
  * Reinhard's against overflow). Inputs are floats printed with 17 digits.
  */
 #include <math.h>
@@ -34,7 +34,7 @@ int main(int argc, char **argv)
     }
     FILE *out = vectors_open(argv[1], "tonemap.csv");
     fprintf(out,
-            "# tone-mapping curves of ch. 6 (include/tonemap.h), one "
+            "# tone-mapping curves of ch. 6 (include/colour/tonemap.h), one "
             "luminance at a time\n"
             "# op exponential: 1 - exp(-lw / lav)\n"
             "# op reinhard: L = key lw / lav; L (1 + L / white^2) / (1 + L) "

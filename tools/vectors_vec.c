@@ -4,14 +4,14 @@
  * frame (app. A) into DIR/vec_*.csv and DIR/frame.csv.
  * Inputs are floats (exact in both builds, printed with 17 digits, the
  * float's exact value); expected values are computed in long double by
- * formulas independent of src/vec.c where one exists: refraction by
+ * formulas independent of src/core/vec.c where one exists: refraction by
  * Snell's law in the form t = -eta w + (eta cos_i - cos_t) n, rotation by
  * the axis-angle rotation matrix. Usage: vectors_vec DIR
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include "rng.h"
+#include "core/rng.h"
 #include "vectors.h"
 
 typedef long double ld;

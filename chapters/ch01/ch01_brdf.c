@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch01/ch01_brdf.c src/brdf.c src/sample.c src/frame.c src/vec.c src/rng.c src/error.c -lm -o ch01_brdf */
+/* cc -std=c11 -O2 -Iinclude chapters/ch01/ch01_brdf.c src/materials/brdf.c src/core/sample.c src/core/frame.c src/core/vec.c src/core/rng.c src/core/error.c -lm -o ch01_brdf */
 /*
  * ch01_brdf.c - chapter 1, the optical properties of materials, computed:
  * polar plots in the plane of incidence of the lobes (1.5), (1.8),
@@ -27,9 +27,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "brdf.h"
-#include "rng.h"
-#include "sample.h"
+#include "materials/brdf.h"
+#include "core/rng.h"
+#include "core/sample.h"
 
 #define PI_D 3.14159265358979323846
 #define SEED UINT64_C(19920701) /* every number below follows from it */

@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch01/ch01_geometry.c src/vec.c src/frame.c src/ray.c src/bbox.c src/cobject.c src/error.c src/shape.c src/quadric.c src/sphere.c src/plane.c src/disk.c src/parallelogram.c src/triangle.c src/box.c src/cylinder.c src/cone.c src/xform.c src/camera.c -lm -o ch01_geometry */
+/* cc -std=c11 -O2 -Iinclude chapters/ch01/ch01_geometry.c src/core/vec.c src/core/frame.c src/core/ray.c src/core/bbox.c src/materials/cobject.c src/core/error.c src/geometry/shape.c src/geometry/quadric.c src/geometry/sphere.c src/geometry/plane.c src/geometry/disk.c src/geometry/parallelogram.c src/geometry/triangle.c src/geometry/box.c src/geometry/cylinder.c src/geometry/cone.c src/geometry/xform.c src/render/camera.c -lm -o ch01_geometry */
 /*
  * ch01_geometry.c - the geometric part of chapter 1 and appendices A-D:
  * VECTOR3 with VVECTOR3 and SVECTOR3 (app. B), a ray meeting a sphere and
@@ -13,17 +13,17 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
-#include "box.h"
-#include "camera.h"
-#include "cone.h"
-#include "cylinder.h"
-#include "disk.h"
-#include "frame.h"
-#include "parallelogram.h"
-#include "plane.h"
-#include "sphere.h"
-#include "triangle.h"
-#include "xform.h"
+#include "geometry/box.h"
+#include "render/camera.h"
+#include "geometry/cone.h"
+#include "geometry/cylinder.h"
+#include "geometry/disk.h"
+#include "core/frame.h"
+#include "geometry/parallelogram.h"
+#include "geometry/plane.h"
+#include "geometry/sphere.h"
+#include "geometry/triangle.h"
+#include "geometry/xform.h"
 
 static void print_vec(const char *name, const VECTOR3 a)
 {

@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch02/ch02_colour.c src/colour.c src/spectrum.c src/error.c -lm -o ch02 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch02/ch02_colour.c src/colour/colour.c src/colour/spectrum.c src/core/error.c -lm -o ch02 */
 /*
  * ch02_colour.c - chapter 2, colour in computer graphics, and appendices J
  * (chromatic adaptation) and K (colour coordinates), as three pictures and
@@ -28,8 +28,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "colour.h"
-#include "spectrum.h"
+#include "colour/colour.h"
+#include "colour/spectrum.h"
 
 /* --- a linear RGB picture, written as sRGB PPM ------------------------------ */
 

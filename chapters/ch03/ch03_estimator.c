@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch03/ch03_estimator.c src/vec.c src/frame.c src/ray.c src/bbox.c src/cobject.c src/error.c src/rng.c src/sample.c src/brdf.c src/material.c src/sphere.c src/disk.c src/quadric.c src/shape.c src/camera.c -lm -o ch03 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch03/ch03_estimator.c src/core/vec.c src/core/frame.c src/core/ray.c src/core/bbox.c src/materials/cobject.c src/core/error.c src/core/rng.c src/core/sample.c src/materials/brdf.c src/materials/material.c src/geometry/sphere.c src/geometry/disk.c src/geometry/quadric.c src/geometry/shape.c src/render/camera.c -lm -o ch03 */
 /*
  * ch03_estimator.c - chapter 3, the rendering equation, estimated for one
  * pixel and written out step by step.
@@ -23,7 +23,7 @@
  * seen from inside, a floor, a ball and a spherical lamp), follows the
  * first few paths through the centre pixel printing every step, and then
  * shows the estimate converging as the number of paths N grows, with its
- * standard error sqrt(Var/N). The renderer's integrator (src/integrator.c)
+ * standard error sqrt(Var/N). The renderer's integrator (src/render/integrator.c)
  * is the same estimator plus light sampling and MIS (ch. 5).
  *
  * usage: ch03 [N_max]   (default 262144 paths)
@@ -31,12 +31,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "camera.h"
-#include "disk.h"
-#include "frame.h"
-#include "material.h"
-#include "sample.h"
-#include "sphere.h"
+#include "render/camera.h"
+#include "geometry/disk.h"
+#include "core/frame.h"
+#include "materials/material.h"
+#include "core/sample.h"
+#include "geometry/sphere.h"
 
 #define NOBJ 4
 

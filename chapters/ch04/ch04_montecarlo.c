@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch04/ch04_montecarlo.c src/sample.c src/rng.c src/frame.c src/vec.c -lm -o ch04 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch04/ch04_montecarlo.c src/core/sample.c src/core/rng.c src/core/frame.c src/core/vec.c -lm -o ch04 */
 /*
  * ch04_montecarlo.c - chapter 4, the Monte Carlo method: integrals whose
  * value we know, estimated with N = 1, 4, 16, ..., 4^10 samples by plain
@@ -24,8 +24,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "rng.h"
-#include "sample.h"
+#include "core/rng.h"
+#include "core/sample.h"
 
 #define PI_D 3.14159265358979323846
 #define KMAX 10                  /* N = 4^0 .. 4^KMAX */

@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -fopenmp -Iinclude chapters/ch05/ch05_cases.c src/render.c src/accel.c src/primset.c src/integrator.c src/light.c src/camera.c src/scene.c src/scenefile.c src/material.c src/brdf.c src/sample.c src/rng.c src/cobject.c src/shape.c src/sphere.c src/plane.c src/disk.c src/parallelogram.c src/triangle.c src/box.c src/cylinder.c src/cone.c src/quadric.c src/xform.c src/mesh.c src/bbox.c src/ray.c src/frame.c src/vec.c src/colour.c src/image.c src/imgcompare.c src/converge.c src/netpbm.c src/tonemap.c src/fileio.c src/error.c -lm -o ch05 */
+/* cc -std=c11 -O2 -fopenmp -Iinclude chapters/ch05/ch05_cases.c src/render/render.c src/accel/accel.c src/accel/primset.c src/render/integrator.c src/render/light.c src/render/camera.c src/render/scene.c src/render/scenefile.c src/materials/material.c src/materials/brdf.c src/core/sample.c src/core/rng.c src/materials/cobject.c src/geometry/shape.c src/geometry/sphere.c src/geometry/plane.c src/geometry/disk.c src/geometry/parallelogram.c src/geometry/triangle.c src/geometry/box.c src/geometry/cylinder.c src/geometry/cone.c src/geometry/quadric.c src/geometry/xform.c src/mesh/mesh.c src/core/bbox.c src/core/ray.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/stats/imgcompare.c src/stats/converge.c src/io/netpbm.c src/colour/tonemap.c src/io/fileio.c src/core/error.c -lm -o ch05 */
 /*
  * ch05_cases.c - chapter 5, solving the rendering equation: the section's
  * cases (a point isotropic source, an extended source, a mirror, diffuse,
@@ -9,7 +9,7 @@
  * lighting - at EQUAL TIME, and judged against a reference rendered by
  * `path` for many times longer. Writes the images (PFM, PPM), one
  * side-by-side picture per case and a table of error and efficiency.
- * The integrator: src/integrator.c (tests: tests/test_integrator.c).
+ * The integrator: src/render/integrator.c (tests: tests/render/test_integrator.c).
  *
  * usage: ch05 [OUTDIR] [--budget S] [--ref-factor K] [--scale F] [--spp N]
  *             [--threads N] [--clock cpu|wall] [--cases a,b,...]
@@ -27,13 +27,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "converge.h"
-#include "fileio.h"
-#include "imgcompare.h"
-#include "netpbm.h"
-#include "render.h"
-#include "scenefile.h"
-#include "tonemap.h"
+#include "stats/converge.h"
+#include "io/fileio.h"
+#include "stats/imgcompare.h"
+#include "io/netpbm.h"
+#include "render/render.h"
+#include "render/scenefile.h"
+#include "colour/tonemap.h"
 
 /* The reference has its own seed, so that its noise is independent of the
  * images it judges (the strategies use the scene's seed, 0): with the same

@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch06/ch06_display.c src/tonemap.c src/image.c src/netpbm.c src/fileio.c src/colour.c src/error.c -lm -o ch06 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch06/ch06_display.c src/colour/tonemap.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/colour/colour.c src/core/error.c -lm -o ch06 */
 /*
  * ch06_display.c - chapter 6, output to the screen: one high-dynamic-range
  * image (a room lit by a window with the sun in it and a lamp: about 10^7
@@ -29,11 +29,11 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "colour.h"
-#include "fileio.h"
-#include "image.h"
-#include "netpbm.h"
-#include "tonemap.h"
+#include "colour/colour.h"
+#include "io/fileio.h"
+#include "io/image.h"
+#include "io/netpbm.h"
+#include "colour/tonemap.h"
 
 #define W 320 /* size of the scene */
 #define H 200

@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch07/ch07_grids.c src/accel.c src/grid.c src/primset.c src/mesh.c src/meshgen.c src/triangle.c src/shape.c src/frame.c src/vec.c src/bbox.c src/cobject.c src/ray.c src/rng.c src/error.c src/camera.c src/image.c src/netpbm.c src/fileio.c src/parallelogram.c src/xform.c -lm -o ch07 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch07/ch07_grids.c src/accel/accel.c src/accel/grid.c src/accel/primset.c src/mesh/mesh.c src/mesh/meshgen.c src/geometry/triangle.c src/geometry/shape.c src/core/frame.c src/core/vec.c src/core/bbox.c src/materials/cobject.c src/core/ray.c src/core/rng.c src/core/error.c src/render/camera.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/geometry/parallelogram.c src/geometry/xform.c -lm -o ch07 */
 /*
  * ch07_grids.c - chapter 7, hierarchical grids: where the time of a ray
  * goes. For two procedural scenes (5 x 5 x 5 spheres of 1e5 triangles, and
@@ -10,12 +10,12 @@
  * Usage: ch07 [OUTDIR]   (default out/; the directory must exist)
  * Benchmark tables: bench/bench_grid.c, chapters/ch07/README.md.
  */
-#include "accel.h"
-#include "grid.h"
-#include "camera.h"
-#include "image.h"
-#include "meshgen.h"
-#include "netpbm.h"
+#include "accel/accel.h"
+#include "accel/grid.h"
+#include "render/camera.h"
+#include "io/image.h"
+#include "mesh/meshgen.h"
+#include "io/netpbm.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,0 +1,267 @@
+/*
+ * diff.c - `svet diff A B`: how far image A is from the reference B
+ * (imgcompare.h), for any two of EXR, PFM, PNG and PPM files of one size,
+ * with an optional error image. The numbers are printed one per line,
+ * "name value", so that scripts can grep them; lines about the inputs
+ * start with '#'.
+ * Tests: tests/cmd/test_svet.c
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmd.h"
+#include "cmdutil.h"
+#include "io/imageio.h"
+#include "stats/imgcompare.h"
+
+void cmd_diff_help(FILE *f)
+{
+    fprintf(f,
+"usage: svet diff A B [options]\n"
+"\n"
+"Compare image A with the reference B, over R, G and B (alpha is not\n"
+"compared). Both files are told apart by their contents, and may be EXR,\n"
+"PFM, PNG or PPM, of the same width and height. Two display images (PNG,\n"
+"PPM) are compared as codes in [0, 1]; a display image compared with a\n"
+"linear one (EXR, PFM) is first decoded with the sRGB curve.\n"
+"\n"
+"Prints, one per line (name, then value):\n"
+"  mse     mean of (a - b)^2\n"
+"  rmse    its square root\n"
+"  relmse  mean of (a - b)^2 / (b^2 + eps), eps 0.01 (pbrt-v4's MRSE\n"
+"          divides by (b + 0.01)^2 instead)\n"
+"  mae     mean of |a - b|\n"
+"  psnr    10 log10(peak^2 / mse) in dB; inf for identical images\n"
+"  max     the largest |a - b|, with its pixel and channel\n"
+"Pairs with a NaN or Inf on either side are skipped and counted.\n"
+"\n"
+"options:\n"
+"  --metric LIST        the metrics to print, comma-separated (default:\n"
+"                       all, in the order above)\n"
+"  --error-image FILE   write the per-pixel error (.exr or .pfm)\n"
+"  --error KIND         abs (default), rel (|a-b| / sqrt(b^2 + eps)) or\n"
+"                       squared\n"
+"  --peak P             the peak of PSNR (default: 1 for two display\n"
+"                       images, else the largest value of B)\n"
+"  --eps E              the epsilon of relmse (default 0.01)\n"
+"  --fail-above X       exit with 5 if the first metric listed exceeds X\n"
+"                       (for psnr: falls below X)\n"
+"  -h, --help           this text\n"
+"\n"
+"exit codes: 0 compared (and within --fail-above); 1 bad command line;\n"
+"2 an image cannot be read, or the sizes differ; 3 the error image cannot\n"
+"be written; 5 the first metric is beyond --fail-above.\n");
+}
+
+enum { M_MSE, M_RMSE, M_RELMSE, M_MAE, M_PSNR, M_MAX, M_COUNT };
+static const char *const metric_names[M_COUNT] = { "mse",  "rmse", "relmse",
+                                                   "mae",  "psnr", "max" };
+
+/* Parse "rmse,psnr" into a list of metric indices; false on a bad name. */
+static bool parse_metrics(const char *list, int *out, int *n)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", list);
+    *n = 0;
+    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+        int k = -1;
+        for (int i = 0; i < M_COUNT; i++)
+            if (strcmp(tok, metric_names[i]) == 0)
+                k = i;
+        if (k < 0 || *n == M_COUNT) {
+            fprintf(stderr, "svet diff: unknown metric '%s' (mse, rmse, "
+                            "relmse, mae, psnr, max)\n", tok);
+            return false;
+        }
+        out[(*n)++] = k;
+    }
+    return *n > 0;
+}
+
+static double metric_value(const imgcompare_t *m, int k)
+{
+    switch (k) {
+    case M_MSE: return m->mse;
+    case M_RMSE: return m->rmse;
+    case M_RELMSE: return m->relmse;
+    case M_MAE: return m->mae;
+    case M_PSNR: return m->psnr;
+    default: return m->max_abs;
+    }
+}
+
+static const char *format_name(imageio_format_t f)
+{
+    switch (f) {
+    case IMAGEIO_EXR: return "EXR";
+    case IMAGEIO_PFM: return "PFM";
+    case IMAGEIO_PNG: return "PNG";
+    case IMAGEIO_PPM: return "PPM";
+    case IMAGEIO_UNKNOWN: break;
+    }
+    return "?";
+}
+
+static int read_input(const char *path, image_t *img, imageio_format_t *f)
+{
+    svet_error err;
+    svet_error_clear(&err);
+    if (imageio_read(path, img, false, f, &err) != SVET_OK) {
+        fprintf(stderr, "svet diff: %s\n", err.msg);
+        return SVET_EXIT_INPUT;
+    }
+    return SVET_EXIT_OK;
+}
+
+int cmd_diff(int argc, char **argv)
+{
+    const char *paths[2] = { NULL, NULL }, *err_path = NULL;
+    int metrics[M_COUNT] = { M_MSE, M_RMSE, M_RELMSE, M_MAE, M_PSNR, M_MAX };
+    int nmetrics = M_COUNT, npaths = 0;
+    imgcompare_kind_t kind = IMGCOMPARE_ABS;
+    double peak = 0, eps = IMGCOMPARE_EPS, fail_above = 0;
+    bool have_peak = false, have_fail = false;
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            cmd_diff_help(stdout);
+            return SVET_EXIT_OK;
+        }
+        if (a[0] != '-' || a[1] == '\0') {
+            if (npaths == 2) {
+                fprintf(stderr, "svet diff: one image too many: '%s' (svet "
+                                "diff --help)\n", a);
+                return SVET_EXIT_USAGE;
+            }
+            paths[npaths++] = a;
+            continue;
+        }
+        if (!v)
+            return cmd_missing_value("diff", a);
+        i++;
+        if (!strcmp(a, "--metric")) {
+            if (!parse_metrics(v, metrics, &nmetrics))
+                return SVET_EXIT_USAGE;
+        } else if (!strcmp(a, "--error-image")) {
+            imageio_format_t f = imageio_format_from_name(v);
+            if (f != IMAGEIO_EXR && f != IMAGEIO_PFM) {
+                fprintf(stderr, "svet diff: the error image is linear: "
+                                "name it .exr or .pfm, not '%s'\n", v);
+                return SVET_EXIT_USAGE;
+            }
+            err_path = v;
+        } else if (!strcmp(a, "--error")) {
+            if (!strcmp(v, "abs"))
+                kind = IMGCOMPARE_ABS;
+            else if (!strcmp(v, "rel"))
+                kind = IMGCOMPARE_REL;
+            else if (!strcmp(v, "squared"))
+                kind = IMGCOMPARE_SQUARED;
+            else {
+                fprintf(stderr, "svet diff: --error %s: abs, rel or "
+                                "squared\n", v);
+                return SVET_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--peak")) {
+            if (!cmd_parse_double(v, &peak) || peak <= 0) {
+                fprintf(stderr, "svet diff: --peak %s: a positive number\n",
+                        v);
+                return SVET_EXIT_USAGE;
+            }
+            have_peak = true;
+        } else if (!strcmp(a, "--eps")) {
+            if (!cmd_parse_double(v, &eps) || eps <= 0) {
+                fprintf(stderr, "svet diff: --eps %s: a positive number\n",
+                        v);
+                return SVET_EXIT_USAGE;
+            }
+        } else if (!strcmp(a, "--fail-above")) {
+            if (!cmd_parse_double(v, &fail_above)) {
+                fprintf(stderr, "svet diff: --fail-above %s: a number\n", v);
+                return SVET_EXIT_USAGE;
+            }
+            have_fail = true;
+        } else {
+            return cmd_unknown_option("diff", a);
+        }
+    }
+    if (npaths != 2) {
+        fprintf(stderr, "svet diff: two images are needed: svet diff A B "
+                        "(svet diff --help)\n");
+        return SVET_EXIT_USAGE;
+    }
+
+    image_t img[2] = { { 0 }, { 0 } };
+    imageio_format_t fmt[2];
+    int rc = SVET_EXIT_OK;
+    for (int k = 0; k < 2 && rc == SVET_EXIT_OK; k++)
+        rc = read_input(paths[k], &img[k], &fmt[k]);
+    bool display[2] = { imageio_is_display(fmt[0]),
+                        imageio_is_display(fmt[1]) };
+    if (rc == SVET_EXIT_OK && display[0] != display[1])
+        imageio_decode_srgb(display[0] ? &img[0] : &img[1]);
+    if (rc == SVET_EXIT_OK && (img[0].width != img[1].width ||
+                               img[0].height != img[1].height)) {
+        fprintf(stderr, "svet diff: %s is %d x %d, %s is %d x %d: the sizes "
+                        "differ\n", paths[0], img[0].width, img[0].height,
+                paths[1], img[1].width, img[1].height);
+        rc = SVET_EXIT_INPUT;
+    }
+    imgcompare_t m;
+    svet_error err;
+    svet_error_clear(&err);
+    if (rc == SVET_EXIT_OK) {
+        if (!have_peak && display[0] && display[1])
+            peak = 1;
+        if (imgcompare(&img[0], &img[1], peak, eps, &m, &err) != SVET_OK) {
+            fprintf(stderr, "svet diff: %s\n", err.msg);
+            rc = SVET_EXIT_INPUT;
+        }
+    }
+    if (rc == SVET_EXIT_OK) {
+        for (int k = 0; k < 2; k++)
+            printf("# %s: %s (%s, %d x %d%s)\n", k ? "B" : "A", paths[k],
+                   format_name(fmt[k]), img[k].width, img[k].height,
+                   display[k] && display[0] != display[1]
+                       ? ", display codes decoded with sRGB"
+                       : "");
+        printf("# compared %llu values (R, G, B); %llu NaN/Inf pairs "
+               "skipped; psnr peak %g; relmse eps %g\n",
+               (unsigned long long)m.n, (unsigned long long)m.nonfinite,
+               m.peak, m.eps);
+        for (int i = 0; i < nmetrics; i++) {
+            int k = metrics[i];
+            if (k == M_MAX)
+                printf("max %.9g at %d %d %c\n", m.max_abs, m.max_x, m.max_y,
+                       "RGB"[m.max_c]);
+            else
+                printf("%s %.9g\n", metric_names[k], metric_value(&m, k));
+        }
+        fflush(stdout);
+    }
+    if (rc == SVET_EXIT_OK && err_path) {
+        image_t e;
+        if (imgcompare_error_image(&img[0], &img[1], kind, eps, &e, &err) !=
+                SVET_OK ||
+            imageio_write(err_path, &e, &err) != SVET_OK) {
+            fprintf(stderr, "svet diff: %s\n", err.msg);
+            rc = SVET_EXIT_OUTPUT;
+        }
+        image_free(&e);
+    }
+    if (rc == SVET_EXIT_OK && have_fail) {
+        double v = metric_value(&m, metrics[0]);
+        bool bad = metrics[0] == M_PSNR ? v < fail_above : v > fail_above;
+        if (bad) {
+            fprintf(stderr, "svet diff: %s %.9g is beyond --fail-above %g\n",
+                    metric_names[metrics[0]], v, fail_above);
+            rc = SVET_EXIT_DIFFERENT;
+        }
+    }
+    image_free(&img[0]);
+    image_free(&img[1]);
+    return rc;
+}

@@ -1,0 +1,341 @@
+/*
+ * render.c - `svet render`: read a scene file, render it progressively in
+ * passes (ch. 5), and write the linear image (EXR) and a tone-mapped one
+ * (PNG, ch. 6) side by side. SIGINT or SIGTERM ends the render after the
+ * current pass and writes what it has; a second one ends it at once.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cmd.h"
+#include "cmdutil.h"
+#include "io/exrio.h"
+#include "io/pngio.h"
+#include "render/render.h"
+#include "render/scenefile.h"
+#include "colour/tonemap.h"
+
+static volatile sig_atomic_t stop_requested = 0;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
+}
+
+void cmd_render_help(FILE *f)
+{
+    fprintf(f,
+"usage: svet render SCENE [options]\n"
+"\n"
+"Render the scene file SCENE (format: scenes/README.md) and write the linear\n"
+"image as OpenEXR and a tone-mapped PNG beside it.\n"
+"\n"
+"options:\n"
+"  -o, --output FILE.exr   linear output (default: the scene's `output exr`,\n"
+"                          else out/<scene name>.exr); the PNG goes beside it\n"
+"      --png FILE.png      tone-mapped output (default: FILE.exr with .png)\n"
+"      --variance FILE.exr per-pixel variance of the mean, for error bars\n"
+"      --spp N             samples per pixel\n"
+"      --threads N         render threads (0 = every core)\n"
+"      --seed N            seed of the random numbers (rng.h)\n"
+"      --time-limit S      stop after the pass that passes S seconds\n"
+"      --passes N          split the samples into N passes (default: the\n"
+"                          scene's `passes`, or min(spp, 16) when it is 1)\n"
+"      --checkpoint        write the outputs after every pass\n"
+"      --half              write the EXR as half floats (default: float)\n"
+"      --set KEY=VALUE     any scene setting, as scenefile_override() takes:\n"
+"                          maxdepth, integrator, roulette, accel, tonemap, ...\n"
+"  -q, --quiet             no progress and no summary\n"
+"  -h, --help              this text\n"
+"\n"
+"Progress with an ETA goes to stderr when it is a terminal; otherwise one\n"
+"summary line (time, samples per second, rays per second) at the end.\n"
+"The image depends only on the scene, the seed and the sample count: the\n"
+"same for any number of threads or passes.\n"
+"\n"
+"exit codes: 0 done; 1 bad command line; 2 the scene or a file it names is\n"
+"missing or malformed; 3 an output could not be written; 4 interrupted\n"
+"(SIGINT/SIGTERM), the samples rendered so far were written.\n");
+}
+
+typedef struct {
+    double t0;          /* start of the render */
+    double last;        /* last progress line */
+    long pass, passes;  /* current pass (1-based) and total */
+    long spp0, spp1, spp; /* samples of this pass, and in all */
+    bool tty;
+} progress_t;
+
+static void on_tile(void *ctx, long done, long total)
+{
+    progress_t *p = ctx;
+    double t = cmd_now();
+    if (!p->tty || (t - p->last < 0.2 && done < total))
+        return;
+    p->last = t;
+    /* fraction of all samples done, counting finished tiles of this pass */
+    double frac = ((double)p->spp0 + (double)(p->spp1 - p->spp0) *
+                   (double)done / (double)total) / (double)p->spp;
+    double el = t - p->t0, eta = frac > 0 ? el / frac - el : 0;
+    fprintf(stderr, "\rpass %ld/%ld  %5.1f%%  %6.1f s elapsed  ETA %6.1f s ",
+            p->pass, p->passes, 100 * frac, el, eta);
+    fflush(stderr);
+}
+
+static char *default_exr(const scene_t *s, const char *scene_path)
+{
+    if (s->render.output_exr)
+        return strdup(s->render.output_exr);
+    const char *base = strrchr(scene_path, '/');
+    base = base ? base + 1 : scene_path;
+    char *stem = cmd_replace_ext(base, "");
+    if (!stem)
+        return NULL;
+    char *out = malloc(strlen(stem) + 9);
+    if (out)
+        sprintf(out, "out/%s.exr", stem);
+    free(stem);
+    return out;
+}
+
+/* Make the directory of path if it is missing (one level, as out/). */
+static void ensure_dir(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash || slash == path)
+        return;
+    char dir[4096];
+    size_t n = (size_t)(slash - path);
+    if (n >= sizeof dir)
+        return;
+    memcpy(dir, path, n);
+    dir[n] = '\0';
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+        return; /* the writer will report the real problem */
+}
+
+typedef struct {
+    const char *exr, *png, *var;
+    bool half;
+} outputs_t;
+
+/* Write the EXR, the PNG and (if asked) the variance image of what r holds
+ * so far. Each file goes through a temporary file and a rename (fileio.h),
+ * so an interrupted write leaves the previous checkpoint intact. */
+static svet_status write_outputs(const render_t *r, const scene_t *s,
+                                 const outputs_t *o, svet_error *err)
+{
+    image_t img, ldr;
+    memset(&ldr, 0, sizeof ldr);
+    svet_status st = render_image(r, &img, err);
+    if (st != SVET_OK)
+        return st;
+    ensure_dir(o->exr);
+    st = exrio_write(o->exr, &img, o->half ? EXRIO_HALF : EXRIO_FLOAT,
+                     EXRIO_ZIP, err);
+    if (st == SVET_OK) {
+        tonemap_params_t tp;
+        const scene_tonemap_t *t = &s->render.tonemap;
+        tonemap_defaults(&tp, (tonemap_op_t)t->op);
+        tp.stops = (double)t->exposure;
+        tp.key = (double)t->key;
+        tp.white = (double)t->white;
+        tp.bias = (double)t->bias;
+        tp.curve = (tonemap_curve_t)t->curve;
+        tp.gamma = (double)t->gamma;
+        st = tonemap_apply(&img, &ldr, &tp, NULL, err);
+        if (st == SVET_OK) {
+            ensure_dir(o->png);
+            st = pngio_write(o->png, &ldr, 8, err);
+        }
+    }
+    if (st == SVET_OK && o->var) {
+        image_t var;
+        st = render_variance(r, &var, err);
+        if (st == SVET_OK) {
+            ensure_dir(o->var);
+            st = exrio_write(o->var, &var, EXRIO_FLOAT, EXRIO_ZIP, err);
+            image_free(&var);
+        }
+    }
+    image_free(&ldr);
+    image_free(&img);
+    return st;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    const char *scene_path = NULL, *opt_exr = NULL, *opt_png = NULL,
+               *opt_var = NULL;
+    long spp = -1, passes = -1;
+    double time_limit = -1;
+    bool checkpoint = false, quiet = false, half = false;
+    cmd_scene_opts_t so;
+    cmd_scene_opts_init(&so);
+
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        bool takes = true;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            cmd_render_help(stdout);
+            return SVET_EXIT_OK;
+        } else if (!strcmp(a, "--checkpoint")) {
+            checkpoint = true, takes = false;
+        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+            quiet = true, takes = false;
+        } else if (!strcmp(a, "--half")) {
+            half = true, takes = false;
+        } else if (a[0] == '-' && !v) {
+            return cmd_missing_value("render", a);
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            opt_exr = v;
+        } else if (!strcmp(a, "--png")) {
+            opt_png = v;
+        } else if (!strcmp(a, "--variance")) {
+            opt_var = v;
+        } else if (!strcmp(a, "--spp")) {
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &spp))
+                return cmd_bad_value("render", a, v);
+        } else if (!strcmp(a, "--passes")) {
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &passes))
+                return cmd_bad_value("render", a, v);
+        } else if (!strcmp(a, "--time-limit")) {
+            if (!cmd_parse_double(v, &time_limit) || time_limit < 0 ||
+                time_limit > 1e9)
+                return cmd_bad_value("render", a, v);
+        } else if (a[0] == '-') {
+            int k = cmd_scene_option("render", a, v, &so);
+            if (k == CMD_OPT_BAD)
+                return SVET_EXIT_USAGE;
+            if (k == CMD_OPT_NONE)
+                return cmd_unknown_option("render", a);
+        } else {
+            if (scene_path)
+                return cmd_error("render", SVET_EXIT_USAGE, "one scene at a "
+                                 "time ('%s' and '%s')", scene_path, a);
+            scene_path = a;
+            takes = false;
+        }
+        if (takes)
+            i++;
+    }
+    if (!scene_path)
+        return cmd_error("render", SVET_EXIT_USAGE,
+                         "no scene file (svet render --help)");
+
+    svet_error err;
+    svet_error_clear(&err);
+    scene_t scene;
+    int rc = cmd_scene_load("render", &scene, scene_path, &so);
+    if (rc != SVET_EXIT_OK) {
+        scene_free(&scene);
+        return rc;
+    }
+    if (spp > 0)
+        scene.render.spp = spp;
+    if (time_limit >= 0)
+        scene.render.time_limit = time_limit;
+    if (checkpoint)
+        scene.render.checkpoint = true;
+    if (passes > 0)
+        scene.render.passes = (int)passes;
+
+    char *exr = opt_exr ? strdup(opt_exr) : default_exr(&scene, scene_path);
+    char *png = opt_png ? strdup(opt_png)
+              : (!opt_exr && scene.render.output_png)
+                  ? strdup(scene.render.output_png)
+                  : exr ? cmd_replace_ext(exr, ".png") : NULL;
+    render_t r;
+    bool r_live = false;
+    if (!exr || !png) {
+        fprintf(stderr, "svet render: out of memory\n");
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    if (scene_validate(&scene, &err) != SVET_OK ||
+        render_init(&r, &scene, &err) != SVET_OK) {
+        fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);
+        rc = SVET_EXIT_INPUT;
+        goto done;
+    }
+    r_live = true;
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND; /* a second signal ends the program at once */
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    const long total = scene.render.spp;
+    long npass = scene.render.passes > 1 ? scene.render.passes
+                                         : (total < 16 ? total : 16);
+    if (npass > total)
+        npass = total;
+    outputs_t out = { exr, png, opt_var, half };
+    progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
+                      !quiet && isatty(STDERR_FILENO) };
+    bool interrupted = false;
+    for (long k = 1; k <= npass; k++) {
+        long end = (long)((double)total * (double)k / (double)npass);
+        pr.pass = k;
+        pr.spp0 = r.spp_done;
+        pr.spp1 = end;
+        render_pass(&r, end, scene.render.threads, on_tile, &pr);
+        if (stop_requested) {
+            interrupted = true;
+            break;
+        }
+        if (scene.render.time_limit > 0 &&
+            cmd_now() - pr.t0 >= scene.render.time_limit)
+            break;
+        if (scene.render.checkpoint && k < npass &&
+            write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+            fprintf(stderr, "\nsvet render: %s\n", err.msg);
+            rc = SVET_EXIT_OUTPUT;
+            goto done;
+        }
+    }
+    double secs = cmd_now() - pr.t0;
+    if (pr.tty)
+        fputc('\n', stderr);
+    if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+        fprintf(stderr, "svet render: %s\n", err.msg);
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    uint64_t nonfinite = image_accum_nonfinite(&r.acc);
+    if (!quiet) {
+        double samples = (double)r.spp_done * (double)scene.camera.width *
+                         (double)scene.camera.height;
+        fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s: %.3g "
+                        "samples/s, %.3g rays/s; %s; wrote %s and %s%s%s\n",
+                scene_path, scene.camera.width, scene.camera.height,
+                r.spp_done, secs, samples / secs,
+                (double)r.stats.rays / secs, r.accel_choice, exr, png,
+                interrupted ? " (interrupted)" : "",
+                nonfinite ? " (some samples were NaN/Inf and were dropped)"
+                          : "");
+        if (nonfinite)
+            fprintf(stderr, "svet render: %llu non-finite samples dropped\n",
+                    (unsigned long long)nonfinite);
+    }
+    if (interrupted)
+        rc = SVET_EXIT_INTERRUPTED;
+done:
+    if (r_live)
+        render_free(&r);
+    free(exr);
+    free(png);
+    scene_free(&scene);
+    return rc;
+}

@@ -1,0 +1,176 @@
+/*
+ * image.h - the images of ch. 5 and ch. 6: a float RGB(A) image, and the
+ * accumulation a renderer adds its samples to (sum and count per pixel), so
+ * that renders made in passes, or on several machines, merge exactly.
+ * File formats live in netpbm.h (PFM, PPM), exrio.h and pngio.h; every
+ * writer goes through fileio.h (temporary file, then rename).
+ * Tests: tests/io/test_image.c
+ */
+#ifndef SVET_IMAGE_H
+#define SVET_IMAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "core/error.h"
+#include "materials/radiance.h"
+
+/* Limits that every reader checks before it allocates: a header that
+ * claims 2^31 x 2^31 pixels is an error, not a 16-exabyte malloc. 65536
+ * pixels a side is eight times an 8K frame; 2^28 pixels is a 16384^2 image
+ * (4 GiB as RGBA floats). */
+#define IMAGE_MAX_DIM 65536
+#define IMAGE_MAX_PIXELS (UINT64_C(1) << 28)
+
+/* A resolved image: linear values as floats whatever `real` is (files hold
+ * 32-bit floats or halves, and an image of doubles would double the memory
+ * for nothing a display can show). Pixel (x, y) is at
+ * px[(y * width + x) * channels], x to the right, y DOWN: row 0 is the top
+ * row, as in EXR and PNG (PFM's bottom-up rows are flipped on I/O). */
+typedef struct {
+    int width, height; /* pixels, each in 1..IMAGE_MAX_DIM */
+    int channels;      /* 3: R G B, or 4: R G B A (straight, not premultiplied) */
+    float *px;         /* width * height * channels floats, interleaved */
+} image_t;
+
+/* Allocate img as width x height with `channels` (3 or 4) channels, all
+ * zero. img is written even on failure (zeroed), so image_free() is always
+ * safe on it. Fails with SVET_ERR_RANGE for a size below 1, above
+ * IMAGE_MAX_DIM a side or IMAGE_MAX_PIXELS in all, or channels not 3 or 4;
+ * with SVET_ERR_NOMEM when the byte count overflows size_t or malloc
+ * fails. */
+svet_status image_alloc(image_t *img, int width, int height, int channels,
+                        svet_error *err);
+
+/* Release the pixels and zero *img. Safe on a zeroed or freed image and
+ * on NULL. This function can't fail. */
+void image_free(image_t *img);
+
+/* The byte count of a width x height x channels array of elem-byte values,
+ * in *bytes. Fails with SVET_ERR_RANGE as image_alloc() does, and with
+ * SVET_ERR_NOMEM when the product overflows size_t. Readers call it on the
+ * dimensions a header claims before allocating anything. */
+svet_status image_check_size(long long width, long long height, int channels,
+                             size_t elem, size_t *bytes, svet_error *err);
+
+/* Copy src into dst (allocated here; dst must not hold pixels). Fails as
+ * image_alloc() does. */
+svet_status image_copy(image_t *dst, const image_t *src, svet_error *err);
+
+/* The first value of pixel (x, y); the caller keeps 0 <= x < width and
+ * 0 <= y < height. */
+static inline float *image_at(const image_t *img, int x, int y)
+{
+    return img->px + ((size_t)y * (size_t)img->width + (size_t)x) *
+                         (size_t)img->channels;
+}
+
+/* Pixel (x, y) as a RADIANCE (alpha, if any, is not part of it). */
+static inline RADIANCE image_get(const image_t *img, int x, int y)
+{
+    const float *p = image_at(img, x, y);
+    return rad_make((real)p[0], (real)p[1], (real)p[2]);
+}
+
+/* Set the colour of pixel (x, y); alpha, if any, is left as it was. */
+static inline void image_set(image_t *img, int x, int y, RADIANCE c)
+{
+    float *p = image_at(img, x, y);
+    p[0] = (float)c.r;
+    p[1] = (float)c.g;
+    p[2] = (float)c.b;
+}
+
+/* An encoded value v in [0, 1] as an integer code 0..maxval, rounded to
+ * nearest (ties up); values below 0 and NaN give 0, above 1 give maxval.
+ * maxval 255 is an 8-bit file, 65535 a 16-bit one, and for them
+ * image_quantize((float)k / maxval, maxval) == k for every code k, so an
+ * image read from a file is written back to the same codes. */
+static inline unsigned image_quantize(float v, unsigned maxval)
+{
+    double s = (double)v * (double)maxval + 0.5;
+    if (!(s >= 1.0)) /* also NaN */
+        return 0;
+    if (s >= (double)maxval)
+        return maxval;
+    return (unsigned)s;
+}
+
+/* --- accumulation -------------------------------------------------------- */
+
+/* The running sums of a render. Each sample adds its radiance to `sum` (in
+ * double) and 1 to `count`; the image is sum / count (image_accum_resolve).
+ * A sample with a NaN or infinite channel is not added: it goes to
+ * `nonfinite` only, so one bad path cannot blacken or whiten a pixel for
+ * ever, and the count says it happened (a correct renderer keeps it at 0).
+ *
+ * Exactness of a merge. Floating-point addition is not associative, so
+ * (a1 + a2) + (b1 + b2) and ((a1 + a2) + b1) + b2 can differ in the last
+ * bit. Two choices make merging safe:
+ *  - sums are double, counts integers: merging in a fixed order (pass 1,
+ *    then 2, then 3) gives the same bits on every run and machine that
+ *    honours IEEE 754 and -ffp-contract=off;
+ *  - a double sum of float samples is EXACT (so every order gives the same
+ *    bits, and a merge equals one accumulation of all the samples) as long
+ *    as a pixel's samples, written as integer multiples of the smallest
+ *    ulp among them, add up to less than 2^53 of those: e.g. up to 2^12
+ *    float samples per pixel whose nonzero magnitudes lie within a factor
+ *    2^16 of one another (each is then below 2^40 ulps, the sum below
+ *    2^52). Beyond that (or with double samples, REAL=double) the merged
+ *    sum and the one-pass sum may differ by a few units in the 53rd bit,
+ *    far below what the float image stores.
+ * A weighted (filtered) sum would need a weight sum in place of the count;
+ * svet's pixels are boxes, one sample one vote. */
+typedef struct {
+    int width, height;
+    double *sum;         /* 3 per pixel: R G B sums of the finite samples */
+    uint64_t *count;     /* finite samples added to each pixel */
+    uint64_t *nonfinite; /* samples dropped from each pixel: NaN or Inf */
+} image_accum_t;
+
+/* Allocate an empty accumulation (all sums and counts zero). acc is zeroed
+ * first, so image_accum_free() is always safe on it. Fails as image_alloc()
+ * does. */
+svet_status image_accum_alloc(image_accum_t *acc, int width, int height,
+                              svet_error *err);
+
+/* Release and zero. Safe on a zeroed or freed accumulation and on NULL.
+ * This function can't fail. */
+void image_accum_free(image_accum_t *acc);
+
+/* Add one sample of radiance L to pixel (x, y), or count it as non-finite
+ * if any channel is NaN or infinite. The caller keeps (x, y) inside. Not
+ * thread-safe for the same pixel: give threads disjoint pixels (rows or
+ * tiles), as svet's renderer does. This function can't fail. */
+static inline void image_accum_add(image_accum_t *acc, int x, int y,
+                                   RADIANCE L)
+{
+    size_t i = (size_t)y * (size_t)acc->width + (size_t)x;
+    if (!rad_is_finite(L)) {
+        acc->nonfinite[i]++;
+        return;
+    }
+    double *s = acc->sum + 3 * i;
+    s[0] += (double)L.r;
+    s[1] += (double)L.g;
+    s[2] += (double)L.b;
+    acc->count[i]++;
+}
+
+/* dst += src: sums, counts and non-finite counts, pixel by pixel. Fails
+ * with SVET_ERR_RANGE (and leaves dst unchanged) if the sizes differ. */
+svet_status image_accum_merge(image_accum_t *dst, const image_accum_t *src,
+                              svet_error *err);
+
+/* The mean image, sum / count per pixel (3 channels), into out (allocated
+ * here; out must not hold pixels). A pixel with no finite sample is black:
+ * *empty (if not NULL) receives how many there were. Fails as image_alloc()
+ * does. */
+svet_status image_accum_resolve(const image_accum_t *acc, image_t *out,
+                                uint64_t *empty, svet_error *err);
+
+/* Totals over the image: finite samples added, and samples dropped as
+ * NaN/Inf. This function can't fail. */
+uint64_t image_accum_samples(const image_accum_t *acc);
+uint64_t image_accum_nonfinite(const image_accum_t *acc);
+
+#endif

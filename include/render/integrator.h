@@ -1,0 +1,100 @@
+/*
+ * integrator.h - the estimators of the rendering equation (ch. 3, eq. of
+ * Kajiya 1986) by the Monte Carlo method of ch. 4, in the cases ch. 5 walks
+ * through: a path tracer with next-event estimation (light sampling) and
+ * BSDF sampling combined by multiple importance sampling with the power
+ * heuristic (Veach 1997, sec. 9.2), Russian roulette, and the reduced
+ * strategies ch. 5 compares: direct lighting only, BSDF sampling only, and
+ * ambient occlusion.
+ * Tests: tests/render/test_integrator.c (analytic scenes with exact answers)
+ */
+#ifndef SVET_INTEGRATOR_H
+#define SVET_INTEGRATOR_H
+
+#include <stdint.h>
+#include "materials/cobject.h"
+#include "render/light.h"
+#include "materials/radiance.h"
+#include "core/rng.h"
+#include "render/scene.h"
+
+/* How rays find surfaces: brute force over the scene's objects, or an
+ * acceleration structure (ch. 7). */
+typedef struct {
+    /* Nearest hit in (tmin, tmax): fills *hit and *obj. skip: the objects
+     * the ray cannot meet, which the tracer may leave out (accel.h's
+     * accel_intersect_skip(); each entry may be NULL, and skip itself:
+     * nothing skipped). */
+    bool (*intersect)(const void *ctx, const ray_t *r, real tmin, real tmax,
+                      const COBJECT *const skip[2], hit_t *hit,
+                      const COBJECT **obj);
+    /* Any hit in (tmin, tmax) (shadow rays); skip as for intersect. */
+    bool (*occluded)(const void *ctx, const ray_t *r, real tmin, real tmax,
+                     const COBJECT *const skip[2]);
+    /* The nearest hits of n rays at once, no skip: found[i] as intersect()
+     * answers r[i], bit for bit, hit[i] and obj[i] filled on a hit
+     * (accel.h's accel_tracer_intersect_packet()). NULL where the tracer
+     * has nothing faster than intersect() ray by ray (brute force); the
+     * renderer then traces its camera rays one at a time. */
+    void (*intersect_packet)(const void *ctx, const ray_t *r, int n,
+                             real tmin, real tmax, hit_t *hit,
+                             const COBJECT **obj, bool *found);
+    const void *ctx;
+} tracer_t;
+
+/* A tracer that tests every object of s (ch. 7 starts from this). */
+tracer_t tracer_brute(const scene_t *s);
+
+typedef struct {
+    const scene_t *scene;
+    const lightset_t *lights;   /* NULL or empty when the scene has none */
+    int env;                    /* lightset_environment(lights), found once
+                                   by integrator_init (-1: none) */
+    tracer_t tracer;
+    scene_integrator mode;      /* path, direct, bsdf, ao */
+    int max_depth;              /* scattering events (scene.h) */
+    bool roulette;
+    int roulette_depth;
+    real ao_distance;           /* 0 = unlimited */
+} integrator_t;
+
+/* Per-thread counters. */
+typedef struct {
+    uint64_t rays;        /* every ray traced: camera, bounce and shadow */
+    uint64_t paths;
+} integrator_stats_t;
+
+/* Set up from a scene's render settings. `lights` may be NULL when the
+ * scene has none; it must not change while `it` is in use (its
+ * environment light is looked up here once). This function can't fail. */
+void integrator_init(integrator_t *it, const scene_t *s,
+                     const lightset_t *lights, tracer_t tracer);
+
+/* The radiance arriving at the camera along -r.d, estimated from one path
+ * whose random numbers are drawn from g in a fixed order. Never negative;
+ * may be NaN only if the scene's data is (the caller counts those). */
+RADIANCE integrator_li(const integrator_t *it, const ray_t *r, pcg32_t *g,
+                       integrator_stats_t *st);
+
+/* Where the camera ray meets the scene, traced by the caller (a packet of
+ * camera rays: tracer_t.intersect_packet): found, and then the hit and
+ * the object, as tracer_t.intersect over (0, inf) answers. */
+typedef struct {
+    bool found;
+    hit_t hit;
+    const COBJECT *obj;
+} integrator_first_t;
+
+/* integrator_li() of a camera ray r whose first hit is *first: the same
+ * estimate, bit for bit, and the same random numbers, without tracing r
+ * (it is still counted in st->rays). This function can't fail. */
+RADIANCE integrator_li_from(const integrator_t *it, const ray_t *r,
+                            const integrator_first_t *first, pcg32_t *g,
+                            integrator_stats_t *st);
+
+/* The power heuristic with beta = 2 for two strategies with densities a
+ * (the one used) and b: a^2 / (a^2 + b^2), computed without overflow;
+ * 0 when a is 0. */
+real integrator_mis_weight(real a, real b);
+
+#endif

@@ -1,0 +1,84 @@
+/*
+ * render.h - the image loop of ch. 5: for every pixel, camera samples with
+ * pixel jitter (a one-pixel box filter), each estimated by the integrator,
+ * accumulated per pixel. Pixels are rendered in 16 x 16 tiles on several
+ * threads (OpenMP) and in passes over ranges of sample indices. Sample s of
+ * pixel p draws its numbers from rng_for_sample(seed, p, s) and each pixel
+ * adds its samples in index order, so the image is bit-identical for any
+ * thread count, tile order and pass split. Where the tracer takes packets
+ * (the grids of ch. 7), the camera rays of 8 x 8 pixels go to it at once,
+ * one sample of each: the same image, bit for bit.
+ * Tests: tests/render/test_render.c
+ */
+#ifndef SVET_RENDER_H
+#define SVET_RENDER_H
+
+#include "render/camera.h"
+#include "io/image.h"
+#include "render/integrator.h"
+#include "render/light.h"
+#include "render/scene.h"
+
+#define RENDER_TILE 16
+/* Camera rays go to the tracer RENDER_PACKET x RENDER_PACKET pixels at a
+ * time (one sample of each) where it takes packets: the grids' fastest
+ * size at 1e6 triangles (chapters/ch07/README.md). */
+#define RENDER_PACKET 8
+
+/* Called after each finished tile, from whichever thread finished it, one
+ * call at a time. */
+typedef void (*render_progress_fn)(void *ctx, long tiles_done,
+                                   long tiles_total);
+
+typedef struct {
+    const scene_t *scene;
+    camera_t camera;
+    lightset_t lights;      /* empty (nothing allocated) without lights */
+    tracer_t tracer;
+    void *accel;            /* the acceleration structure (accel.h): brute
+                               force, or one of those the scene's
+                               features offer (the grids of ch. 7) */
+    void (*accel_free)(void *);
+    char accel_choice[200]; /* what was chosen for tracing, and why */
+    bool packets;           /* camera rays in packets (tracer.intersect_
+                               packet): where the scene asks for them
+                               (scene_render_t.packets) and the structure
+                               takes them; a caller may clear it to trace
+                               them one at a time, for the same image */
+    integrator_t integrator;
+    image_accum_t acc;      /* per-pixel sums and counts (image.h) */
+    double *sum2;           /* per pixel and channel: sum of squares of the
+                               samples, for the variance of the mean */
+    long spp_done;          /* samples [0, spp_done) of every pixel are in */
+    integrator_stats_t stats;
+} render_t;
+
+/* Prepare to render scene s: the camera, the lights (only if the scene has
+ * some), the tracer over the acceleration structure the scene asks for
+ * among those s->features offers (scene.h; NULL: brute force), the
+ * accumulation images. s must outlive r. Returns SVET_ERR_RANGE for an
+ * unusable camera, SVET_ERR_UNSUPPORTED for an accel the features do not
+ * offer, SVET_ERR_NOMEM. */
+svet_status render_init(render_t *r, const scene_t *s, svet_error *err);
+
+/* Add samples [spp_done, spp_end) to every pixel with `threads` threads
+ * (0 = all cores), calling progress (may be NULL) after each tile. This
+ * function can't fail. */
+void render_pass(render_t *r, long spp_end, int threads,
+                 render_progress_fn progress, void *ctx);
+
+/* The mean image (linear radiance). */
+svet_status render_image(const render_t *r, image_t *out, svet_error *err);
+
+/* Per-pixel variance of the mean, sigma^2 / n, per channel (the estimate
+ * s^2 / n with s^2 the unbiased sample variance); 0 where n < 2. */
+svet_status render_variance(const render_t *r, image_t *out, svet_error *err);
+
+/* The radiance estimate of one camera sample (for ch. 3's program and
+ * tests): sample `sample` of pixel (x, y). */
+RADIANCE render_sample(const render_t *r, int x, int y, long sample,
+                       integrator_stats_t *st);
+
+void render_free(render_t *r);
+
+#endif

@@ -1,0 +1,260 @@
+/*
+ * render.c - tiles, passes and threads around the integrator (ch. 5), and
+ * the camera rays of 8 x 8 pixels given to the tracer at once where it
+ * takes packets (the grids of ch. 7: chapters/ch07/README.md).
+ * Tests: tests/render/test_render.c
+ */
+#include "render/render.h"
+
+#include "accel/accel.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+static void accel_release(void *a)
+{
+    accel_free(a);
+}
+
+svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->scene = s;
+    const scene_camera_t *c = &s->camera;
+    camera_fov_axis axis = c->fov_axis == SCENE_FOV_Y ? CAMERA_FOV_Y
+                           : c->fov_axis == SCENE_FOV_DIAGONAL
+                               ? CAMERA_FOV_DIAGONAL
+                               : CAMERA_FOV_X;
+    svet_status st = camera_init(&r->camera, c->position, c->target, c->up,
+                                 c->fov, axis, c->width, c->height, err);
+    if (st != SVET_OK)
+        return st;
+    /* "Model only what the scene requires": no light table without lights */
+    if (scene_has_lights(s)) {
+        st = lightset_build(&r->lights, s, err);
+        if (st != SVET_OK)
+            return st;
+    }
+    /* The scene's choice of acceleration structure among those the
+     * program offers (s->features: the grids in the svet command, none in
+     * ch. 5); AUTO picks brute force for a few primitives and a grid only
+     * when there are many (accel.h) */
+    accel_params_t ap;
+    accel_params_default(&ap);
+    ap.kind = (accel_kind)s->render.accel;
+    ap.structures = s->features ? s->features->accels : NULL;
+    accel_t *a = NULL;
+    st = accel_build(&a, s->objects, s->nobjects, &ap, err);
+    if (st != SVET_OK) {
+        render_free(r);
+        return st;
+    }
+    r->accel = a;
+    r->accel_free = accel_release;
+    /* the tracer over the acceleration structure (ch. 7) */
+    r->tracer.intersect = accel_tracer_intersect;
+    r->tracer.occluded = accel_tracer_occluded;
+    r->tracer.ctx = a;
+    /* packets of camera rays only where the structure is faster with
+     * them: brute force (the Cornell box) keeps the per-pixel loop */
+    if (accel_has_packets(a))
+        r->tracer.intersect_packet = accel_tracer_intersect_packet;
+    r->packets = s->render.packets && r->tracer.intersect_packet;
+    if (r->packets)
+        snprintf(r->accel_choice, sizeof r->accel_choice,
+                 "%s; camera rays in packets of %d x %d", accel_describe(a),
+                 RENDER_PACKET, RENDER_PACKET);
+    else
+        snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
+                 accel_describe(a));
+    integrator_init(&r->integrator, s, &r->lights, r->tracer);
+    st = image_accum_alloc(&r->acc, c->width, c->height, err);
+    if (st != SVET_OK) {
+        render_free(r);
+        return st;
+    }
+    r->sum2 = calloc((size_t)c->width * (size_t)c->height * 3, sizeof *r->sum2);
+    if (!r->sum2) {
+        render_free(r);
+        return svet_error_set(err, SVET_ERR_NOMEM, "render: out of memory");
+    }
+    return SVET_OK;
+}
+
+void render_free(render_t *r)
+{
+    lightset_free(&r->lights);
+    if (r->accel && r->accel_free)
+        r->accel_free(r->accel);
+    image_accum_free(&r->acc);
+    free(r->sum2);
+    memset(r, 0, sizeof *r);
+}
+
+/* Sample `sample` of pixel (x, y): its numbers g and its camera ray. */
+static void camera_sample(const render_t *r, int x, int y, long sample,
+                          pcg32_t *g, ray_t *ray)
+{
+    uint64_t pixel = (uint64_t)y * (uint64_t)r->camera.width + (uint64_t)x;
+    rng_for_sample(g, r->scene->render.seed, pixel, (uint64_t)sample);
+    /* dimensions 0, 1: the position in the pixel (box filter) */
+    real jx = pcg32_real(g), jy = pcg32_real(g);
+    camera_ray(&r->camera, (real)x + jx, (real)y + jy, ray);
+}
+
+RADIANCE render_sample(const render_t *r, int x, int y, long sample,
+                       integrator_stats_t *st)
+{
+    pcg32_t g;
+    ray_t ray;
+    camera_sample(r, x, y, sample, &g, &ray);
+    return integrator_li(&r->integrator, &ray, &g, st);
+}
+
+/* Add sample L to pixel (x, y): its sum, count and sum of squares. */
+static void accumulate(render_t *r, int x, int y, RADIANCE L)
+{
+    image_accum_add(&r->acc, x, y, L);
+    if (rad_is_finite(L)) {
+        double *q = r->sum2 + 3 * ((size_t)y * (size_t)r->camera.width +
+                                   (size_t)x);
+        q[0] += (double)L.r * (double)L.r;
+        q[1] += (double)L.g * (double)L.g;
+        q[2] += (double)L.b * (double)L.b;
+    }
+}
+
+/* Samples [s0, s1) of the pixels [x0, x1) x [y0, y1), one at a time. */
+static void pixels_one_by_one(render_t *r, int x0, int y0, int x1, int y1,
+                              long s0, long s1, integrator_stats_t *st)
+{
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++)
+            for (long s = s0; s < s1; s++)
+                accumulate(r, x, y, render_sample(r, x, y, s, st));
+}
+
+/* The same, with the camera rays of each sample of each block of
+ * RENDER_PACKET x RENDER_PACKET pixels traced at once
+ * (tracer.intersect_packet: one walk of the grid for them all). A pixel
+ * still adds its samples in index order and each sample draws its own
+ * numbers, and the packet gives each ray the hit it would find alone, so
+ * the image is pixels_one_by_one()'s, bit for bit. */
+static void pixels_in_packets(render_t *r, int x0, int y0, int x1, int y1,
+                              long s0, long s1, integrator_stats_t *st)
+{
+    enum { N = RENDER_PACKET * RENDER_PACKET };
+    ray_t ray[N];
+    pcg32_t g[N];
+    hit_t hit[N];
+    const COBJECT *obj[N];
+    bool found[N];
+    const tracer_t *t = &r->tracer;
+    for (int by = y0; by < y1; by += RENDER_PACKET)
+        for (int bx = x0; bx < x1; bx += RENDER_PACKET) {
+            int bx1 = bx + RENDER_PACKET < x1 ? bx + RENDER_PACKET : x1;
+            int by1 = by + RENDER_PACKET < y1 ? by + RENDER_PACKET : y1;
+            for (long s = s0; s < s1; s++) {
+                int n = 0;
+                for (int y = by; y < by1; y++)
+                    for (int x = bx; x < bx1; x++, n++)
+                        camera_sample(r, x, y, s, &g[n], &ray[n]);
+                t->intersect_packet(t->ctx, ray, n, 0, (real)INFINITY, hit,
+                                    obj, found);
+                n = 0;
+                for (int y = by; y < by1; y++)
+                    for (int x = bx; x < bx1; x++, n++) {
+                        /* hit[n], obj[n] were written only on a hit,
+                         * and are read only then */
+                        integrator_first_t first;
+                        first.found = found[n];
+                        if (found[n]) {
+                            first.hit = hit[n];
+                            first.obj = obj[n];
+                        }
+                        accumulate(r, x, y,
+                                   integrator_li_from(&r->integrator,
+                                                      &ray[n], &first,
+                                                      &g[n], st));
+                    }
+            }
+        }
+}
+
+void render_pass(render_t *r, long spp_end, int threads,
+                 render_progress_fn progress, void *ctx)
+{
+    const int W = r->camera.width, H = r->camera.height;
+    const int tx = (W + RENDER_TILE - 1) / RENDER_TILE;
+    const int ty = (H + RENDER_TILE - 1) / RENDER_TILE;
+    const long ntiles = (long)tx * ty;
+    const long s0 = r->spp_done;
+    long done = 0;
+    uint64_t rays = 0, paths = 0;
+#ifdef _OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt) \
+    reduction(+ : rays, paths)
+#else
+    (void)threads;
+#endif
+    for (long t = 0; t < ntiles; t++) {
+        integrator_stats_t st = { 0, 0 };
+        int x0 = (int)(t % tx) * RENDER_TILE, y0 = (int)(t / tx) * RENDER_TILE;
+        int x1 = x0 + RENDER_TILE < W ? x0 + RENDER_TILE : W;
+        int y1 = y0 + RENDER_TILE < H ? y0 + RENDER_TILE : H;
+        if (r->packets && r->tracer.intersect_packet)
+            pixels_in_packets(r, x0, y0, x1, y1, s0, spp_end, &st);
+        else
+            pixels_one_by_one(r, x0, y0, x1, y1, s0, spp_end, &st);
+        rays += st.rays;
+        paths += st.paths;
+        if (progress) {
+#ifdef _OPENMP
+#pragma omp critical(svet_render_progress)
+#endif
+            {
+                done++;
+                progress(ctx, done, ntiles);
+            }
+        }
+    }
+    r->stats.rays += rays;
+    r->stats.paths += paths;
+    r->spp_done = spp_end > s0 ? spp_end : s0;
+}
+
+svet_status render_image(const render_t *r, image_t *out, svet_error *err)
+{
+    uint64_t empty;
+    return image_accum_resolve(&r->acc, out, &empty, err);
+}
+
+svet_status render_variance(const render_t *r, image_t *out, svet_error *err)
+{
+    const int W = r->camera.width, H = r->camera.height;
+    svet_status st = image_alloc(out, W, H, 3, err);
+    if (st != SVET_OK)
+        return st;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * (size_t)W + (size_t)x;
+            double n = (double)r->acc.count[i];
+            float *p = image_at(out, x, y);
+            for (int c = 0; c < 3; c++) {
+                if (n < 2) {
+                    p[c] = 0;
+                    continue;
+                }
+                double mean = r->acc.sum[3 * i + c] / n;
+                double s2 = (r->sum2[3 * i + c] - n * mean * mean) / (n - 1);
+                p[c] = (float)(s2 > 0 ? s2 / n : 0);
+            }
+        }
+    return SVET_OK;
+}

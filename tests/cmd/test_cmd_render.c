@@ -1,0 +1,187 @@
+/*
+ * test_cmd_render.c - `svet render` end to end (cmd/cmd_render.c): the EXR and
+ * the PNG it writes, the same image for any thread count and pass split,
+ * the exit codes of bad input, and SIGTERM ending the render after a pass
+ * with what was rendered written.
+ */
+#include "testutil.h"
+#include "cmdtest.h"
+#include "io/exrio.h"
+#include "io/pngio.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+static char out[16384];
+static char dir[256];
+
+/* A scratch directory with a small scene in it. */
+static void setup(void)
+{
+    snprintf(dir, sizeof dir, "/tmp/svet-cmd-render-XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[512];
+    snprintf(path, sizeof path, "%s/tiny.scn", dir);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "camera position 0 1 4 target 0 0 0 up 0 1 0 fov 40 width 24 "
+               "height 16\n"
+               "render spp 8 maxdepth 3 seed 7\n"
+               "material grey lambert rho 0.5\n"
+               "sphere centre 0 0 0 radius 1 material grey\n"
+               "plane point 0 -1 0 normal 0 1 0 material grey\n"
+               "light point position 2 3 2 intensity 10\n");
+    fclose(f);
+}
+
+static void teardown(void)
+{
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+
+static bool same_file(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    bool same = fa && fb;
+    while (same) {
+        int ca = fgetc(fa), cb = fgetc(fb);
+        if (ca != cb)
+            same = false;
+        if (ca == EOF || cb == EOF)
+            break;
+    }
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+    return same;
+}
+
+START_TEST(render_writes_an_exr_and_a_png_beside_it)
+{
+    char args[1024], exr[600], png[600];
+    snprintf(exr, sizeof exr, "%s/a.exr", dir);
+    snprintf(png, sizeof png, "%s/a.png", dir);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --threads 1",
+             dir, exr);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    ck_assert_ptr_nonnull(strstr(out, "samples/s"));  /* the summary line */
+    image_t img;
+    ck_assert_int_eq(exrio_read(exr, &img, NULL), SVET_OK);
+    ck_assert_int_eq(img.width, 24);
+    ck_assert_int_eq(img.height, 16);
+    image_free(&img);
+    int bits;
+    ck_assert_int_eq(pngio_read(png, &img, &bits, NULL), SVET_OK);
+    ck_assert_int_eq(img.width, 24);
+    image_free(&img);
+    /* two threads and five passes: the same file, bit for bit */
+    char exr2[600];
+    snprintf(exr2, sizeof exr2, "%s/b.exr", dir);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --threads 2 "
+             "--passes 5 --checkpoint -q", dir, exr2);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    ck_assert_str_eq(out, ""); /* --quiet */
+    ck_assert(same_file(exr, exr2));
+    /* another seed: another image */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --seed 8 -q",
+             dir, exr2);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    ck_assert(!same_file(exr, exr2));
+}
+END_TEST
+
+START_TEST(bad_input_gives_a_message_and_an_exit_code)
+{
+    char args[1024];
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, "render"), 1);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, "render --help"), 0);
+    ck_assert_ptr_nonnull(strstr(out, "exit codes"));
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --spp zero", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_ptr_nonnull(strstr(out, "bad value 'zero' for --spp"));
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --frobnicate", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out,
+                                 "render /nonexistent/none.scn"), 2);
+    ck_assert_ptr_nonnull(strstr(out, "none.scn"));
+    /* a typo in the scene: file and line in the message, no output */
+    char path[512];
+    snprintf(path, sizeof path, "%s/typo.scn", dir);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "material grey lambert rho 0.5\nsphere centre 0 0 0 radius 1 "
+               "material gery\n");
+    fclose(f);
+    snprintf(args, sizeof args, "render '%s' -o '%s/typo.exr'", path, dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "typo.scn:2"));
+    snprintf(path, sizeof path, "%s/typo.exr", dir);
+    ck_assert_int_ne(access(path, F_OK), 0);
+    /* an output that cannot be written: exit 3 */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o /nonexistent/x/a.exr "
+             "-q", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    /* an override with a bad value */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --set spp=-3", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+}
+END_TEST
+
+START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
+{
+    /* A render long enough to be stopped: many passes of many samples. */
+    char exr[600], scene[600];
+    snprintf(exr, sizeof exr, "%s/stopped.exr", dir);
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        if (!freopen("/dev/null", "w", stderr))
+            _exit(126);
+        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
+              "200000", "--passes", "100000", "--threads", "1",
+              "--checkpoint", (char *)NULL);
+        _exit(127);
+    }
+    /* The first checkpoint proves the render is under way (its signal
+     * handlers are installed before the first pass); then ask it to stop.
+     * Polled, not timed: a slow machine only waits longer. */
+    struct timespec tick = { 0, 20000000 };
+    for (int i = 0; i < 6000 && access(exr, F_OK) != 0; i++)
+        nanosleep(&tick, NULL);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+    kill(pid, SIGTERM);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    ck_assert(WIFEXITED(status));
+    ck_assert_int_eq(WEXITSTATUS(status), 4); /* interrupted, image written */
+    image_t img;
+    ck_assert_int_eq(exrio_read(exr, &img, NULL), SVET_OK);
+    ck_assert_int_eq(img.width, 24);
+    /* something was rendered: the lit sphere is not black */
+    ck_assert(image_at(&img, 12, 8)[1] > 0);
+    image_free(&img);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("svet render");
+    TCase *tc = tcase_create("command");
+    tcase_add_checked_fixture(tc, setup, teardown);
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, render_writes_an_exr_and_a_png_beside_it);
+    tcase_add_test(tc, bad_input_gives_a_message_and_an_exit_code);
+    tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
+    suite_add_tcase(s, tc);
+    return s;
+}

@@ -1,0 +1,202 @@
+/*
+ * test_svet.c - the svet command itself (cmd/svet.c, cmd/cmd_diff.c): help,
+ * exit codes and `svet diff` on files made here. The command is the one
+ * built beside this suite: <build>/svet for <build>/tests/test_svet, so
+ * `make test` (which builds it first) tests the matching REAL.
+ */
+#include "testutil.h"
+#include "cmdtest.h"
+#include "imgtest.h"
+#include "io/imageio.h"
+#include "io/netpbm.h"
+#include "io/exrio.h"
+#include "colour/colour.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static int run(char *out, size_t cap, const char *args)
+{
+    return cmdtest_run(out, cap, args);
+}
+
+/* The value printed on the line "name value". */
+static double value_of(const char *out, const char *name)
+{
+    char key[64];
+    snprintf(key, sizeof key, "\n%s ", name);
+    const char *p = strstr(out, key);
+    ck_assert_msg(p != NULL, "no '%s' in:\n%s", name, out);
+    return strtod(p + strlen(key), NULL);
+}
+
+static char out[16384];
+
+START_TEST(help_and_usage_errors_have_their_exit_codes)
+{
+    ck_assert_int_eq(run(out, sizeof out, "--help"), 0);
+    ck_assert_ptr_nonnull(strstr(out, "exit codes"));
+    ck_assert_ptr_nonnull(strstr(out, "diff"));
+    ck_assert_ptr_nonnull(strstr(out, "render"));
+    ck_assert_int_eq(run(out, sizeof out, "help diff"), 0);
+    ck_assert_ptr_nonnull(strstr(out, "usage: svet diff"));
+    ck_assert_int_eq(run(out, sizeof out, "diff --help"), 0);
+    ck_assert_int_eq(run(out, sizeof out, ""), 1);
+    ck_assert_int_eq(run(out, sizeof out, "frobnicate"), 1);
+    ck_assert_ptr_nonnull(strstr(out, "unknown command 'frobnicate'"));
+    ck_assert_int_eq(run(out, sizeof out, "help frobnicate"), 1);
+    ck_assert_int_eq(run(out, sizeof out, "diff onlyone.exr"), 1);
+    ck_assert_int_eq(run(out, sizeof out, "diff a b c"), 1);
+    ck_assert_int_eq(run(out, sizeof out, "diff a b --metric rsme"), 1);
+    ck_assert_ptr_nonnull(strstr(out, "unknown metric 'rsme'"));
+    ck_assert_int_eq(run(out, sizeof out, "diff a b --peak -1"), 1);
+    ck_assert_int_eq(run(out, sizeof out, "diff a b --error-image e.png"), 1);
+    ck_assert_int_eq(run(out, sizeof out, "diff a b --bogus 1"), 1);
+    ck_assert_int_eq(run(out, sizeof out, "diff a b --eps"), 1);
+}
+END_TEST
+
+/* Two files: B a test image, A = B + d in every value (exact: B on a grid
+ * of 2^-8, d = 2^-6). */
+static void make_pair(const char *a, const char *b, float d)
+{
+    image_t ib, ia;
+    svet_error err;
+    imgtest_hdr_image(&ib, 24, 16, 3);
+    for (size_t i = 0; i < 24 * 16 * 3; i++)
+        ib.px[i] = floorf(ib.px[i] * 256.0f) / 256.0f;
+    ck_assert_int_eq(image_copy(&ia, &ib, &err), SVET_OK);
+    for (size_t i = 0; i < 24 * 16 * 3; i++)
+        ia.px[i] += d;
+    ck_assert_msg(imageio_write(a, &ia, &err) == SVET_OK, "%s", err.msg);
+    ck_assert_msg(imageio_write(b, &ib, &err) == SVET_OK, "%s", err.msg);
+    image_free(&ia);
+    image_free(&ib);
+}
+
+START_TEST(diff_prints_the_metrics_of_a_known_difference)
+{
+    char a[1024], b[1024], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.exr"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
+    make_pair(a, b, 0.015625f);
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    /* every value off by 2^-6: mse 2^-12, rmse = mae = max = 2^-6 */
+    ck_assert_rel(value_of(out, "mse"), 0x1p-12, 1e-8, 0);
+    ck_assert_rel(value_of(out, "rmse"), 0x1p-6, 1e-8, 0);
+    ck_assert_rel(value_of(out, "mae"), 0x1p-6, 1e-8, 0);
+    ck_assert_rel(value_of(out, "max"), 0x1p-6, 1e-8, 0);
+    ck_assert_ptr_nonnull(strstr(out, "(EXR, 24 x 16)"));
+    ck_assert_ptr_nonnull(strstr(out, "(PFM, 24 x 16)"));
+    /* the metric list and the threshold: exit 5 beyond it */
+    snprintf(args, sizeof args, "diff '%s' '%s' --metric rmse,psnr "
+             "--fail-above 0.01", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 5);
+    ck_assert_ptr_null(strstr(out, "\nmae "));
+    snprintf(args, sizeof args, "diff '%s' '%s' --metric rmse "
+             "--fail-above 0.02", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    /* psnr with peak 1: 20 log10(64) = 36.12 dB; below 40 fails */
+    snprintf(args, sizeof args, "diff '%s' '%s' --metric psnr --peak 1 "
+             "--fail-above 40", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 5);
+    ck_assert_rel(value_of(out, "psnr"), 20 * log10(64.0), 1e-8, 0);
+    /* identical: zero and infinity */
+    snprintf(args, sizeof args, "diff '%s' '%s'", b, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    ck_assert(value_of(out, "mse") == 0);
+    ck_assert_ptr_nonnull(strstr(out, "\npsnr inf"));
+}
+END_TEST
+
+START_TEST(diff_writes_an_error_image)
+{
+    char a[1024], b[1024], e[1024], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.exr"));
+    snprintf(e, sizeof e, "%s", imgtest_path("err.exr"));
+    make_pair(a, b, 0.25f);
+    snprintf(args, sizeof args, "diff '%s' '%s' --error-image '%s'", a, b, e);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    image_t img;
+    svet_error err;
+    ck_assert_int_eq(exrio_read(e, &img, &err), SVET_OK);
+    for (size_t i = 0; i < 24 * 16 * 3; i++)
+        ck_assert(img.px[i] == 0.25f);
+    image_free(&img);
+    /* an error image that cannot be written: exit 3, metrics printed */
+    snprintf(args, sizeof args, "diff '%s' '%s' --error-image "
+             "/nonexistent-svet-dir/e.exr", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 3);
+    ck_assert_ptr_nonnull(strstr(out, "/nonexistent-svet-dir/e.exr"));
+}
+END_TEST
+
+START_TEST(diff_decodes_a_png_compared_with_a_linear_image)
+{
+    /* a PNG of sRGB codes against the EXR of their linear values: the
+     * difference is only the 8-bit quantisation */
+    image_t lin, enc;
+    svet_error err;
+    imgtest_hdr_image(&lin, 20, 10, 3);
+    for (size_t i = 0; i < 20 * 10 * 3; i++)
+        lin.px[i] = fminf(lin.px[i], 1.0f);
+    ck_assert_int_eq(image_copy(&enc, &lin, &err), SVET_OK);
+    for (size_t i = 0; i < 20 * 10 * 3; i++)
+        enc.px[i] = (float)colour_srgb_encode((real)enc.px[i]);
+    char a[1024], b[1024], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("enc.png"));
+    snprintf(b, sizeof b, "%s", imgtest_path("lin.exr"));
+    ck_assert_int_eq(imageio_write(b, &lin, &err), SVET_OK);
+    ck_assert_int_eq(imageio_write(a, &enc, &err), SVET_OK); /* 8 bits */
+    snprintf(args, sizeof args, "diff '%s' '%s' --metric max", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    ck_assert_ptr_nonnull(strstr(out, "decoded with sRGB"));
+    /* an 8-bit code is within half a step, 1/510, of the encoded value;
+     * the decoding curve's slope is at most 2.4 / 1.055 (at code 1), so
+     * the linear values differ by less than 2.4 / 510 */
+    ck_assert(value_of(out, "max") < 2.4 / 510);
+    image_free(&lin);
+    image_free(&enc);
+}
+END_TEST
+
+START_TEST(diff_refuses_bad_inputs_with_exit_code_2)
+{
+    char a[1024], b[1024], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
+    make_pair(a, b, 0.5f);
+    image_t small;
+    svet_error err;
+    imgtest_hdr_image(&small, 5, 5, 3);
+    ck_assert_int_eq(netpbm_write_pfm(b, &small, &err), SVET_OK);
+    image_free(&small);
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "sizes differ"));
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, imgtest_path("none.exr"));
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "cannot open"));
+    imgtest_write_bytes(b, "PF\n3 3\n-1\n", 10);
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "truncated"));
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("svet");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 30);
+    tcase_add_test(tc, help_and_usage_errors_have_their_exit_codes);
+    tcase_add_test(tc, diff_prints_the_metrics_of_a_known_difference);
+    tcase_add_test(tc, diff_writes_an_error_image);
+    tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
+    tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
+    suite_add_tcase(s, tc);
+    return s;
+}

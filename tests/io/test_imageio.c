@@ -1,0 +1,130 @@
+/*
+ * test_imageio.c - images by name (imageio.h): formats told by content,
+ * written by extension, and a render saved as HDR plus display image.
+ */
+#include "testutil.h"
+#include "imgtest.h"
+#include "io/imageio.h"
+#include "colour/colour.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+START_TEST(files_are_read_by_their_content_not_their_name)
+{
+    image_t img, back;
+    svet_error err;
+    imgtest_hdr_image(&img, 6, 5, 3);
+    /* a PFM written under a .exr name: the reader looks at the bytes */
+    const char *misnamed = imgtest_path("really-a-pfm.exr");
+    ck_assert_int_eq(imageio_write(imgtest_path("x.pfm"), &img, &err),
+                     SVET_OK);
+    unsigned char *bytes;
+    size_t n = imgtest_read_bytes(imgtest_path("x.pfm"), &bytes);
+    imgtest_write_bytes(misnamed, bytes, n);
+    free(bytes);
+    imageio_format_t f;
+    ck_assert_int_eq(imageio_read(misnamed, &back, false, &f, &err), SVET_OK);
+    ck_assert_int_eq(f, IMAGEIO_PFM);
+    ck_assert_mem_eq(back.px, img.px, 6 * 5 * 3 * sizeof(float));
+    image_free(&back);
+    /* each format by extension, and back */
+    const char *names[] = { "a.exr", "a.pfm", "a.png", "a.ppm" };
+    const imageio_format_t fmts[] = { IMAGEIO_EXR, IMAGEIO_PFM, IMAGEIO_PNG,
+                                      IMAGEIO_PPM };
+    for (int i = 0; i < 4; i++) {
+        ck_assert_int_eq(imageio_format_from_name(names[i]), fmts[i]);
+        ck_assert_msg(imageio_write(imgtest_path(names[i]), &img, &err) ==
+                          SVET_OK, "%s", err.msg);
+        ck_assert_int_eq(imageio_read(imgtest_path(names[i]), &back, false,
+                                      &f, &err), SVET_OK);
+        ck_assert_int_eq(f, fmts[i]);
+        if (!imageio_is_display(f)) /* linear formats are exact */
+            ck_assert_mem_eq(back.px, img.px, 6 * 5 * 3 * sizeof(float));
+        image_free(&back);
+    }
+    ck_assert_int_eq(imageio_format_from_name("A.PNG"), IMAGEIO_PNG);
+    ck_assert_int_eq(imageio_format_from_name("dir.png/file"),
+                     IMAGEIO_UNKNOWN);
+    ck_assert_int_eq(imageio_write(imgtest_path("a.jpg"), &img, &err),
+                     SVET_ERR_UNSUPPORTED);
+    image_free(&img);
+}
+END_TEST
+
+START_TEST(display_files_can_be_read_back_as_linear)
+{
+    image_t img, back;
+    svet_error err;
+    ck_assert_int_eq(image_alloc(&img, 3, 1, 3, &err), SVET_OK);
+    for (int i = 0; i < 9; i++)
+        img.px[i] = (float)colour_srgb_decode_byte((uint8_t)(40 * i));
+    /* encode to codes, write, read back linear: the same linear values */
+    for (int i = 0; i < 9; i++)
+        img.px[i] = (float)colour_srgb_encode((real)img.px[i]);
+    const char *path = imgtest_path("lin.png");
+    ck_assert_int_eq(imageio_write(path, &img, &err), SVET_OK);
+    ck_assert_int_eq(imageio_read(path, &back, true, NULL, &err), SVET_OK);
+    for (int i = 0; i < 9; i++)
+        ck_assert_rel(back.px[i], colour_srgb_decode_byte((uint8_t)(40 * i)),
+                      1e-5, 1e-7);
+    image_free(&back);
+    image_free(&img);
+}
+END_TEST
+
+START_TEST(a_render_is_saved_as_hdr_and_display_image)
+{
+    image_t img, hdr, disp;
+    svet_error err;
+    imgtest_hdr_image(&img, 16, 8, 3);
+    image_at(&img, 2, 2)[1] = NAN; /* a bad pixel, to be reported */
+    tonemap_result_t res;
+    const char *h = imgtest_path("render.exr"), *d = imgtest_path("render.png");
+    ck_assert_msg(imageio_save_render(&img, h, d, NULL, &res, &err) ==
+                      SVET_OK, "%s", err.msg);
+    ck_assert_uint_eq(res.nonfinite, 1);
+    ck_assert_int_eq(imageio_read(h, &hdr, false, NULL, &err), SVET_OK);
+    ck_assert_int_eq(memcmp(hdr.px, img.px, 16 * 8 * 3 * sizeof(float)), 0);
+    ck_assert_int_eq(imageio_read(d, &disp, false, NULL, &err), SVET_OK);
+    ck_assert(image_at(&disp, 2, 2)[0] == 0.0f); /* written black */
+    image_free(&hdr);
+    image_free(&disp);
+    /* the formats must match the roles */
+    ck_assert_int_eq(imageio_save_render(&img, d, NULL, NULL, NULL, &err),
+                     SVET_ERR_UNSUPPORTED);
+    ck_assert_int_eq(imageio_save_render(&img, NULL, h, NULL, NULL, &err),
+                     SVET_ERR_UNSUPPORTED);
+    image_free(&img);
+}
+END_TEST
+
+static svet_status read_any(const char *path, image_t *img, svet_error *err)
+{
+    return imageio_read(path, img, false, NULL, err);
+}
+
+START_TEST(unknown_and_empty_files_are_refused)
+{
+    const char *path = imgtest_path("junk.img");
+    imgtest_write_bytes(path, "GIF89a....", 10);
+    imgtest_check_bad_file(read_any, path, SVET_ERR_PARSE,
+                           "not an EXR, PFM, PNG or PPM");
+    imgtest_write_bytes(path, "", 0);
+    imgtest_check_bad_file(read_any, path, SVET_ERR_PARSE, "empty");
+    imgtest_check_bad_file(read_any, imgtest_path("none"), SVET_ERR_IO,
+                           "cannot open");
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("imageio");
+    TCase *tc = tcase_create("core");
+    tcase_add_test(tc, files_are_read_by_their_content_not_their_name);
+    tcase_add_test(tc, display_files_can_be_read_back_as_linear);
+    tcase_add_test(tc, a_render_is_saved_as_hdr_and_display_image);
+    tcase_add_test(tc, unknown_and_empty_files_are_refused);
+    suite_add_tcase(s, tc);
+    return s;
+}
