@@ -5,6 +5,17 @@
 # build directory, so both can coexist. `make help` lists every target.
 
 REAL     ?= float
+# Speed layers. The plain algorithm of each module is the main text of
+# src/PART/M.c, compiled in every build and linked by the chapters' cc lines.
+# What only makes it faster (SSE and AVX lanes, early rejections, culling
+# spheres, packets) lives in src/PART/fast/M_WHAT.c, named after the module
+# M it speeds up (src/core/fast/ray_simd.c, src/geometry/fast/
+# parallelogram_cull.c), with no header of its own in include/. SIMD=on
+# (the default) compiles every src/*/fast/*.c and defines SVET_SIMD: with it
+# the plain file hands its inner steps to the fast one, and core/simd.h
+# offers its vectors (SIMD_REAL). SIMD=off leaves the fast files out of the
+# build (build/REAL-plain/) and the images are the same bits (make bitcheck).
+SIMD     ?= on
 CC       ?= cc
 # -O3: about 6% faster on the Cornell box than -O2 here, and the same bits
 # (gcc vectorises only what IEEE allows without -ffast-math).
@@ -37,7 +48,16 @@ AR       := llvm-ar
 endif
 endif
 endif
-BUILD    ?= build/$(REAL)
+ifeq ($(SIMD),on)
+SIMDDEF  := -DSVET_SIMD
+PLAIN_SUFFIX :=
+else ifeq ($(SIMD),off)
+SIMDDEF  :=
+PLAIN_SUFFIX := -plain
+else
+$(error SIMD must be on or off, not '$(SIMD)')
+endif
+BUILD    ?= build/$(REAL)$(PLAIN_SUFFIX)
 PREFIX   ?= /usr/local
 PKG_CONFIG ?= pkg-config
 
@@ -55,7 +75,7 @@ WARN     := -Wall -Wextra -Wpedantic -Wdouble-promotion -Wshadow \
             -Wstrict-prototypes -Wmissing-prototypes -Wformat=2
 CFLAGS   ?= $(OPT) $(ARCH) $(LTO) -g
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off $(WARN) \
-             $(REALDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
+             $(REALDEF) $(SIMDDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
 
 PKG_CFLAGS := $(shell $(PKG_CONFIG) --cflags OpenEXR libpng 2>/dev/null)
 PKG_LIBS   := $(shell $(PKG_CONFIG) --libs OpenEXR libpng 2>/dev/null)
@@ -68,9 +88,11 @@ LDLIBS   = -Wl,--as-needed $(PKG_LIBS) -lm -fopenmp $(EXTRA_LDFLAGS)
 # The library's modules, one folder per part of the book (src/core/vec.c,
 # include/core/vec.h, tests/core/test_vec.c); a module's name is unique
 # across the folders, so objects, suites and the chapters' .mk files name a
-# module by its name alone.
+# module by its name alone (a speed layer src/PART/fast/M_WHAT.c too).
 PARTS    := $(sort $(notdir $(wildcard src/*)))
-SRCS     := $(sort $(wildcard src/*/*.c))
+PLAIN_SRCS := $(sort $(wildcard src/*/*.c))
+FAST_SRCS  := $(sort $(wildcard src/*/fast/*.c))
+SRCS     := $(PLAIN_SRCS) $(if $(SIMDDEF),$(FAST_SRCS))
 MODULES  := $(notdir $(SRCS:.c=))
 HDRS     := $(sort $(wildcard include/*/*.h))
 OBJS     := $(MODULES:%=$(BUILD)/obj/%.o)
@@ -146,7 +168,7 @@ test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
              -fno-omit-frame-pointer
 sanitize:
-	$(MAKE) BUILD=build/sanitize-$(REAL) OPT=-O1 LTO= \
+	$(MAKE) BUILD=build/sanitize-$(REAL)$(PLAIN_SUFFIX) OPT=-O1 LTO= \
 	    EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
 	    SVET_SANITIZE=1 test
 
@@ -160,14 +182,21 @@ sanitize:
 #   ch01_geometry_LIBS := -lm
 # A program is linked from exactly those objects, not the library, so a
 # missing module shows up as a link error here rather than in a student's
-# single cc line. `make ch01` builds the chapter's programs into $(BUILD)/.
+# single cc line. With SIMD=on each module brings its speed layers
+# (fast_of): the MODULES lists name plain modules only. `make ch01` builds
+# the chapter's programs into $(BUILD)/.
 CHAPTERS :=
 -include $(sort $(wildcard chapters/*/*.mk))
 CHAPTERS := $(sort $(CHAPTERS))
 CHAPTER_PROGS := $(sort $(foreach c,$(CHAPTERS),$($(c)_PROGS)))
 
+# the speed layers of modules M..., src/*/fast/M_WHAT.c, when SIMD=on
+# (M_WHAT's module is its name without the last _WHAT)
+fast_owner = $(patsubst %_$(lastword $(subst _, ,$(1))),%,$(1))
+fast_of = $(if $(SIMDDEF),$(foreach f,$(notdir $(FAST_SRCS:.c=)),\
+    $(if $(filter $(call fast_owner,$(f)),$(1)),$(f))))
 define program_rule
-$(BUILD)/$(1): $$($(1)_SRC) $$($(1)_MODULES:%=$(BUILD)/obj/%.o)
+$(BUILD)/$(1): $$($(1)_SRC) $$(addprefix $(BUILD)/obj/,$$(addsuffix .o,$$($(1)_MODULES) $$(call fast_of,$$($(1)_MODULES))))
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) $$^ -o $$@ -Wl,--as-needed $$($(1)_LIBS) -fopenmp
 endef
@@ -244,7 +273,8 @@ fuzz_obj_ARGS := -dict=fuzz/obj.dict
 src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
 $(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $< $(call src_of,$(fuzz_$*_MODULES)) \
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $(SIMDDEF) $< \
+	    $(call src_of,$(fuzz_$*_MODULES) $(call fast_of,$(fuzz_$*_MODULES))) \
 	    -lm -o $@
 
 fuzz-%: $(FUZZ_BUILD)/fuzz_%

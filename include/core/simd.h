@@ -14,8 +14,10 @@
  * included: a < b or a > b, ordered (_CMP_NEQ_OQ; SSE2 has no one
  * instruction for it, so there it is the two). VW_LOAD2(lo, hi),
  * where the widest vectors hold twice SSE2's (AVX), loads VLANES reals
- * from lo into the low lanes and VLANES from hi into the high ones. Without
- * SSE2, SIMD_REAL is undefined and the callers run their plain loops.
+ * from lo into the low lanes and VLANES from hi into the high ones.
+ * Without SSE2, or in a build without SVET_SIMD
+ * (`make SIMD=off`, a chapter's one-line cc command), SIMD_REAL is
+ * undefined and the callers run their plain loops.
  * Tests: tests/geometry/test_parallelogram.c and tests/mesh/test_mesh.c (the vector
  * loops against their plain loops)
  */
@@ -24,12 +26,17 @@
 
 #include "core/real.h"
 
+/* The intrinsics' headers wherever the compiler targets their
+ * instructions; the vectors below only with SVET_SIMD. */
 #ifdef __SSE2__
-#define SIMD_REAL 1
 #include <emmintrin.h>
+#endif
 #ifdef __AVX__
 #include <immintrin.h>
 #endif
+
+#if defined(__SSE2__) && defined(SVET_SIMD)
+#define SIMD_REAL 1
 #ifdef SVET_DOUBLE
 typedef __m128d vreal;
 #define VLANES 2
@@ -89,7 +96,6 @@ static inline vreal simd_neq_(vreal a, vreal b)
 /* The widest vectors: AVX where the compiler targets it, else SSE2's. */
 #ifdef SIMD_REAL
 #ifdef __AVX__
-#include <immintrin.h>
 #ifdef SVET_DOUBLE
 typedef __m256d vwreal;
 #define VWLANES 4
