@@ -290,7 +290,7 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs count-render count-grid ab-grid
+.PHONY: reference tradeoffs count-render count-grid ab-grid bitcheck
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
@@ -313,6 +313,20 @@ count-grid: $(BUILD)/bench/bench_grid
 ab-grid: build/float/bench/bench_grid
 	$(if $(BASE),,$(error ab-grid: give BASE=COMMIT))
 	sh tools/ab-grid.sh build/float/bench/bench_grid $(BASE) $(KINDS) $(PAIRS)
+
+# `make bitcheck [BASE=COMMIT]`: every scenes/*.scn renders to the same
+# bytes with SIMD=on and SIMD=off, at 1 and 2 threads, in float and in
+# double (tools/bitcheck.sh, 64 x 64 at 8 spp); with BASE, also the same
+# as that commit's build.
+bitcheck:
+	$(MAKE) REAL=float SIMD=on build/float/svet
+	$(MAKE) REAL=float SIMD=off build/float-plain/svet
+	$(MAKE) REAL=double SIMD=on build/double/svet
+	$(MAKE) REAL=double SIMD=off build/double-plain/svet
+	REAL=float BASE=$(BASE) sh tools/bitcheck.sh build/float/svet \
+	    build/float-plain/svet
+	REAL=double BASE=$(BASE) sh tools/bitcheck.sh build/double/svet \
+	    build/double-plain/svet
 
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
@@ -347,6 +361,8 @@ help:
 	@echo "make count-render    instructions per Cornell-box sample (valgrind)"
 	@echo "make count-grid      instructions per ray of the grid at 1e6 (valgrind)"
 	@echo "make ab-grid BASE=C  the grid's rays/s against commit C's, alternating"
+	@echo "make SIMD=off ...    any target without the speed layers (build/REAL-plain/)"
+	@echo "make bitcheck        every scene the same bytes with SIMD=on and off [BASE=C]"
 	@echo "make install PREFIX=... DESTDIR=..."
 	@echo "chapters: $(CHAPTERS)"
 
