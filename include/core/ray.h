@@ -44,6 +44,20 @@ static inline real ray_gamma(int n)
 void ray_offset_origin(VECTOR3 po, const VECTOR3 p, const VECTOR3 p_error,
                        const VECTOR3 n, const VECTOR3 w);
 
+/* ray_offset_origin()'s last step, d already signed toward w's side:
+ * po_i = p_i + n_i d rounded one more ulp in the direction of n_i d (a
+ * coordinate whose n_i d is zero or NaN keeps the rounded sum). _plain is
+ * ray.c's scalar code; _simd, in SIMD=on builds (src/core/fast/
+ * ray_simd.c), gives its bits with the three axes in vector lanes, and is
+ * what ray_offset_origin() calls there. Test hooks: tests/core/test_ray.c
+ * compares the two. These functions can't fail. */
+void ray_offset_along_plain(VECTOR3 po, const VECTOR3 p, const VECTOR3 n,
+                            real d);
+#ifdef SVET_SIMD
+void ray_offset_along_simd(VECTOR3 po, const VECTOR3 p, const VECTOR3 n,
+                           real d);
+#endif
+
 /* A ray leaving the surface point p (error p_error, normal n) in direction
  * w, to be traced over (0, infinity). */
 void ray_spawn(ray_t *r, const VECTOR3 p, const VECTOR3 p_error,

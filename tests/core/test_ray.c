@@ -2,7 +2,8 @@
  * test_ray.c - rounding-error bounds and spawned rays (pbrt-v3 sec. 3.9):
  * gamma(n), the origin offset clears the error box on the requested side,
  * and shadow rays aimed at a point stop short of it; the offset point is
- * nextafter() of the rounded sum, bit for bit, on every class of input.
+ * nextafter() of the rounded sum, bit for bit, on every class of input,
+ * and the vector form of its last step (SIMD=on) is the plain one's bits.
  */
 #include "testutil.h"
 #include "geomcheck.h"
@@ -142,6 +143,86 @@ START_TEST(offset_origin_is_nextafter_on_every_class)
 }
 END_TEST
 
+/* Bits equal, a NaN equal to any NaN. */
+static bool same_coords(const VECTOR3 a, const VECTOR3 b)
+{
+    for (int k = 0; k < 3; k++) {
+        if (isnan(a[k]) || isnan(b[k])) {
+            if (!(isnan(a[k]) && isnan(b[k])))
+                return false;
+            continue;
+        }
+        real_union_t x = { .x = a[k] }, y = { .x = b[k] };
+        if (x.u != y.u)
+            return false;
+    }
+    return true;
+}
+
+/* An input of ray_offset_along(): every class in p, n and d, the normals
+ * of a box's walls, and offsets far below and far above p's ulp. */
+static void along_case(pcg32_t *g, int i, VECTOR3 p, VECTOR3 n, real *d)
+{
+    for (int k = 0; k < 3; k++) {
+        p[k] = any_class(g);
+        n[k] = any_class(g);
+    }
+    *d = any_class(g);
+    if (i % 4 == 0) { /* a wall's normal: one axis, +-1, the rest +-0 */
+        int a = (int)(pcg32_next(g) % 3);
+        for (int k = 0; k < 3; k++)
+            n[k] = pcg32_next(g) % 2 ? REAL_C(0.0) : -REAL_C(0.0);
+        n[a] = pcg32_next(g) % 2 ? 1 : -1;
+    }
+    if (i % 8 == 1) /* an offset near p's rounding */
+        *d = p[X] * REAL_EPSILON * (pcg32_real(g) - REAL_C(0.5));
+}
+
+START_TEST(offset_along_plain_is_nextafter_on_every_class)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 25, 26);
+    long cases = 0;
+    for (int i = 0; i < 100000; i++, cases++) {
+        VECTOR3 p, n, po, ref;
+        real d;
+        along_case(&g, i, p, n, &d);
+        ray_offset_along_plain(po, p, n, d);
+        for (int k = 0; k < 3; k++) {
+            real off = n[k] * d, q = p[k] + off;
+            ref[k] = off > 0   ? nextafter(q, (real)INFINITY)
+                     : off < 0 ? nextafter(q, -(real)INFINITY)
+                               : q;
+        }
+        ck_assert_msg(same_coords(po, ref), "case %d", i);
+    }
+    test_report_cases("offset_along_plain_is_nextafter_on_every_class",
+                      cases);
+}
+END_TEST
+
+#ifdef SVET_SIMD
+START_TEST(offset_along_simd_is_the_plain_bits)
+{
+    pcg32_t g;
+    pcg32_seed(&g, 27, 28);
+    long cases = 0;
+    for (int i = 0; i < 200000; i++, cases++) {
+        VECTOR3 p, n, a, b;
+        real d;
+        along_case(&g, i, p, n, &d);
+        ray_offset_along_plain(a, p, n, d);
+        ray_offset_along_simd(b, p, n, d);
+        ck_assert_msg(same_coords(a, b), "case %d: p (%g %g %g) n (%g %g "
+                      "%g) d %g", i, (double)p[X], (double)p[Y],
+                      (double)p[Z], (double)n[X], (double)n[Y],
+                      (double)n[Z], (double)d);
+    }
+    test_report_cases("offset_along_simd_is_the_plain_bits", cases);
+}
+END_TEST
+#endif
+
 START_TEST(spawn_to_stops_short_of_the_target)
 {
     VECTOR3 p0 = { 0, 0, 0 }, p1 = { 0, 0, 10 }, e = { 0, 0, 0 };
@@ -165,6 +246,10 @@ Suite *test_suite(void)
     tcase_add_test(tc, zero_error_still_moves_one_ulp);
     tcase_add_test(tc, spawn_to_stops_short_of_the_target);
     tcase_add_test(tc, offset_origin_is_nextafter_on_every_class);
+    tcase_add_test(tc, offset_along_plain_is_nextafter_on_every_class);
+#ifdef SVET_SIMD
+    tcase_add_test(tc, offset_along_simd_is_the_plain_bits);
+#endif
     suite_add_tcase(s, tc);
     return s;
 }
