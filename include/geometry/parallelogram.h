@@ -74,7 +74,11 @@ uint64_t parallelogram_batch_cull(const parallelogram_batch_t *b,
  * what parallelogram_batch_cull runs where SSE2 is missing (it runs
  * several at once with SSE2 or AVX where they are there). Test hook:
  * tests/geometry/test_parallelogram.c compares the two. This function can't
- * fail. */
+ * fail.
+ *   The batch is the speed layer's (src/geometry/fast/
+ * parallelogram_cull.c): without it (SIMD=off) parallelogram_batch_new
+ * returns NULL, and brute force tests each parallelogram through its
+ * intersect(). */
 uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
                                         const ray_t *r, real tmin, real tmax,
                                         uint64_t want);
@@ -88,5 +92,19 @@ uint64_t parallelogram_batch_cull_plain(const parallelogram_batch_t *b,
 bool parallelogram_intersect_prepared(const COBJECT *obj, int prim,
                                       const triangle_ray_t *pr, real tmin,
                                       real tmax, hit_t *hit);
+
+/* The plain algorithm, what SIMD=off builds run: the two triangles'
+ * watertight tests one after the other (on a ray prepared by
+ * triangle_ray_prepare(pr, r) for the second), with no early rejection.
+ * Test hooks: with the speed layer, intersect() and
+ * parallelogram_intersect_prepared() give the same answers and hits, bit
+ * for bit (tests/geometry/test_parallelogram.c). obj must be a
+ * parallelogram. These functions can't fail. */
+bool parallelogram_intersect_plain(const COBJECT *obj, int prim,
+                                   const ray_t *r, real tmin, real tmax,
+                                   hit_t *hit);
+bool parallelogram_prepared_plain(const COBJECT *obj, int prim,
+                                  const triangle_ray_t *pr, real tmin,
+                                  real tmax, hit_t *hit);
 
 #endif

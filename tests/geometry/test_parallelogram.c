@@ -4,8 +4,9 @@
  * rectangles and their normals, no ray slipping through a closed box of
  * parallelograms, input checks (degenerate, not a parallelogram), uniform
  * sampling, the geomcheck harness, tests/vectors/parallelogram.csv and a
- * NaN sweep; the batch of brute force (its early rejections for many at
- * once, then the prepared test) gives intersect()'s answers bit for bit.
+ * NaN sweep; the plain test (two triangles, no early rejection) and the
+ * speed layer's (SIMD=on: early rejections, shared shears, and the batch
+ * of brute force) give the same answers and hits bit for bit.
  */
 #include "testutil.h"
 #include "geomcheck.h"
@@ -222,6 +223,7 @@ static bool same_hit(const hit_t *a, const hit_t *b)
            memcmp(a->b, b->b, sizeof a->b) == 0;
 }
 
+#ifdef SVET_SIMD
 /* o's intersect() the way brute force's fast path makes it (accel.c):
  * the early rejections from a batch (of o alone, or of o among others at
  * bit i), then the watertight test on a ray prepared apart. */
@@ -236,6 +238,7 @@ static bool via_batch(const parallelogram_batch_t *batch, int i,
     triangle_ray_prepare(&pr, r);
     return parallelogram_intersect_prepared(o, 0, &pr, tmin, tmax, h);
 }
+#endif
 
 /* One ray against o over (tmin, tmax): the same answer, bit for bit, as
  * the two triangles, through intersect() and through a batch. Returns
@@ -243,14 +246,28 @@ static bool via_batch(const parallelogram_batch_t *batch, int i,
 static bool agrees_with_two_triangles(const COBJECT *o, const VECTOR3 c[4],
                                       const ray_t *r, real tmin, real tmax)
 {
-    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1, h3 = h1;
+    hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1, h3 = h1, h4 = h1;
     bool a = two_triangle_reference(c, r, tmin, tmax, &h1);
     bool b = o->ops->intersect(o, 0, r, tmin, tmax, &h2);
+    /* the plain test, field by field */
+    bool b4 = parallelogram_intersect_plain(o, 0, r, tmin, tmax, &h4);
+    ck_assert(b4 == b && (!b || same_hit(&h2, &h4)));
+    triangle_ray_t pr;
+    triangle_ray_prepare(&pr, r);
+    hit_t h5 = { 0, 0, { 0, 0, 0 } }, h6 = h5;
+    bool b5 = parallelogram_prepared_plain(o, 0, &pr, tmin, tmax, &h5);
+    bool b6 = parallelogram_intersect_prepared(o, 0, &pr, tmin, tmax, &h6);
+    ck_assert(b5 == b && b6 == b && (!b || (same_hit(&h2, &h5) &&
+                                            same_hit(&h2, &h6))));
+#ifdef SVET_SIMD
     parallelogram_batch_t *batch = parallelogram_batch_new(&o, 1);
     ck_assert_ptr_nonnull(batch);
     bool b3 = via_batch(batch, 0, o, r, tmin, tmax, &h3);
     parallelogram_batch_free(batch);
     ck_assert(b3 == b && (!b || same_hit(&h2, &h3)));
+#else
+    (void)h3;
+#endif
     ck_assert_msg(a == b, "hit %d vs %d: o (%a %a %a) d (%a %a %a) "
                   "(%a, %a)", (int)a, (int)b, (double)r->o[X],
                   (double)r->o[Y], (double)r->o[Z], (double)r->d[X],
@@ -435,6 +452,96 @@ START_TEST(parallelogram_early_rejections_lose_no_hit)
 }
 END_TEST
 
+/* A coordinate of every class: zeros of both signs, subnormals, the
+ * extremes, infinities, NaN, and ordinary numbers from 2^-30 to 2^30. */
+static real extreme_value(pcg32_t *g)
+{
+    static const real special[] = {
+        0, -REAL_C(0.0), REAL_TRUE_MIN, -REAL_TRUE_MIN, REAL_MIN, REAL_MAX,
+        -REAL_MAX, (real)INFINITY, -(real)INFINITY, (real)NAN, 1, -1,
+    };
+    uint32_t k = pcg32_bounded(g, 4);
+    if (k == 0)
+        return special[pcg32_bounded(g, sizeof special / sizeof *special)];
+    real x = ldexp(REAL_C(1.0) + pcg32_real(g), (int)pcg32_bounded(g, 61) - 30);
+    return k == 1 ? x : -x;
+}
+
+START_TEST(parallelogram_plain_and_fast_agree_on_extreme_rays)
+{
+    /* The intersect() of the build (with the speed layer's rejections
+     * where SIMD=on) and the plain test, field by field, on the Cornell
+     * box's walls and random parallelograms at scales 2^-20 to 2^20: rays
+     * whose coordinates are of every class (NaN, infinite, zero
+     * directions), rays grazing the plane, and intervals from the same
+     * classes. */
+    pcg32_t g;
+    pcg32_seed(&g, 71, 72);
+    long n = 0, hits = 0;
+    for (int i = 0; i < 400; i++) {
+        VECTOR3 c0, c1, c3;
+        if (i < 7) {
+            vec_copy(c0, cbox[i][0]);
+            vec_copy(c1, cbox[i][1]);
+            vec_copy(c3, cbox[i][3]);
+        } else {
+            real size = ldexp(REAL_C(1.0), (int)pcg32_bounded(&g, 41) - 20);
+            for (int k = 0; k < 3; k++) {
+                c0[k] = size * (2 * pcg32_real(&g) - 1);
+                c1[k] = c0[k] + size * (2 * pcg32_real(&g) - 1);
+                c3[k] = c0[k] + size * (2 * pcg32_real(&g) - 1);
+            }
+        }
+        svet_error err;
+        COBJECT *o = parallelogram_new(c0, c1, c3, &err);
+        if (!o)
+            continue;
+        VECTOR3 e1, e2, nrm;
+        vec_sub(e1, c1, c0);
+        vec_sub(e2, c3, c0);
+        VVECTOR3(nrm, e1, e2);
+        for (int j = 0; j < 500; j++, n++) {
+            ray_t r;
+            real tmin = 0, tmax = (real)INFINITY;
+            if (j % 3 == 0) { /* every class */
+                for (int k = 0; k < 3; k++) {
+                    r.o[k] = extreme_value(&g);
+                    r.d[k] = extreme_value(&g);
+                }
+                tmin = pcg32_bounded(&g, 2) ? 0 : extreme_value(&g);
+                tmax = pcg32_bounded(&g, 2) ? (real)INFINITY
+                                            : extreme_value(&g);
+            } else { /* toward the parallelogram, or grazing its plane */
+                real s = REAL_C(1.4) * pcg32_real(&g) - REAL_C(0.2);
+                real t = REAL_C(1.4) * pcg32_real(&g) - REAL_C(0.2);
+                real off = ldexp(REAL_C(1.0), -(int)pcg32_bounded(&g, 40));
+                for (int k = 0; k < 3; k++) {
+                    r.o[k] = c0[k] + 2 * e1[k] * pcg32_real(&g) +
+                             2 * e2[k] * pcg32_real(&g) +
+                             (j % 3 == 1 ? 1 : off) * nrm[k];
+                    r.d[k] = c0[k] + s * e1[k] + t * e2[k] - r.o[k];
+                }
+                if (j % 7 == 0)
+                    tmax = REAL_C(0.5) + pcg32_real(&g);
+            }
+            hit_t a = { 0, 0, { 0, 0, 0 } }, b = a;
+            bool ha = o->ops->intersect(o, 0, &r, tmin, tmax, &a);
+            bool hb = parallelogram_intersect_plain(o, 0, &r, tmin, tmax, &b);
+            ck_assert_msg(ha == hb && (!ha || same_hit(&a, &b)),
+                          "case %d/%d: o (%a %a %a) d (%a %a %a) (%a, %a)", i,
+                          j, (double)r.o[X], (double)r.o[Y], (double)r.o[Z],
+                          (double)r.d[X], (double)r.d[Y], (double)r.d[Z],
+                          (double)tmin, (double)tmax);
+            hits += ha;
+        }
+        cobject_free(o);
+    }
+    ck_assert(hits > n / 10);
+    test_report_cases("parallelogram_plain_and_fast_agree_on_extreme_rays", n);
+}
+END_TEST
+
+#ifdef SVET_SIMD
 START_TEST(segments_that_end_before_the_plane_lose_no_hit)
 {
     /* A ray over (0, tmax) whose origin and end lie on one side of the
@@ -514,7 +621,9 @@ START_TEST(segments_that_end_before_the_plane_lose_no_hit)
     test_report_cases("segments_that_end_before_the_plane_lose_no_hit", n);
 }
 END_TEST
+#endif
 
+#ifdef SVET_SIMD
 START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
 {
     /* Batches of 1 to 64 parallelograms (whole vector steps and padding
@@ -652,7 +761,9 @@ START_TEST(parallelogram_batch_answers_as_each_parallelogram_bit_for_bit)
                       "for_bit", n);
 }
 END_TEST
+#endif
 
+#ifdef SVET_SIMD
 START_TEST(parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays)
 {
     /* The vector batch and its plain loop on rays whose coordinates and
@@ -712,6 +823,7 @@ START_TEST(parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays)
                       "extreme_rays", n);
 }
 END_TEST
+#endif
 
 START_TEST(parallelogram_rejects_degenerate_and_non_parallelogram_input)
 {
@@ -890,11 +1002,18 @@ Suite *test_suite(void)
     tcase_add_test(tc, no_ray_slips_through_a_closed_box_of_parallelograms);
     tcase_add_test(tc, parallelogram_answers_as_its_two_triangles_bit_for_bit);
     tcase_add_test(tc, parallelogram_early_rejections_lose_no_hit);
+    tcase_add_test(tc, parallelogram_plain_and_fast_agree_on_extreme_rays);
+#ifdef SVET_SIMD
     tcase_add_test(tc, segments_that_end_before_the_plane_lose_no_hit);
+#endif
+#ifdef SVET_SIMD
     tcase_add_test(tc,
                    parallelogram_batch_answers_as_each_parallelogram_bit_for_bit);
+#endif
+#ifdef SVET_SIMD
     tcase_add_test(tc,
                    parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays);
+#endif
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);
