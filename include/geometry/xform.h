@@ -127,7 +127,9 @@ typedef struct {
 
 /* True, with the sphere in *s, when obj comes from xform_new and its
  * intersect() starts with that sphere (transformed boxes, unless the
- * transform is extreme); false otherwise. This function can't fail. */
+ * transform is extreme); false otherwise, and always without the speed
+ * layer (SIMD=off), whose sphere it is (src/geometry/fast/xform_cull.c).
+ * This function can't fail. */
 bool xform_culling_sphere(const COBJECT *obj, xform_sphere_t *s);
 
 /* What xform_sphere_misses() reads of the ray alone, the same for every
@@ -186,7 +188,8 @@ static inline bool xform_sphere_misses(const xform_sphere_t *sh,
 
 /* The intersect() of an object from xform_new without the sphere test:
  * the same answer and hit, bit for bit, whenever the test lets the ray
- * through. This function can't fail. */
+ * through (without the speed layer, xform_intersect_plain). This function
+ * can't fail. */
 bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
                               real tmin, real tmax, hit_t *hit);
 
@@ -198,12 +201,20 @@ bool xform_intersect_unseparated(const COBJECT *obj, int prim,
                                  const ray_t *r, real tmin, real tmax,
                                  hit_t *hit);
 
-/* The surface() of an object from xform_new the general way: the inner
- * primitive's normals, derivatives and frame mapped to the world at every
- * hit. surface() gives the same bits; for a box it takes them from a
- * table made once per face. Test hook: tests/geometry/test_xform.c compares the
+/* The surface() of an object from xform_new the general way, the plain
+ * algorithm: the inner primitive's normals, derivatives and frame mapped
+ * to the world at every hit. surface() gives the same bits; with the
+ * speed layer, for a box it takes them from a table made once per face. Test hook: tests/geometry/test_xform.c compares the
  * two. This function can't fail. */
 void xform_surface_generic(const COBJECT *obj, const ray_t *r,
                            const hit_t *hit, PATHPOINT *pp);
+
+/* The plain algorithm, what SIMD=off builds run: the ray mapped to
+ * object space by the inverse's rows and the inner primitive's own test,
+ * with no culling sphere and no shortcut. Test hook: intersect() gives
+ * the same answer and hit bytes (tests/geometry/test_xform.c). This
+ * function can't fail. */
+bool xform_intersect_plain(const COBJECT *obj, int prim, const ray_t *r,
+                           real tmin, real tmax, hit_t *hit);
 
 #endif

@@ -2,12 +2,15 @@
  * xform.c - affine transforms and primitives under them (app. D): rotation
  * by Rodrigues' formula (app. C), rays to object space, hit points back to
  * the world with the error bounds of pbrt-v3 sec. 3.9.4, normals by the
- * inverse transpose, areas by Nanson's formula or quadrature.
+ * inverse transpose, areas by Nanson's formula or quadrature. Its speed
+ * layer, a culling sphere around a transformed box, the box's slabs
+ * tested before its own test, a table of its faces' frames and SSE lanes
+ * for the matrix rows, is fast/xform_cull.c (SIMD=on builds).
  * Tests: tests/geometry/test_xform.c; vectors: tests/vectors/xform.csv
  */
 #include "geometry/xform.h"
 #include "geometry/shape.h"
-#include "core/simd.h"
+#include "xform_shape.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -23,11 +26,6 @@ static xform_t invalid(void)
     x.valid = false;
     return x;
 }
-
-/* Matrices [M | t] travel as pointers to their 12 entries, row by row
- * (C11 will not pass a real[3][4] where a const one is expected). */
-#define AT(m, i, j) ((m)[4 * (i) + (j)])
-#define MAT(a) (&(a)[0][0])
 
 static bool all_finite(const real *m)
 {
@@ -282,186 +280,38 @@ static void point_with_error(const real *m, const VECTOR3 p,
 
 /* --- the transformed COBJECT ------------------------------------------------ */
 
-typedef struct {
-    COBJECT *inner;
-    xform_t x;
-    real absdet; /* |det M| */
-    real area;
-    /* A sphere in the world around a transformed box, padded so that a ray
-     * that passes outside it cannot be reported as a hit (sphere_pad()):
-     * most rays are turned away by it before they are mapped to object
-     * space. cull is false for other primitives and extreme transforms. */
-    bool cull;
-    xform_sphere_t sphere;
-    /* world_point()'s constants, each the very product it would compute:
-     * |m_ij|, gamma(4) |m_i3| and gamma(4) |inv_ij| */
-    real abs_m[3][3], g_m3[3], g_inv[3][4];
-    /* For a box, what xf_surface() computes from the fields of a hit that
-     * depend on its face alone (pp->prim), computed once per face by the
-     * very same calls (set_faces()); nfaces is 0 for other primitives. */
-    int nfaces;
-    struct {
-        VECTOR3 ng, n, u, v, dpds, dpdt;
-    } face[6];
-    /* the box's own bounds (its bounds(), the min and max its intersect()
-     * tests against), for leaves_box(); set with the face table */
-    VECTOR3 box_min, box_max;
-    /* the same for vectors of four lanes (x, y, z and one that never
-     * answers: -inf, +inf), and the columns of inv, col[j][i] = inv[i][j]
-     * with a zero fourth lane (object_ray() with SSE) */
-    real box_lo4[4], box_hi4[4];
-    real inv_col[4][4];
-    /* world_point()'s numbers by column, lane i for row i (zero in lane
-     * 3): m's columns, |m_ij|'s, gamma(4) |m_i3| and gamma(4) |inv_ij|'s
-     * (world_point_v()) */
-    real m_col[4][4], abs_col[3][4], g_m3_4[4], g_inv_col[4][4];
-} xf_shape;
-
 static const cobject_ops xform_ops;
 
 /* The ray in object space. Its direction is first scaled by 2^-k (exact)
- * when its largest component is far from 1, so that M^-1 d neither
- * underflows nor overflows; then t_object = t_world 2^k. Returns false
- * when the object-space direction is zero or not finite. */
-/* object_ray() for a direction whose largest component m lies outside
- * [2^-16, 2^17): the rare case, a function of its own, so that the
- * usual one (inline) saves no registers. */
-static bool
-object_ray_scaled(const xf_shape *sh, const ray_t *r, real m, ray_t *ro,
-                  int *k)
+ * when its largest component m lies outside [2^-16, 2^17), so that
+ * M^-1 d neither underflows nor overflows; then t_object = t_world 2^k.
+ * Inside that range k is 0, whatever ilogb(m) (a NaN component makes ro's
+ * direction NaN below). */
+bool xform_object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
 {
-    VECTOR3 d;
+    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
     *k = 0;
-    if (m > 0 && isfinite(m))
+    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17)) && m > 0 &&
+        isfinite(m))
         *k = real_ilogb(m);
-    if (*k)
-        for (int i = 0; i < 3; i++)
-            d[i] = real_ldexp(r->d[i], -*k);
-    else
-        vec_copy(d, r->d);
+    VECTOR3 d;
+    for (int i = 0; i < 3; i++)
+        d[i] = *k ? real_ldexp(r->d[i], -*k) : r->d[i];
     apply(MAT(sh->x.inv), ro->o, r->o, true);
     apply(MAT(sh->x.inv), ro->d, d, false);
     return vec_is_finite(ro->o) && vec_is_finite(ro->d) &&
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
-/* An object-space ray in eight reals (o, d and two spare), so that
- * object_ray() may store vectors of four into it. */
-typedef union {
-    ray_t r;
-    real v[8];
-} ray_slots;
-_Static_assert(sizeof(ray_t) == 6 * sizeof(real) &&
-               offsetof(ray_t, d) == 3 * sizeof(real),
-               "ray_t: o and d without padding");
-
-static inline bool object_ray(const xf_shape *sh, const ray_t *r,
-                              ray_slots *rs, int *k)
+bool xform_intersect_object(const xf_shape *sh, int prim, const ray_t *ro,
+                            int k, real tmin, real tmax, hit_t *hit)
 {
-    /* no libm in this inner loop: plain comparisons for the max (a NaN
-     * component makes ro->d NaN below whatever m is), and ilogb only for
-     * m outside [2^-16, 2^17), where ilogb(m) leaves [-16, 16] */
-    real m = real_max(fabs(r->d[X]), real_max(fabs(r->d[Y]), fabs(r->d[Z])));
-    if (!(m >= REAL_C(0x1p-16) && m < REAL_C(0x1p17))) {
-        rs->v[6] = rs->v[7] = 0; /* leaves_box()'s fourth lane reads v[6] */
-        return object_ray_scaled(sh, r, m, &rs->r, k);
-    }
-    *k = 0;
-#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
-    /* apply() with SSE, lane i for row i: the columns of inv times the
-     * coordinates, summed in row()'s order, the vector's + 0 kept (it
-     * makes a -0 +0), so every lane has row()'s bits; lane 3 is 0. Then
-     * the tests below on the lanes: all of o and d finite (each lane of
-     * (o - o) + (d - d) is 0 exactly when both are), d not zero. */
-    const __m128 c0 = _mm_loadu_ps(sh->inv_col[0]),
-                 c1 = _mm_loadu_ps(sh->inv_col[1]),
-                 c2 = _mm_loadu_ps(sh->inv_col[2]);
-    const __m128 zero = _mm_setzero_ps();
-    __m128 o = _mm_add_ps(
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(r->o[X])),
-                              _mm_mul_ps(c1, _mm_set1_ps(r->o[Y]))),
-                   _mm_mul_ps(c2, _mm_set1_ps(r->o[Z]))),
-        _mm_loadu_ps(sh->inv_col[3]));
-    __m128 d = _mm_add_ps(
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(r->d[X])),
-                              _mm_mul_ps(c1, _mm_set1_ps(r->d[Y]))),
-                   _mm_mul_ps(c2, _mm_set1_ps(r->d[Z]))),
-        zero);
-    _mm_storeu_ps(rs->v, o);
-    _mm_storeu_ps(rs->v + 3, d); /* over o's lane 3 */
-    __m128 f = _mm_add_ps(_mm_sub_ps(o, o), _mm_sub_ps(d, d));
-    return _mm_movemask_ps(_mm_cmpeq_ps(f, zero)) == 15 &&
-           (_mm_movemask_ps(_mm_cmpneq_ps(d, zero)) & 7) != 0;
-#else
-    ray_t *ro = &rs->r;
-    apply(MAT(sh->x.inv), ro->o, r->o, true);
-    apply(MAT(sh->x.inv), ro->d, r->d, false);
-    /* finite: x - x is 0 for a finite x, NaN otherwise (vec_is_finite's
-     * answer without a branch per coordinate) */
-    real f = ((ro->o[X] - ro->o[X]) + (ro->o[Y] - ro->o[Y])) +
-             ((ro->o[Z] - ro->o[Z]) + (ro->d[X] - ro->d[X])) +
-             ((ro->d[Y] - ro->d[Y]) + (ro->d[Z] - ro->d[Z]));
-    return f == 0 && (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
-#endif
-}
-
-/* True when the object-space ray ro of a transformed box (sh->nfaces = 6)
- * starts beyond one of the box's slabs and does not move back toward it:
- * then box.c's intersect() on this very ray reports no hit for tmin >= 0.
- * The argument needs no rounding bound, for it looks at the numbers that
- * intersect() sees: with o_k > max_k and d_k > 0, its slab's exit
- * t1 = (max_k - o_k) / d_k is a negative number (a difference of two
- * distinct floats is not 0) over a positive one, so <= 0, and its push
- * t1 + 2 gamma(3) |t1| stays <= 0 (2 gamma(3) < 1; a -0 becomes +0): the
- * exit hi <= 0, and a hit needs the entry lo <= hi or hi itself in
- * (tmin, tmax) with tmin >= 0. With d_k = 0 its slab() answers "never"
- * (o_k outside the slab). The same with o_k < min_k and d_k <= 0. This
- * turns away a ray that leaves the box from its surface (the origin
- * spawned outside the face, the direction outward), which always passes
- * the culling sphere, and many that pass beside it, for the price of six
- * comparisons instead of the six divisions of the slab test.
- * tests/geometry/test_xform.c compares with xform_intersect_unseparated(). */
-static inline bool leaves_box(const xf_shape *sh, const ray_slots *rs)
-{
-#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
-    /* the six comparisons as four lanes: o (and d_x, which the fourth
-     * lane's infinite bounds turn away) against the bounds, d's sign */
-    const __m128 o = _mm_loadu_ps(rs->v), d = _mm_loadu_ps(rs->v + 3);
-    const __m128 zero = _mm_setzero_ps();
-    __m128 beyond = _mm_or_ps(
-        _mm_and_ps(_mm_cmpgt_ps(o, _mm_loadu_ps(sh->box_hi4)),
-                   _mm_cmpge_ps(d, zero)),
-        _mm_and_ps(_mm_cmplt_ps(o, _mm_loadu_ps(sh->box_lo4)),
-                   _mm_cmple_ps(d, zero)));
-    return _mm_movemask_ps(beyond) != 0;
-#else
-    const ray_t *ro = &rs->r;
-    return (ro->o[X] > sh->box_max[X] && ro->d[X] >= 0) ||
-           (ro->o[X] < sh->box_min[X] && ro->d[X] <= 0) ||
-           (ro->o[Y] > sh->box_max[Y] && ro->d[Y] >= 0) ||
-           (ro->o[Y] < sh->box_min[Y] && ro->d[Y] <= 0) ||
-           (ro->o[Z] > sh->box_max[Z] && ro->d[Z] >= 0) ||
-           (ro->o[Z] < sh->box_min[Z] && ro->d[Z] <= 0);
-#endif
-}
-
-static inline bool intersect_unculled(const COBJECT *obj, int prim,
-                                      const ray_t *r, real tmin, real tmax,
-                                      hit_t *hit, bool separate)
-{
-    const xf_shape *sh = obj->shape;
-    ray_slots ro;
-    int k;
-    if (!object_ray(sh, r, &ro, &k))
-        return false;
-    if (separate && sh->nfaces && tmin >= 0 && leaves_box(sh, &ro))
-        return false;
     /* an affine map keeps t; only the power-of-two scaling of d moves it.
      * h zeroed: the inner primitive may leave part of its scratch b unset,
      * and the same ray must give the same bytes */
     hit_t h = { 0, 0, { 0, 0, 0 } };
     real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
-    if (!sh->inner->ops->intersect(sh->inner, prim, &ro.r, lo, hi, &h))
+    if (!sh->inner->ops->intersect(sh->inner, prim, ro, lo, hi, &h))
         return false;
     real t = k ? ldexp(h.t, -k) : h.t;
     if (!(t > tmin && t < tmax))
@@ -471,26 +321,25 @@ static inline bool intersect_unculled(const COBJECT *obj, int prim,
     return true;
 }
 
-bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
-                              real tmin, real tmax, hit_t *hit)
+bool xform_intersect_plain(const COBJECT *obj, int prim, const ray_t *r,
+                           real tmin, real tmax, hit_t *hit)
 {
-    return intersect_unculled(obj, prim, r, tmin, tmax, hit, true);
-}
-
-bool xform_intersect_unseparated(const COBJECT *obj, int prim,
-                                 const ray_t *r, real tmin, real tmax,
-                                 hit_t *hit)
-{
-    return intersect_unculled(obj, prim, r, tmin, tmax, hit, false);
+    const xf_shape *sh = obj->shape;
+    ray_t ro;
+    int k;
+    if (!xform_object_ray(sh, r, &ro, &k))
+        return false;
+    return xform_intersect_object(sh, prim, &ro, k, tmin, tmax, hit);
 }
 
 static bool xf_intersect(const COBJECT *obj, int prim, const ray_t *r,
                          real tmin, real tmax, hit_t *hit)
 {
-    const xf_shape *sh = obj->shape;
-    if (sh->cull && tmin >= 0 && xform_sphere_misses(&sh->sphere, r))
-        return false;
-    return xform_intersect_unculled(obj, prim, r, tmin, tmax, hit);
+#ifdef SVET_SIMD
+    return xform_cull_intersect(obj, prim, r, tmin, tmax, hit);
+#else
+    return xform_intersect_plain(obj, prim, r, tmin, tmax, hit);
+#endif
 }
 
 /* The world point of an object point p (error e), with its error bound,
@@ -532,8 +381,8 @@ static inline real widen_row(const xf_shape *sh, int i, real e,
  * (|M| times the bound back of M^-1's rounding), with the constants
  * taken from the shape and the rows written out (every hit on a
  * transformed object completes one). */
-static void world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
-                        VECTOR3 out, VECTOR3 out_e)
+void xform_world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
+                       VECTOR3 out, VECTOR3 out_e)
 {
     apply(MAT(sh->x.m), out, p, true);
     real e0 = point_error_row(sh, 0, p, e), e1 = point_error_row(sh, 1, p, e),
@@ -544,68 +393,6 @@ static void world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
     vec_set(out_e, widen_row(sh, 0, e0, back), widen_row(sh, 1, e1, back),
             widen_row(sh, 2, e2, back));
 }
-
-#if defined(SIMD_REAL) && !defined(SVET_DOUBLE)
-/* world_point() with SSE, lane i for row i: every lane the operations of
- * apply(), point_error_row(), back_row() and widen_row() for its row,
- * in their order (a product's factors in either order give the same
- * bits; fabs as the sign bit cleared), on the shape's columns, so the
- * same bits (tests/geometry/test_xform.c compares xf_surface(), which uses this,
- * with xform_surface_generic(), which uses world_point()). */
-static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
-                                 const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
-{
-    const real g = ray_gamma(4);
-    const __m128 sign = _mm_set1_ps(-0.0f);
-    const __m128 px = _mm_set1_ps(p[X]), py = _mm_set1_ps(p[Y]),
-                 pz = _mm_set1_ps(p[Z]);
-    const __m128 mx = _mm_mul_ps(_mm_loadu_ps(sh->m_col[0]), px),
-                 my = _mm_mul_ps(_mm_loadu_ps(sh->m_col[1]), py),
-                 mz = _mm_mul_ps(_mm_loadu_ps(sh->m_col[2]), pz);
-    const __m128 o = _mm_add_ps(_mm_add_ps(_mm_add_ps(mx, my), mz),
-                                _mm_loadu_ps(sh->m_col[3]));
-    const __m128 a0 = _mm_loadu_ps(sh->abs_col[0]),
-                 a1 = _mm_loadu_ps(sh->abs_col[1]),
-                 a2 = _mm_loadu_ps(sh->abs_col[2]);
-    const __m128 prop = _mm_add_ps(
-        _mm_add_ps(_mm_mul_ps(a0, _mm_set1_ps(e[X])),
-                   _mm_mul_ps(a1, _mm_set1_ps(e[Y]))),
-        _mm_mul_ps(a2, _mm_set1_ps(e[Z])));
-    const __m128 G = _mm_set1_ps(g);
-    const __m128 err = _mm_add_ps(
-        _mm_add_ps(
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(1 + g), prop),
-                                  _mm_mul_ps(G, _mm_andnot_ps(sign, mx))),
-                       _mm_mul_ps(G, _mm_andnot_ps(sign, my))),
-            _mm_mul_ps(G, _mm_andnot_ps(sign, mz))),
-        _mm_loadu_ps(sh->g_m3_4));
-    const __m128 w = _mm_add_ps(_mm_andnot_ps(sign, o), err);
-    const __m128 back = _mm_add_ps(
-        _mm_add_ps(_mm_add_ps(_mm_loadu_ps(sh->g_inv_col[3]),
-                              _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[0]),
-                                         _mm_shuffle_ps(w, w, 0x00))),
-                   _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[1]),
-                              _mm_shuffle_ps(w, w, 0x55))),
-        _mm_mul_ps(_mm_loadu_ps(sh->g_inv_col[2]),
-                   _mm_shuffle_ps(w, w, 0xaa)));
-    const __m128 oe = _mm_add_ps(
-        _mm_add_ps(_mm_add_ps(err, _mm_mul_ps(a0, _mm_shuffle_ps(back, back,
-                                                                 0x00))),
-                   _mm_mul_ps(a1, _mm_shuffle_ps(back, back, 0x55))),
-        _mm_mul_ps(a2, _mm_shuffle_ps(back, back, 0xaa)));
-    real ro[4], re[4];
-    _mm_storeu_ps(ro, o);
-    _mm_storeu_ps(re, oe);
-    vec_set(out, ro[0], ro[1], ro[2]);
-    vec_set(out_e, re[0], re[1], re[2]);
-}
-#else
-static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
-                                 const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
-{
-    world_point(sh, p, e, out, out_e);
-}
-#endif
 
 /* unit M^-T n, with a fallback that cannot happen for a valid transform */
 static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
@@ -618,30 +405,9 @@ static real world_normal(const xf_shape *sh, VECTOR3 out, const VECTOR3 n)
     return len;
 }
 
-/* The inner primitive's surface() on the ray in object space, and the
- * point mapped back to the world. */
-static inline void surface_point(const xf_shape *sh, const ray_t *r,
-                                 const hit_t *hit, PATHPOINT *pp, bool vec)
-{
-    ray_slots ro;
-    int k;
-    object_ray(sh, r, &ro, &k);
-    hit_t h = *hit;
-    if (k != 0)
-        h.t = ldexp(hit->t, k);
-    sh->inner->ops->surface(sh->inner, &ro.r, &h, pp);
-    VECTOR3 p, e;
-    if (vec)
-        world_point_v(sh, pp->cross_point, pp->p_error, p, e);
-    else
-        world_point(sh, pp->cross_point, pp->p_error, p, e);
-    vec_copy(pp->cross_point, p);
-    vec_copy(pp->p_error, e);
-}
-
 /* The normals, derivatives and frame of pp, in object space, mapped to
  * the world. */
-static void surface_frame(const xf_shape *sh, PATHPOINT *pp)
+void xform_surface_frame(const xf_shape *sh, PATHPOINT *pp)
 {
     /* the shading normal is the geometric one for most primitives: map it
      * once */
@@ -656,71 +422,38 @@ static void surface_frame(const xf_shape *sh, PATHPOINT *pp)
     shape_frame(pp->u, pp->v, pp->n, pp->dpds);
 }
 
+void xform_surface_object(const xf_shape *sh, const ray_t *r,
+                          const hit_t *hit, PATHPOINT *pp)
+{
+    ray_t ro;
+    int k;
+    xform_object_ray(sh, r, &ro, &k);
+    hit_t h = *hit;
+    if (k != 0)
+        h.t = ldexp(hit->t, k);
+    sh->inner->ops->surface(sh->inner, &ro, &h, pp);
+}
+
 void xform_surface_generic(const COBJECT *obj, const ray_t *r,
                            const hit_t *hit, PATHPOINT *pp)
 {
     const xf_shape *sh = obj->shape;
-    surface_point(sh, r, hit, pp, false);
-    surface_frame(sh, pp);
+    xform_surface_object(sh, r, hit, pp);
+    VECTOR3 p, e;
+    xform_world_point(sh, pp->cross_point, pp->p_error, p, e);
+    vec_copy(pp->cross_point, p);
+    vec_copy(pp->p_error, e);
+    xform_surface_frame(sh, pp);
 }
 
 static void xf_surface(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                        PATHPOINT *pp)
 {
-    const xf_shape *sh = obj->shape;
-    surface_point(sh, r, hit, pp, true);
-    if (pp->prim >= 0 && pp->prim < sh->nfaces) {
-        /* a box's face: its world frame as surface_frame() made it */
-        int f = pp->prim;
-        vec_copy(pp->ng, sh->face[f].ng);
-        vec_copy(pp->n, sh->face[f].n);
-        vec_copy(pp->u, sh->face[f].u);
-        vec_copy(pp->v, sh->face[f].v);
-        vec_copy(pp->dpds, sh->face[f].dpds);
-        vec_copy(pp->dpdt, sh->face[f].dpdt);
-        return;
-    }
-    surface_frame(sh, pp);
-}
-
-/* The face table of a transformed box (xf_shape.face): box.c's surface()
- * sets ng, n, u, v, dpds and dpdt from the face alone (the one in
- * hit->b[0], returned in pp->prim), so surface_frame() maps them to the
- * same bits at every hit on that face; here it runs once per face, on a
- * hit of that face from a ray at the origin. */
-static void set_faces(xf_shape *sh)
-{
-    sh->nfaces = 0;
-    if (strcmp(sh->inner->ops->name, "box") != 0)
-        return;
-    for (int f = 0; f < 6; f++) {
-        ray_t r = { { 0, 0, 0 }, { 0, 0, 0 } };
-        hit_t h = { 0, 0, { (real)f, 0, 0 } };
-        PATHPOINT pp;
-        memset(&pp, 0, sizeof pp);
-        pp.prim = 0;
-        sh->inner->ops->surface(sh->inner, &r, &h, &pp);
-        if (pp.prim != f)
-            return;
-        surface_frame(sh, &pp);
-        vec_copy(sh->face[f].ng, pp.ng);
-        vec_copy(sh->face[f].n, pp.n);
-        vec_copy(sh->face[f].u, pp.u);
-        vec_copy(sh->face[f].v, pp.v);
-        vec_copy(sh->face[f].dpds, pp.dpds);
-        vec_copy(sh->face[f].dpdt, pp.dpdt);
-    }
-    bbox_t bb;
-    sh->inner->ops->bounds(sh->inner, -1, &bb);
-    vec_copy(sh->box_min, bb.min);
-    vec_copy(sh->box_max, bb.max);
-    for (int k = 0; k < 3; k++) {
-        sh->box_lo4[k] = bb.min[k];
-        sh->box_hi4[k] = bb.max[k];
-    }
-    sh->box_lo4[3] = -(real)INFINITY;
-    sh->box_hi4[3] = (real)INFINITY;
-    sh->nfaces = 6;
+#ifdef SVET_SIMD
+    xform_cull_surface(obj, r, hit, pp);
+#else
+    xform_surface_generic(obj, r, hit, pp);
+#endif
 }
 
 static void xf_bounds(const COBJECT *obj, int prim, bbox_t *b)
@@ -764,7 +497,7 @@ static void xf_sample(const COBJECT *obj, const real u[2],
     const xf_shape *sh = obj->shape;
     cobject_sample_t so;
     sh->inner->ops->sample(sh->inner, u, &so);
-    world_point(sh, so.p, so.p_error, s->p, s->p_error);
+    xform_world_point(sh, so.p, so.p_error, s->p, s->p_error);
     /* Nanson: dA_world = |det M| |M^-T n| dA_object, so the density per
      * world area is the object density over that factor. */
     real len = world_normal(sh, s->n, so.n);
@@ -790,16 +523,30 @@ const xform_t *xform_of(const COBJECT *obj)
     return &((const xf_shape *)obj->shape)->x;
 }
 
+#ifndef SVET_SIMD
+/* Without the speed layer there is no culling sphere and no shortcut for
+ * a box's slabs: brute force (accel.c) tests each object through its
+ * intersect(). */
 bool xform_culling_sphere(const COBJECT *obj, xform_sphere_t *s)
 {
-    if (!xform_of(obj))
-        return false;
-    const xf_shape *sh = obj->shape;
-    if (!sh->cull)
-        return false;
-    *s = sh->sphere;
-    return true;
+    (void)obj;
+    (void)s;
+    return false;
 }
+
+bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
+                              real tmin, real tmax, hit_t *hit)
+{
+    return xform_intersect_plain(obj, prim, r, tmin, tmax, hit);
+}
+
+bool xform_intersect_unseparated(const COBJECT *obj, int prim,
+                                 const ray_t *r, real tmin, real tmax,
+                                 hit_t *hit)
+{
+    return xform_intersect_plain(obj, prim, r, tmin, tmax, hit);
+}
+#endif
 
 /* --- the area under the map ------------------------------------------------ */
 
@@ -919,84 +666,6 @@ static real transformed_area(const xf_shape *sh)
     return quadrature_area(sh);
 }
 
-/* --- the culling sphere ---------------------------------------------------- */
-
-/* max row sum of |A| for the linear part of a 3x4 matrix, in long double */
-static ld norm_inf(const real *a)
-{
-    ld n = 0;
-    for (int i = 0; i < 3; i++) {
-        ld row = fabsl((ld)AT(a, i, 0)) + fabsl((ld)AT(a, i, 1)) +
-                 fabsl((ld)AT(a, i, 2));
-        n = row > n ? row : n;
-    }
-    return n;
-}
-
-/* The sphere and its pad for a transformed box (sh->inner a "box").
- *   Why a ray that passes outside cannot be reported as a hit. Write W for
- * the exact map p -> M p + m, kappa = |M| |M^-1| (infinity norms).
- * xf_intersect maps the ray to o' = M^-1 o + t_inv and d' = M^-1 d 2^-k,
- * each rounded within gamma(4) (|M^-1| |.| + |t_inv|); the box reports t
- * only where the exact o' + t d' lies within gamma(9) (|o'| + |box|) of
- * the box on every axis (box.c: two roundings of each slab distance, the
- * exit pushed by 2 gamma(3) and rounded twice more). And M inv differs from I by what check()
- * allows, 64 epsilon |row|_1 |col|_1 per entry: at most 384 u kappa. Going
- * back through W, the world point o + t d then lies within
- *   E = K kappa (|o| + |m| + t |d|) + gamma(9) |M| |box|,  K = 512 u
- * (the sum of those terms, 400 u kappa, rounded up) of W(box), which lies
- * in the sphere of radius R about c (the transformed corners, in long
- * double, rounded up). A hit is near the sphere, so t |d| <= |c - o| + R
- * + sqrt(3) E; with K kappa <= 1/64 that gives the Euclidean pad
- *   sqrt(3) E <= 4 (K kappa (|m| + R + |c|) + gamma(9) |M| |box|)
- *                + 2 K kappa |o| + 2 K kappa |c - o|_1,
- * with factor 4 for the rounding of c, of R and of the pad itself. */
-static void set_culling(xf_shape *sh)
-{
-    sh->cull = false;
-    if (strcmp(sh->inner->ops->name, "box") != 0)
-        return;
-    bbox_t b;
-    sh->inner->ops->bounds(sh->inner, -1, &b);
-    const real *m = MAT(sh->x.m);
-    ld kappa = norm_inf(m) * norm_inf(MAT(sh->x.inv));
-    ld K = 512 * (ld)REAL_UNIT_ROUNDOFF;
-    if (!(K * kappa <= 1.0L / 64) || !isfinite(kappa))
-        return;
-    ld c[3], r2 = 0, box = 0, mt = 0, cmax = 0;
-    for (int i = 0; i < 3; i++) {
-        c[i] = (ld)AT(m, i, 3);
-        for (int j = 0; j < 3; j++)
-            c[i] += (ld)AT(m, i, j) *
-                    (0.5L * (ld)b.min[j] + 0.5L * (ld)b.max[j]);
-        mt = fmaxl(mt, fabsl((ld)AT(m, i, 3)));
-        box = fmaxl(box, fmaxl(fabsl((ld)b.min[i]), fabsl((ld)b.max[i])));
-        cmax = fmaxl(cmax, fabsl(c[i]));
-    }
-    for (int corner = 0; corner < 8; corner++) {
-        ld d2 = 0;
-        for (int i = 0; i < 3; i++) {
-            ld p = (ld)AT(m, i, 3);
-            for (int j = 0; j < 3; j++)
-                p += (ld)AT(m, i, j) *
-                     ((corner >> j) & 1 ? (ld)b.max[j] : (ld)b.min[j]);
-            d2 += (p - c[i]) * (p - c[i]);
-        }
-        r2 = fmaxl(r2, d2);
-    }
-    ld R = sqrtl(r2);
-    ld pad0 = 4 * (K * kappa * (mt + R + cmax) +
-                   (ld)ray_gamma(9) * norm_inf(m) * box);
-    xform_sphere_t *s = &sh->sphere;
-    for (int i = 0; i < 3; i++)
-        s->centre[i] = (real)c[i];
-    s->radius = real_next_up((real)R);
-    s->pad0 = real_next_up((real)pad0);
-    s->pad_o = s->pad_oc = real_next_up((real)(2 * K * kappa));
-    sh->cull = vec_is_finite(s->centre) && isfinite(s->radius) &&
-               isfinite(s->pad0) && isfinite(s->pad_o);
-}
-
 /* --- construction ------------------------------------------------------------ */
 
 static svet_status check(const xform_t *x, svet_error *err)
@@ -1075,25 +744,13 @@ COBJECT *xform_new(COBJECT *inner, const xform_t *to_world, svet_error *err)
         for (int j = 0; j < 3; j++)
             sh->abs_m[i][j] = fabs(x.m[i][j]);
         sh->g_m3[i] = ray_gamma(4) * fabs(x.m[i][3]);
-        for (int j = 0; j < 4; j++) {
+        for (int j = 0; j < 4; j++)
             sh->g_inv[i][j] = ray_gamma(4) * fabs(x.inv[i][j]);
-            sh->inv_col[j][i] = x.inv[i][j];
-        }
-    }
-    for (int j = 0; j < 4; j++)
-        sh->inv_col[j][3] = 0;
-    for (int i = 0; i < 4; i++) {
-        for (int j = 0; j < 4; j++) {
-            sh->m_col[j][i] = i < 3 ? x.m[i][j] : 0;
-            sh->g_inv_col[j][i] = i < 3 ? sh->g_inv[i][j] : 0;
-        }
-        for (int j = 0; j < 3; j++)
-            sh->abs_col[j][i] = i < 3 ? sh->abs_m[i][j] : 0;
-        sh->g_m3_4[i] = i < 3 ? sh->g_m3[i] : 0;
     }
     sh->area = transformed_area(sh);
-    set_culling(sh);
-    set_faces(sh);
+#ifdef SVET_SIMD
+    xform_cull_init(sh);
+#endif
     obj->nprims = inner->nprims;
     /* the world point and frame are written from the inner surface()'s
      * (surface_point(), then surface_frame() or the face table) */

@@ -6,7 +6,9 @@
  * world face frames against the general way, exact areas and the
  * ellipsoid's quadrature against a spheroid's closed form, sampling
  * densities, the geomcheck harness on an oriented box, a parallelogram and
- * an ellipsoid, tests/vectors/xform.csv and a NaN sweep.
+ * an ellipsoid, tests/vectors/xform.csv and a NaN sweep; intersect() and
+ * surface() (with the speed layer where SIMD=on) against the plain
+ * algorithm, field by field.
  */
 #include "testutil.h"
 #include "geometry/box.h"
@@ -594,6 +596,127 @@ static void random_box(pcg32_t *g, int i, VECTOR3 lo, VECTOR3 hi, VECTOR3 s3)
         hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(g, 16));
 }
 
+/* A coordinate of every class: zeros of both signs, subnormals, the
+ * extremes, infinities, NaN, and ordinary numbers from 2^-30 to 2^30. */
+static real extreme_value(pcg32_t *g)
+{
+    static const real special[] = {
+        0, -REAL_C(0.0), REAL_TRUE_MIN, -REAL_TRUE_MIN, REAL_MIN, REAL_MAX,
+        -REAL_MAX, (real)INFINITY, -(real)INFINITY, (real)NAN, 1, -1,
+    };
+    uint32_t k = pcg32_bounded(g, 4);
+    if (k == 0)
+        return special[pcg32_bounded(g, sizeof special / sizeof *special)];
+    real x = ldexp(REAL_C(1.0) + pcg32_real(g), (int)pcg32_bounded(g, 61) - 30);
+    return k == 1 ? x : -x;
+}
+
+/* The fields of two hits, bit for bit (not the padding). */
+static bool same_hit_fields(const hit_t *a, const hit_t *b)
+{
+    return memcmp(&a->t, &b->t, sizeof a->t) == 0 && a->prim == b->prim &&
+           memcmp(a->b, b->b, sizeof a->b) == 0;
+}
+
+START_TEST(xform_plain_and_fast_agree_field_by_field)
+{
+    /* intersect() of the build (the culling sphere, the box's slabs and
+     * SSE rows where SIMD=on) against xform_intersect_plain(), and
+     * surface() against xform_surface_generic(), byte for byte: boxes,
+     * spheres and parallelograms under random maps (mirrors included)
+     * scaled by 2^-20 to 2^20 per axis; rays of every class (NaN,
+     * infinite and zero directions, directions far from unit length),
+     * rays aimed at the object from near and far, grazing ones, and rays
+     * spawned from its hits in and out, over (0, inf), a short segment
+     * and intervals of every class. */
+    pcg32_t g;
+    pcg32_seed(&g, 81, 82);
+    long n = 0, hits = 0;
+    for (int i = 0; i < 300; i++) {
+        VECTOR3 lo, hi, s3, zero = { 0, 0, 0 }, a = { 1, 0, 0 },
+                                  b = { 0, 1, 0 };
+        random_box(&g, i, lo, hi, s3);
+        xform_t x = random_xform(&g);
+        if (i % 2)
+            x = xform_compose(x, xform_scale(s3));
+        svet_error err;
+        COBJECT *in = i % 3 == 0   ? box_new(lo, hi, &err)
+                      : i % 3 == 1 ? sphere_new(zero, 1, &err)
+                                   : parallelogram_new(zero, a, b, &err);
+        COBJECT *o = xform_new(in, &x, &err);
+        if (!o)
+            continue; /* a map singular to working precision */
+        const xform_t *xf = xform_of(o);
+        for (int j = 0; j < 300; j++, n++) {
+            ray_t r;
+            real tmin = 0, tmax = (real)INFINITY;
+            if (j % 4 == 0) {
+                for (int k = 0; k < 3; k++) {
+                    r.o[k] = extreme_value(&g);
+                    r.d[k] = extreme_value(&g);
+                }
+                tmin = pcg32_bounded(&g, 2) ? 0 : extreme_value(&g);
+                tmax = pcg32_bounded(&g, 2) ? (real)INFINITY
+                                            : extreme_value(&g);
+            } else {
+                VECTOR3 q, target, dir;
+                for (int k = 0; k < 3; k++)
+                    q[k] = i % 3 == 0 ? lo[k] + pcg32_real(&g) * (hi[k] - lo[k])
+                                      : 2 * pcg32_real(&g) - 1;
+                xform_point(xf, target, q);
+                geomcheck_random_dir(dir, &g);
+                real dist = ldexp(shape_max_abs(target) + 1,
+                                  (int)pcg32_bounded(&g, 24) - 20);
+                vec_add_scaled(r.o, target, dist, dir);
+                vec_neg(r.d, dir);
+                if (j % 4 == 2)
+                    vec_scale(r.d, r.d, ldexp(REAL_C(1.0),
+                                              (int)pcg32_bounded(&g, 61) - 30));
+                if (j % 8 == 3)
+                    tmax = dist * REAL_C(0.5);
+            }
+            hit_t h1 = { 0, 0, { 0, 0, 0 } }, h2 = h1;
+            bool a1 = o->ops->intersect(o, 0, &r, tmin, tmax, &h1);
+            bool a2 = xform_intersect_plain(o, 0, &r, tmin, tmax, &h2);
+            ck_assert_msg(a1 == a2 && (!a1 || same_hit_fields(&h1, &h2)),
+                          "object %d ray %d: o (%a %a %a) d (%a %a %a) (%a, "
+                          "%a): %d, plain %d", i, j, (double)r.o[X],
+                          (double)r.o[Y], (double)r.o[Z], (double)r.d[X],
+                          (double)r.d[Y], (double)r.d[Z], (double)tmin,
+                          (double)tmax, (int)a1, (int)a2);
+            if (!a1 || !(tmin >= 0) || !vec_is_finite(r.o) ||
+                !vec_is_finite(r.d))
+                continue;
+            hits++;
+            PATHPOINT p1, p2;
+            memset(&p1, 0, sizeof p1);
+            memset(&p2, 0, sizeof p2);
+            p1.prim = p2.prim = h1.prim;
+            o->ops->surface(o, &r, &h1, &p1);
+            xform_surface_generic(o, &r, &h1, &p2);
+            ck_assert(memcmp(&p1, &p2, sizeof p1) == 0);
+            /* rays spawned from the hit, out along the normal and back in */
+            for (int side = 0; side < 2; side++, n++) {
+                ray_t s;
+                VECTOR3 w;
+                geomcheck_random_dir(w, &g);
+                if ((SVECTOR3(w, p1.ng) < 0) != (side == 1))
+                    vec_neg(w, w);
+                ray_spawn(&s, p1.cross_point, p1.p_error, p1.ng, w);
+                hit_t k1 = { 0, 0, { 0, 0, 0 } }, k2 = k1;
+                bool b1 = o->ops->intersect(o, 0, &s, 0, (real)INFINITY, &k1);
+                bool b2 = xform_intersect_plain(o, 0, &s, 0, (real)INFINITY,
+                                                &k2);
+                ck_assert(b1 == b2 && (!b1 || same_hit_fields(&k1, &k2)));
+            }
+        }
+        cobject_free(o);
+    }
+    ck_assert(hits > n / 10);
+    test_report_cases("xform_plain_and_fast_agree_field_by_field", n);
+}
+END_TEST
+
 START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 {
     /* A transformed box's surface() takes the world normals, derivatives
@@ -972,6 +1095,7 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    box_face_table_completes_hits_as_the_general_way_bit_for_bit);
     tcase_add_test(tc, leaving_a_box_slab_answers_as_the_full_test_bit_for_bit);
+    tcase_add_test(tc, xform_plain_and_fast_agree_field_by_field);
     tcase_add_test(tc, transformed_spawned_rays_never_rehit_at_any_scale);
     tcase_add_test(tc, transformed_sampled_points_are_hit_at_any_scale);
     tcase_add_test(tc, transformed_shadow_rays_between_points_miss_at_any_scale);
