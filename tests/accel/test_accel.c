@@ -1035,6 +1035,8 @@ START_TEST(query_ray_check_accepts_exactly_finite_rays_with_a_direction)
 }
 END_TEST
 
+/* The culling spheres are the speed layer's (fast/xform_cull.c). */
+#ifdef SVET_SIMD
 START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
 {
     /* Brute force tests the transformed boxes' culling spheres a vector
@@ -1157,6 +1159,7 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
         cobject_free(objs[i]);
 }
 END_TEST
+#endif
 
 /* accel_tracer_intersect_packet() answers each ray as
  * accel_tracer_intersect() answers it alone, bit for bit, and as brute
@@ -1274,7 +1277,9 @@ Suite *test_suite(void)
     tcase_add_test(tc, auto_picks_from_the_scene_and_says_why);
     tcase_add_test(tc, no_structures_means_brute_force_and_refused_grids);
     tcase_add_test(tc, query_ray_check_accepts_exactly_finite_rays_with_a_direction);
+#ifdef SVET_SIMD
     tcase_add_test(tc, vector_sphere_test_answers_as_each_sphere_bit_for_bit);
+#endif
     tcase_add_test(tc,
                    fast_brute_force_answers_bit_for_bit_what_primset_test_answers);
     tcase_add_test(tc,
