@@ -5,7 +5,8 @@
  * vectors the compiler targets (vwreal, VW_): AVX's 8 floats or 4 doubles
  * where it targets AVX (the Makefile's -march=native on such a machine),
  * else the same as V_, used by brute force's parallelogram batch
- * (parallelogram.c) and the sign test of a grid cell's triangles (mesh.h). Each macro is one IEEE operation, so code written
+ * (fast/parallelogram_cull.c) and the sign test of a grid cell's
+ * triangles (mesh.h). Each macro is one IEEE operation, so code written
  * with them computes in every lane the bits that the same expressions give
  * in plain C, as long as it keeps their order (neither has a fused
  * multiply-add, and the build has -ffp-contract=off); V_MAX(a, b) is

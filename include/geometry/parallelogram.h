@@ -62,7 +62,7 @@ void parallelogram_batch_free(parallelogram_batch_t *b);
 /* The early rejections that a parallelogram's intersect() makes before
  * its watertight test, for the objects of the batch whose bit is set in
  * want and the ray r over (tmin, tmax): bit i of the result is 0 when
- * objs[i] rejects r there (it cannot report a hit: parallelogram.c proves
+ * objs[i] rejects r there (it cannot report a hit: fast/parallelogram_cull.c proves
  * it) or bit i of want is 0, 1 when it may hit. Leaving out the objects a
  * ray cannot meet (accel.c's skip) spares their tests. This function
  * can't fail. */

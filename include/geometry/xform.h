@@ -116,7 +116,7 @@ const xform_t *xform_of(const COBJECT *obj);
 
 /* --- the culling sphere, for brute force (accel.c) ----------------------- */
 
-/* A sphere around a transformed box, padded for rounding (xform.c
+/* A sphere around a transformed box, padded for rounding (fast/xform_cull.c
  * proves the pad): a ray that stays outside it over t >= 0 cannot be
  * reported as a hit. pad = pad0 + pad_o max|o| + pad_oc |c - o|_1. */
 typedef struct {
@@ -194,7 +194,8 @@ bool xform_intersect_unculled(const COBJECT *obj, int prim, const ray_t *r,
                               real tmin, real tmax, hit_t *hit);
 
 /* xform_intersect_unculled() without its shortcut for a box's slab that
- * the ray starts beyond and moves away from (leaves_box() in xform.c):
+ * the ray starts beyond and moves away from (leaves_box() in
+ * fast/xform_cull.c):
  * the same answers, bit for bit. Test hook: tests/geometry/test_xform.c compares
  * the two. This function can't fail. */
 bool xform_intersect_unseparated(const COBJECT *obj, int prim,

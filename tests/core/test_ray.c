@@ -91,7 +91,7 @@ static real any_class(pcg32_t *g)
 
 /* The offset written out from its definition (ray.h) with libm's
  * nextafter for the extra ulp: an independent reference for both the
- * branching and the vector ways ray.c may take. */
+ * branching way of ray.c and the vector way of fast/ray_simd.c. */
 static void offset_reference(VECTOR3 po, const VECTOR3 p, const VECTOR3 e,
                              const VECTOR3 n, const VECTOR3 w)
 {

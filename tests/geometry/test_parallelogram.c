@@ -390,7 +390,7 @@ START_TEST(parallelogram_early_rejections_lose_no_hit)
 {
     /* The parallelogram rejects a ray early when it leaves the plane
      * behind it, crosses it clearly outside, or ends before it
-     * (parallelogram.c). Probe them where they are closest to wrong:
+     * (fast/parallelogram_cull.c). Probe them where they are closest to wrong:
      * origins at 2^-k of the size off the plane on either side (and on
      * it), directions grazing the plane from either side, and intervals
      * that end one ulp before, at and after the hit. */
@@ -546,7 +546,7 @@ START_TEST(segments_that_end_before_the_plane_lose_no_hit)
 {
     /* A ray over (0, tmax) whose origin and end lie on one side of the
      * plane is rejected before the watertight test (stays_before() in
-     * parallelogram.c). Probe it where it is closest to wrong: segments
+     * fast/parallelogram_cull.c). Probe it where it is closest to wrong: segments
      * toward a point of the parallelogram (or near its edges), grazing
      * ones included, that end 2^-k of the way short of the plane's
      * crossing or 2^-k past it, from origins near and far, on thin and

@@ -489,7 +489,7 @@ END_TEST
 START_TEST(the_culling_sphere_never_turns_away_a_hit)
 {
     /* xform_intersect first tests a padded sphere about a transformed box
-     * (xform.c). Against the box hit by hand in object space - the ray
+     * (fast/xform_cull.c). Against the box hit by hand in object space - the ray
      * mapped by the same matrix, then box_intersect - the answers must be
      * the same bits. The rays that come nearest to the sphere's boundary
      * while hitting the box are those through its corners (on the
@@ -720,7 +720,7 @@ END_TEST
 START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
 {
     /* A transformed box's surface() takes the world normals, derivatives
-     * and frame of a hit from a table made once per face (xform.c); the
+     * and frame of a hit from a table made once per face (fast/xform_cull.c); the
      * general way maps them at every hit (and its world point and bound
      * come from the plain rows, the table's way from SSE lanes in
      * float). The same bytes, PATHPOINT for
@@ -788,7 +788,7 @@ END_TEST
  * and xform_intersect_unseparated() give the same answer and hit bytes;
  * where d needs no rescaling, the answer is also the box's own on the
  * ray mapped to object space by the plain rows (xform_point() and
- * xform_vector() with the inverse; xform.c maps it with SSE in float).
+ * xform_vector() with the inverse; fast/xform_cull.c maps it with SSE in float).
  * Adds 1 to *turned on a miss; returns whether the mapped check ran. */
 static bool as_plain_rows(const COBJECT *o, const COBJECT *inner,
                           const ray_t *r, real tmin, real tmax, long *turned)
@@ -832,7 +832,7 @@ START_TEST(leaving_a_box_slab_answers_as_the_full_test_bit_for_bit)
 {
     /* xform_intersect_unculled() turns away, for a transformed box, a ray
      * whose object-space origin lies beyond a slab and whose direction
-     * does not point back (leaves_box() in xform.c); the full slab test
+     * does not point back (leaves_box() in fast/xform_cull.c); the full slab test
      * (xform_intersect_unseparated) must give the same answer and the
      * same hit bytes. Rays: through random points of the box from far
      * away, spawned from the hits outward (cosine-weighted and grazing,

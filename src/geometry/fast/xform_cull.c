@@ -152,7 +152,7 @@ bool xform_cull_intersect(const COBJECT *obj, int prim, const ray_t *r,
  * apply(), point_error_row(), back_row() and widen_row() for its row,
  * in their order (a product's factors in either order give the same
  * bits; fabs as the sign bit cleared), on the shape's columns, so the
- * same bits (tests/geometry/test_xform.c compares xf_surface(), which uses this,
+ * same bits (tests/geometry/test_xform.c compares surface(), which uses this,
  * with xform_surface_generic(), which uses world_point()). */
 static inline void world_point_v(const xf_shape *sh, const VECTOR3 p,
                                  const VECTOR3 e, VECTOR3 out, VECTOR3 out_e)
