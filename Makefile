@@ -290,7 +290,8 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs count-render count-grid ab-grid bitcheck
+.PHONY: reference tradeoffs count-render count-grid ab-grid ab-render \
+        bitcheck
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
@@ -328,6 +329,13 @@ bitcheck:
 	REAL=double BASE=$(BASE) sh tools/bitcheck.sh build/double/svet \
 	    build/double-plain/svet
 
+# `make ab-render BASE=COMMIT [THREADS=1,2] [PAIRS=6]`: the Cornell box's
+# camera samples per second against commit BASE's, alternating runs, the
+# images compared too (tools/ab-render.sh; REAL as given).
+ab-render: $(BUILD)/svet
+	$(if $(BASE),,$(error ab-render: give BASE=COMMIT))
+	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) $(THREADS) $(PAIRS)
+
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
@@ -361,6 +369,7 @@ help:
 	@echo "make count-render    instructions per Cornell-box sample (valgrind)"
 	@echo "make count-grid      instructions per ray of the grid at 1e6 (valgrind)"
 	@echo "make ab-grid BASE=C  the grid's rays/s against commit C's, alternating"
+	@echo "make ab-render BASE=C the Cornell box's samples/s against commit C's"
 	@echo "make SIMD=off ...    any target without the speed layers (build/REAL-plain/)"
 	@echo "make bitcheck        every scene the same bytes with SIMD=on and off [BASE=C]"
 	@echo "make install PREFIX=... DESTDIR=..."
