@@ -16,6 +16,29 @@ void geomcheck_random_dir(VECTOR3 w, pcg32_t *g)
     vec_set(w, r * cos(phi), r * sin(phi), z);
 }
 
+real geomcheck_any_class(pcg32_t *g)
+{
+    static const real special[] = {
+        0, -REAL_C(0.0), REAL_TRUE_MIN, -REAL_TRUE_MIN, REAL_MIN, REAL_MAX,
+        -REAL_MAX, (real)INFINITY, -(real)INFINITY, (real)NAN, 1, -1,
+    };
+    uint32_t k = pcg32_bounded(g, 4);
+    if (k == 0)
+        return special[pcg32_bounded(g, sizeof special / sizeof *special)];
+    real x = ldexp(REAL_C(1.0) + pcg32_real(g), (int)pcg32_bounded(g, 61) - 30);
+    return k == 1 ? x : -x;
+}
+
+void geomcheck_any_ray(ray_t *r, real *tmin, real *tmax, pcg32_t *g)
+{
+    for (int k = 0; k < 3; k++) {
+        r->o[k] = geomcheck_any_class(g);
+        r->d[k] = geomcheck_any_class(g);
+    }
+    *tmin = pcg32_bounded(g, 2) ? 0 : geomcheck_any_class(g);
+    *tmax = pcg32_bounded(g, 2) ? (real)INFINITY : geomcheck_any_class(g);
+}
+
 void geomcheck_random_hemisphere(VECTOR3 w, const VECTOR3 n, pcg32_t *g)
 {
     geomcheck_random_dir(w, g);

@@ -66,4 +66,14 @@ long geomcheck_sampling_matches_area(const COBJECT *obj, int n, bool uniform,
 void geomcheck_random_dir(VECTOR3 w, pcg32_t *g);
 void geomcheck_random_hemisphere(VECTOR3 w, const VECTOR3 n, pcg32_t *g);
 
+/* A coordinate of every class, for the tests that compare a plain
+ * algorithm with its speed layer: a quarter of the draws zeros of both
+ * signs, subnormals, the extremes, infinities, NaN or +-1; the rest
+ * ordinary numbers of either sign from 2^-30 to 2^31. */
+real geomcheck_any_class(pcg32_t *g);
+
+/* A ray whose coordinates are of every class (geomcheck_any_class()),
+ * over (0, inf) or an interval whose ends are of every class too. */
+void geomcheck_any_ray(ray_t *r, real *tmin, real *tmax, pcg32_t *g);
+
 #endif

@@ -178,47 +178,52 @@ static void along_case(pcg32_t *g, int i, VECTOR3 p, VECTOR3 n, real *d)
         *d = p[X] * REAL_EPSILON * (pcg32_real(g) - REAL_C(0.5));
 }
 
-START_TEST(offset_along_plain_is_nextafter_on_every_class)
+/* ray_offset_along() from its definition, with libm's nextafter. */
+static void along_reference(VECTOR3 po, const VECTOR3 p, const VECTOR3 n,
+                            real d)
+{
+    for (int k = 0; k < 3; k++) {
+        real off = n[k] * d, q = p[k] + off;
+        po[k] = off > 0   ? nextafter(q, (real)INFINITY)
+                : off < 0 ? nextafter(q, -(real)INFINITY)
+                          : q;
+    }
+}
+
+typedef void along_fn(VECTOR3 po, const VECTOR3 p, const VECTOR3 n, real d);
+
+/* f and ref on `cases` inputs of along_case(): the same bits. */
+static void same_along(along_fn *f, along_fn *ref, uint64_t seed, int cases,
+                       const char *name)
 {
     pcg32_t g;
-    pcg32_seed(&g, 25, 26);
-    long cases = 0;
-    for (int i = 0; i < 100000; i++, cases++) {
-        VECTOR3 p, n, po, ref;
+    pcg32_seed(&g, seed, seed + 1);
+    for (int i = 0; i < cases; i++) {
+        VECTOR3 p, n, a, b;
         real d;
         along_case(&g, i, p, n, &d);
-        ray_offset_along_plain(po, p, n, d);
-        for (int k = 0; k < 3; k++) {
-            real off = n[k] * d, q = p[k] + off;
-            ref[k] = off > 0   ? nextafter(q, (real)INFINITY)
-                     : off < 0 ? nextafter(q, -(real)INFINITY)
-                               : q;
-        }
-        ck_assert_msg(same_coords(po, ref), "case %d", i);
+        f(a, p, n, d);
+        ref(b, p, n, d);
+        ck_assert_msg(same_coords(a, b), "%s, case %d: p (%g %g %g) n (%g "
+                      "%g %g) d %g", name, i, (double)p[X], (double)p[Y],
+                      (double)p[Z], (double)n[X], (double)n[Y],
+                      (double)n[Z], (double)d);
     }
-    test_report_cases("offset_along_plain_is_nextafter_on_every_class",
-                      cases);
+    test_report_cases(name, cases);
+}
+
+START_TEST(offset_along_plain_is_nextafter_on_every_class)
+{
+    same_along(ray_offset_along_plain, along_reference, 25, 100000,
+               "offset_along_plain_is_nextafter_on_every_class");
 }
 END_TEST
 
 #ifdef SVET_SIMD
 START_TEST(offset_along_simd_is_the_plain_bits)
 {
-    pcg32_t g;
-    pcg32_seed(&g, 27, 28);
-    long cases = 0;
-    for (int i = 0; i < 200000; i++, cases++) {
-        VECTOR3 p, n, a, b;
-        real d;
-        along_case(&g, i, p, n, &d);
-        ray_offset_along_plain(a, p, n, d);
-        ray_offset_along_simd(b, p, n, d);
-        ck_assert_msg(same_coords(a, b), "case %d: p (%g %g %g) n (%g %g "
-                      "%g) d %g", i, (double)p[X], (double)p[Y],
-                      (double)p[Z], (double)n[X], (double)n[Y],
-                      (double)n[Z], (double)d);
-    }
-    test_report_cases("offset_along_simd_is_the_plain_bits", cases);
+    same_along(ray_offset_along_simd, ray_offset_along_plain, 27, 200000,
+               "offset_along_simd_is_the_plain_bits");
 }
 END_TEST
 #endif

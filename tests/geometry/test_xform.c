@@ -596,19 +596,18 @@ static void random_box(pcg32_t *g, int i, VECTOR3 lo, VECTOR3 hi, VECTOR3 s3)
         hi[i % 3] = lo[i % 3] + ldexp(REAL_C(1.0), -(int)pcg32_bounded(g, 16));
 }
 
-/* A coordinate of every class: zeros of both signs, subnormals, the
- * extremes, infinities, NaN, and ordinary numbers from 2^-30 to 2^30. */
-static real extreme_value(pcg32_t *g)
+/* o's surface() of hit h on r, in *p1, checked byte for byte against
+ * xform_surface_generic(). */
+static void surface_as_generic(const COBJECT *o, const ray_t *r,
+                               const hit_t *h, PATHPOINT *p1)
 {
-    static const real special[] = {
-        0, -REAL_C(0.0), REAL_TRUE_MIN, -REAL_TRUE_MIN, REAL_MIN, REAL_MAX,
-        -REAL_MAX, (real)INFINITY, -(real)INFINITY, (real)NAN, 1, -1,
-    };
-    uint32_t k = pcg32_bounded(g, 4);
-    if (k == 0)
-        return special[pcg32_bounded(g, sizeof special / sizeof *special)];
-    real x = ldexp(REAL_C(1.0) + pcg32_real(g), (int)pcg32_bounded(g, 61) - 30);
-    return k == 1 ? x : -x;
+    PATHPOINT p2;
+    memset(p1, 0, sizeof *p1);
+    memset(&p2, 0, sizeof p2);
+    p1->prim = p2.prim = h->prim;
+    o->ops->surface(o, r, h, p1);
+    xform_surface_generic(o, r, h, &p2);
+    ck_assert(memcmp(p1, &p2, sizeof p2) == 0);
 }
 
 /* The fields of two hits, bit for bit (not the padding). */
@@ -651,13 +650,7 @@ START_TEST(xform_plain_and_fast_agree_field_by_field)
             ray_t r;
             real tmin = 0, tmax = (real)INFINITY;
             if (j % 4 == 0) {
-                for (int k = 0; k < 3; k++) {
-                    r.o[k] = extreme_value(&g);
-                    r.d[k] = extreme_value(&g);
-                }
-                tmin = pcg32_bounded(&g, 2) ? 0 : extreme_value(&g);
-                tmax = pcg32_bounded(&g, 2) ? (real)INFINITY
-                                            : extreme_value(&g);
+                geomcheck_any_ray(&r, &tmin, &tmax, &g);
             } else {
                 VECTOR3 q, target, dir;
                 for (int k = 0; k < 3; k++)
@@ -688,13 +681,8 @@ START_TEST(xform_plain_and_fast_agree_field_by_field)
                 !vec_is_finite(r.d))
                 continue;
             hits++;
-            PATHPOINT p1, p2;
-            memset(&p1, 0, sizeof p1);
-            memset(&p2, 0, sizeof p2);
-            p1.prim = p2.prim = h1.prim;
-            o->ops->surface(o, &r, &h1, &p1);
-            xform_surface_generic(o, &r, &h1, &p2);
-            ck_assert(memcmp(&p1, &p2, sizeof p1) == 0);
+            PATHPOINT p1;
+            surface_as_generic(o, &r, &h1, &p1);
             /* rays spawned from the hit, out along the normal and back in */
             for (int side = 0; side < 2; side++, n++) {
                 ray_t s;
@@ -759,13 +747,8 @@ START_TEST(box_face_table_completes_hits_as_the_general_way_bit_for_bit)
             if (!o->ops->intersect(o, 0, &r, 0, (real)INFINITY, &h))
                 continue;
             for (int pass = 0; pass < 2; pass++) {
-                PATHPOINT p1, p2;
-                memset(&p1, 0, sizeof p1);
-                memset(&p2, 0, sizeof p2);
-                p1.prim = p2.prim = h.prim;
-                o->ops->surface(o, &r, &h, &p1);
-                xform_surface_generic(o, &r, &h, &p2);
-                ck_assert(memcmp(&p1, &p2, sizeof p1) == 0);
+                PATHPOINT p1;
+                surface_as_generic(o, &r, &h, &p1);
                 n++;
                 /* then a ray leaving that point, and its hit on the far
                  * side */
