@@ -34,6 +34,8 @@ if [ -n "${BASE:-}" ]; then
     set -- "$dir/base/build/$real/svet" "$@"
 fi
 ref=$1
+label=${BASE:+$BASE\'s build}
+label=${label:-$ref}
 fail=0
 n=0
 for scn in $scenes; do
@@ -59,7 +61,7 @@ for scn in $scenes; do
             for ext in exr png; do
                 n=$((n + 1))
                 if ! cmp -s "$dir/$name-ref.$ext" "$out.$ext"; then
-                    echo "bitcheck: $scn: $bin at $t threads differs from $ref at 1 ($ext)"
+                    echo "bitcheck: $scn: $bin at $t threads differs from $label at 1 ($ext)"
                     fail=1
                 fi
             done
@@ -68,6 +70,6 @@ for scn in $scenes; do
     done
 done
 if [ "$fail" = 0 ]; then
-    echo "bitcheck: $n images, every one the same bytes as $ref's ($size x $size, $spp spp)"
+    echo "bitcheck: $n images, every one the same bytes as $label at one thread ($size x $size, $spp spp)"
 fi
 exit $fail
