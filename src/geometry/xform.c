@@ -303,24 +303,6 @@ bool xform_object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k)
            (ro->d[X] != 0 || ro->d[Y] != 0 || ro->d[Z] != 0);
 }
 
-bool xform_intersect_object(const xf_shape *sh, int prim, const ray_t *ro,
-                            int k, real tmin, real tmax, hit_t *hit)
-{
-    /* an affine map keeps t; only the power-of-two scaling of d moves it.
-     * h zeroed: the inner primitive may leave part of its scratch b unset,
-     * and the same ray must give the same bytes */
-    hit_t h = { 0, 0, { 0, 0, 0 } };
-    real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
-    if (!sh->inner->ops->intersect(sh->inner, prim, ro, lo, hi, &h))
-        return false;
-    real t = k ? ldexp(h.t, -k) : h.t;
-    if (!(t > tmin && t < tmax))
-        return false;
-    *hit = h;
-    hit->t = t;
-    return true;
-}
-
 bool xform_intersect_plain(const COBJECT *obj, int prim, const ray_t *r,
                            real tmin, real tmax, hit_t *hit)
 {

@@ -51,15 +51,34 @@ typedef struct {
 #endif
 } xf_shape;
 
+/* The inner primitive's intersect() on the object-space ray ro (d scaled
+ * by 2^-k), its t mapped back to the world's. Inline: every test of a
+ * transformed object that gets past its culling makes it. */
+static inline bool xform_intersect_object(const xf_shape *sh, int prim,
+                                          const ray_t *ro, int k, real tmin,
+                                          real tmax, hit_t *hit)
+{
+    /* an affine map keeps t; only the power-of-two scaling of d moves it.
+     * h zeroed: the inner primitive may leave part of its scratch b unset,
+     * and the same ray must give the same bytes */
+    hit_t h = { 0, 0, { 0, 0, 0 } };
+    real lo = k ? ldexp(tmin, k) : tmin, hi = k ? ldexp(tmax, k) : tmax;
+    if (!sh->inner->ops->intersect(sh->inner, prim, ro, lo, hi, &h))
+        return false;
+    real t = k ? ldexp(h.t, -k) : h.t;
+    if (!(t > tmin && t < tmax))
+        return false;
+    *hit = h;
+    hit->t = t;
+    return true;
+}
+
 /* xform.c, for both: the ray in object space (false when its direction
  * there is zero or not finite), with d scaled by 2^-k; the inner
- * primitive's intersect() on that ray, its t mapped back; the inner
  * surface() of a hit, in object space; the world point of an object
  * point and its error bound; a PATHPOINT's normals, derivatives and
  * frame mapped to the world. */
 bool xform_object_ray(const xf_shape *sh, const ray_t *r, ray_t *ro, int *k);
-bool xform_intersect_object(const xf_shape *sh, int prim, const ray_t *ro,
-                            int k, real tmin, real tmax, hit_t *hit);
 void xform_surface_object(const xf_shape *sh, const ray_t *r,
                           const hit_t *hit, PATHPOINT *pp);
 void xform_world_point(const xf_shape *sh, const VECTOR3 p, const VECTOR3 e,
