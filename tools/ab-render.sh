@@ -7,8 +7,8 @@
 # summary line, and per CPU-second of the process from /usr/bin/time),
 # which goes first alternating, then each pair's ratios (this build over
 # the base) and their means. The base is built from `git archive` in a
-# scratch directory with the same REAL and SIMD=on; the images are
-# compared byte for byte as well.
+# scratch directory with the same REAL and SIMD=on (or BASE_SVET names
+# its binary, built already); the images are compared byte for byte.
 # usage: tools/ab-render.sh SVET_BINARY BASE_COMMIT [THREADS] [PAIRS] [SPP]
 #   THREADS: comma-separated (default 1,2); PAIRS 6; SPP 16
 set -eu
@@ -22,13 +22,17 @@ real=${REAL:-float}
 [ -x /usr/bin/time ] || { echo "ab-render: needs /usr/bin/time (apt-get install time)" >&2; exit 1; }
 dir=$(mktemp -d "${TMPDIR:-/tmp}/svet-ab-render.XXXXXX")
 trap 'rm -rf "$dir"' EXIT
-mkdir "$dir/base"
-git archive "$base" | tar -x -C "$dir/base" ||
-    { echo "ab-render: '$base' is not a commit" >&2; exit 1; }
-echo "ab-render: building svet ($real) at $base in $dir/base" >&2
-make -C "$dir/base" -j2 REAL="$real" "build/$real/svet" >"$dir/build.log" 2>&1 ||
-    { echo "ab-render: the base did not build ($dir/build.log)" >&2; exit 1; }
-old="$dir/base/build/$real/svet"
+if [ -n "${BASE_SVET:-}" ]; then # the base's binary, built already
+    old=$BASE_SVET
+else
+    mkdir "$dir/base"
+    git archive "$base" | tar -x -C "$dir/base" ||
+        { echo "ab-render: '$base' is not a commit" >&2; exit 1; }
+    echo "ab-render: building svet ($real) at $base in $dir/base" >&2
+    make -C "$dir/base" -j2 REAL="$real" "build/$real/svet" >"$dir/build.log" 2>&1 ||
+        { echo "ab-render: the base did not build ($dir/build.log)" >&2; exit 1; }
+    old="$dir/base/build/$real/svet"
+fi
 rate() { # binary threads tag -> "samples/s samples-per-CPU-second"
     OMP_WAIT_POLICY=passive /usr/bin/time -f 'cpu %U %S' -o "$dir/time" \
         "$1" render scenes/cbox.scn --spp "$spp" --threads "$2" \
