@@ -84,7 +84,7 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 
 .SECONDARY:
 
-.PHONY: all lib test sanitize chapters vectors check-vectors cc-lines clean \
+.PHONY: all lib test check-tags sanitize chapters vectors check-vectors cc-lines clean \
         install uninstall help bench $(BENCHES)
 
 all: lib chapters $(BUILD)/svet
@@ -139,8 +139,16 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 
 # Every suite runs from the top directory (they read tests/vectors/ and
 # scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
-test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
+# check-tags runs first, so run-tests.sh's "N passed, N failed" stays the
+# last line.
+test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
+
+# The book's equations tagged in the code as "eq. (N.M)", every one listed
+# in tools/eq-tags.txt; and every path a Markdown file names exists.
+check-tags:
+	@sh tools/check-tags.sh tools/eq-tags.txt
+	@sh tools/check-paths.sh
 
 # AddressSanitizer + UndefinedBehaviorSanitizer, any report is fatal.
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
@@ -310,6 +318,7 @@ help:
 	@echo "make sanitize        every suite under ASan and UBSan"
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
+	@echo "make check-tags      the book's equations tagged in src/, include/; paths in *.md"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
 	@echo "make reference       re-render tests/reference/ (converged references)"
