@@ -6,22 +6,22 @@
 
 REAL     ?= float
 CC       ?= cc
-# -O3: about 6% faster on the Cornell box than -O2 here, and the same bits
-# (gcc vectorises only what IEEE allows without -ffast-math).
+# -O3: faster than -O2 on the renderer, and the same bits (gcc vectorises
+# only what IEEE allows without -ffast-math).
 OPT      ?= -O3
-# The instruction set of the machine that builds: AVX2 here, which the
+# The instruction set of the machine that builds (AVX2, say), which the
 # vector code (include/core/simd.h) and gcc's own loops use. The bits do not
 # change with it (-ffp-contract=off keeps gcc from fusing a multiply and an
 # add, and no reassociation is allowed); `make ARCH=` builds a binary for
 # any x86-64 (SSE2 only) to copy to another machine.
 ARCH     ?= -march=native
 # Link-time optimisation (gcc): the compiler inlines across modules (the
-# integrator's calls into material.c, light.c and ray.c), about 2.5% faster
-# on the Cornell box, and the same bits: without -ffast-math inlining
-# changes no rounding. `make LTO=` builds without it, as `make sanitize`
-# does; with clang it is off unless asked for (LTO=-flto, with llvm-ar).
-# The build does not track flags: give a changed LTO (or OPT, ARCH) a
-# fresh BUILD directory or `make clean` first.
+# integrator's calls into material.c, light.c and ray.c), a little faster,
+# and the same bits: without -ffast-math inlining changes no rounding.
+# `make LTO=` builds without it, as `make sanitize` does; with clang it
+# is off unless asked for (LTO=-flto, with llvm-ar). The build does not
+# track flags: give a changed LTO (or OPT, ARCH) a fresh BUILD directory
+# or `make clean` first.
 ifeq ($(findstring clang,$(shell $(CC) --version 2>/dev/null)),)
 LTO      ?= -flto=auto
 else
@@ -102,7 +102,7 @@ $(LIB): $(OBJS)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-# --- the svet command (issue: renderer) -----------------------------------
+# --- the svet command ------------------------------------------------------
 # cmd/svet.c holds main() and the table of subcommands; cmd/cmdutil.c
 # what they share; each other cmd/*.c is one subcommand.
 SVET_MAIN := $(wildcard cmd/svet.c)
@@ -211,9 +211,7 @@ $(BUILD)/bench/bench_%: bench/bench_%.c $(LIB)
 	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
 
 # OMP_WAIT_POLICY=passive unless set: by default the idle thread of a
-# two-thread run spins for a while, and the one-thread runs after it ran
-# up to 20% slower (bench-grid's packets: 3.9 against 4.9 million rays a
-# second, the same binary, back to back).
+# two-thread run spins for a while and slows the one-thread runs after it.
 BENCH_ENV = OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive}
 $(filter-out bench-geometry,$(BENCHES)): bench-%: $(BUILD)/bench/bench_%
 	$(BENCH_ENV) $(BUILD)/bench/bench_$* $(BENCH_ARGS)
