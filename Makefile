@@ -146,7 +146,9 @@ test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
 
 # The book's equations tagged in the code as "eq. (N.M)", every one listed
 # in tools/eq-tags.txt; and every path a Markdown file names exists.
+# tools/test-checks.sh first tries both checkers on a small made-up tree.
 check-tags:
+	@sh tools/test-checks.sh
 	@sh tools/check-tags.sh tools/eq-tags.txt
 	@sh tools/check-paths.sh
 
