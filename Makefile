@@ -281,7 +281,7 @@ count-render: $(BUILD)/svet
 	sh tools/count-render.sh $(BUILD)/svet
 
 # `make count-grid`: instructions per ray of the grid at 1e6 triangles
-# (callgrind), the load-independent figures of chapters/ch07/README.md.
+# (callgrind), the load-independent figures of bench/results/grid.md.
 count-grid: $(BUILD)/bench/bench_grid
 	sh tools/count-grid.sh $(BUILD)/bench/bench_grid
 
