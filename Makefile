@@ -17,22 +17,22 @@ REAL     ?= float
 # build (build/REAL-plain/) and the images are the same bits (make bitcheck).
 SIMD     ?= on
 CC       ?= cc
-# -O3: about 6% faster on the Cornell box than -O2 here, and the same bits
-# (gcc vectorises only what IEEE allows without -ffast-math).
+# -O3: faster than -O2 on the renderer, and the same bits (gcc vectorises
+# only what IEEE allows without -ffast-math).
 OPT      ?= -O3
-# The instruction set of the machine that builds: AVX2 here, which the
+# The instruction set of the machine that builds (AVX2, say), which the
 # vector code (include/core/simd.h) and gcc's own loops use. The bits do not
 # change with it (-ffp-contract=off keeps gcc from fusing a multiply and an
 # add, and no reassociation is allowed); `make ARCH=` builds a binary for
 # any x86-64 (SSE2 only) to copy to another machine.
 ARCH     ?= -march=native
 # Link-time optimisation (gcc): the compiler inlines across modules (the
-# integrator's calls into material.c, light.c and ray.c), about 2.5% faster
-# on the Cornell box, and the same bits: without -ffast-math inlining
-# changes no rounding. `make LTO=` builds without it, as `make sanitize`
-# does; with clang it is off unless asked for (LTO=-flto, with llvm-ar).
-# The build does not track flags: give a changed LTO (or OPT, ARCH) a
-# fresh BUILD directory or `make clean` first.
+# integrator's calls into material.c, light.c and ray.c), a little faster,
+# and the same bits: without -ffast-math inlining changes no rounding.
+# `make LTO=` builds without it, as `make sanitize` does; with clang it
+# is off unless asked for (LTO=-flto, with llvm-ar). The build does not
+# track flags: give a changed LTO (or OPT, ARCH) a fresh BUILD directory
+# or `make clean` first.
 ifeq ($(findstring clang,$(shell $(CC) --version 2>/dev/null)),)
 LTO      ?= -flto=auto
 else
@@ -106,7 +106,7 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 
 .SECONDARY:
 
-.PHONY: all lib test sanitize chapters vectors check-vectors cc-lines clean \
+.PHONY: all lib test check-tags sanitize chapters vectors check-vectors cc-lines clean \
         install uninstall help bench $(BENCHES)
 
 all: lib chapters $(BUILD)/svet
@@ -124,7 +124,7 @@ $(LIB): $(OBJS)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-# --- the svet command (issue: renderer) -----------------------------------
+# --- the svet command ------------------------------------------------------
 # cmd/svet.c holds main() and the table of subcommands; cmd/cmdutil.c
 # what they share; each other cmd/*.c is one subcommand.
 SVET_MAIN := $(wildcard cmd/svet.c)
@@ -161,8 +161,18 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 
 # Every suite runs from the top directory (they read tests/vectors/ and
 # scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
-test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
+# check-tags runs first, so run-tests.sh's "N passed, N failed" stays the
+# last line.
+test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
+
+# The book's equations tagged in the code as "eq. (N.M)", every one listed
+# in tools/eq-tags.txt; and every path a Markdown file names exists.
+# tools/test-checks.sh first tries both checkers on a small made-up tree.
+check-tags:
+	@sh tools/test-checks.sh
+	@sh tools/check-tags.sh tools/eq-tags.txt
+	@sh tools/check-paths.sh
 
 # AddressSanitizer + UndefinedBehaviorSanitizer, any report is fatal.
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
@@ -232,9 +242,7 @@ $(BUILD)/bench/bench_%: bench/bench_%.c $(LIB)
 	$(CC) $(ALL_CFLAGS) $(PKG_CFLAGS) $< -o $@ $(LIB) $(LDLIBS)
 
 # OMP_WAIT_POLICY=passive unless set: by default the idle thread of a
-# two-thread run spins for a while, and the one-thread runs after it ran
-# up to 20% slower (bench-grid's packets: 3.9 against 4.9 million rays a
-# second, the same binary, back to back).
+# two-thread run spins for a while and slows the one-thread runs after it.
 BENCH_ENV = OMP_WAIT_POLICY=$${OMP_WAIT_POLICY:-passive}
 $(filter-out bench-geometry,$(BENCHES)): bench-%: $(BUILD)/bench/bench_%
 	$(BENCH_ENV) $(BUILD)/bench/bench_$* $(BENCH_ARGS)
@@ -304,7 +312,7 @@ count-render: $(BUILD)/svet
 	sh tools/count-render.sh $(BUILD)/svet
 
 # `make count-grid`: instructions per ray of the grid at 1e6 triangles
-# (callgrind), the load-independent figures of chapters/ch07/README.md.
+# (callgrind), the load-independent figures of bench/results/grid.md.
 count-grid: $(BUILD)/bench/bench_grid
 	sh tools/count-grid.sh $(BUILD)/bench/bench_grid
 
@@ -362,6 +370,7 @@ help:
 	@echo "make sanitize        every suite under ASan and UBSan"
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
+	@echo "make check-tags      the book's equations tagged in src/, include/; paths in *.md"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
 	@echo "make reference       re-render tests/reference/ (converged references)"

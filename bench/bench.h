@@ -1,7 +1,8 @@
 /*
  * bench.h - what every benchmark shares: a monotonic clock, the process's
  * CPU time, and the machine line each table is printed with (CPU model,
- * cores, compiler), so that a figure always says where it was measured.
+ * cores, compiler, date), so that a figure always says where and when it
+ * was measured.
  */
 #ifndef SVET_BENCH_H
 #define SVET_BENCH_H
@@ -81,15 +82,29 @@ static inline const char *bench_load_words(char *buf, size_t n)
     return buf;
 }
 
-/* "Machine: <cpu>, <n> cores; compiler <version>" */
+/* Today's date and time in UTC, "YYYY-MM-DD HH:MM UTC", into buf (or
+ * "unknown date"); returns buf. */
+static inline const char *bench_date(char *buf, size_t n)
+{
+    time_t now = time(NULL);
+    struct tm tm;
+    if (now == (time_t)-1 || !gmtime_r(&now, &tm) ||
+        strftime(buf, n, "%Y-%m-%d %H:%M UTC", &tm) == 0)
+        snprintf(buf, n, "unknown date");
+    return buf;
+}
+
+/* "Machine: <cpu>, <n> cores; compiler <version>; OMP_WAIT_POLICY=<p>;
+ * date <date>" */
 static inline void bench_print_machine(FILE *f)
 {
-    char cpu[256];
+    char cpu[256], date[64];
     bench_cpu_model(cpu, sizeof cpu);
     const char *wait = getenv("OMP_WAIT_POLICY");
     fprintf(f, "Machine: %s, %ld cores; compiler gcc-compatible %s; "
-               "OMP_WAIT_POLICY=%s", cpu, sysconf(_SC_NPROCESSORS_ONLN),
-            __VERSION__, wait ? wait : "(unset)");
+               "OMP_WAIT_POLICY=%s; date %s", cpu,
+            sysconf(_SC_NPROCESSORS_ONLN), __VERSION__,
+            wait ? wait : "(unset)", bench_date(date, sizeof date));
 }
 
 #endif

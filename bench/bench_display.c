@@ -215,21 +215,23 @@ int main(int argc, char **argv)
     remove(j.path);
     rmdir(dir);
 
-    char cpu[256], table[8192], load[160];
+    char cpu[256], table[8192], load[160], date[64];
     bench_cpu_model(cpu, sizeof cpu);
     bench_load_words(load, sizeof load);
     int len = snprintf(
         table, sizeof table,
         "# bench-display: tone mapping and image files\n\n"
         "Machine: %ld cores, %s; compiler: %s; real = %s.\n"
-        "Command: `make bench-display` (%s, image %d x %d = %.2f MP).\n\n"
+        "Command: `make bench-display` (%s, image %d x %d = %.2f MP). "
+        "Date: %s.\n\n"
         "Measured at %s (at the end of the run); the figures are the best "
         "of several runs of at least 0.2 s each. "
         "Writes include the temporary file, fsync and rename (fileio.h); "
         "one thread throughout.\n\n"
         "| what | MP/s | runs |\n|---|---:|---:|\n",
         sysconf(_SC_NPROCESSORS_ONLN), cpu, COMPILER, REAL_NAME,
-        "bench/bench_display.c", BW, BH, BW * BH / 1e6, load);
+        "bench/bench_display.c", BW, BH, BW * BH / 1e6,
+        bench_date(date, sizeof date), load);
     for (int i = 0; i < n; i++)
         len += snprintf(table + len, sizeof table - (size_t)len,
                         "| %s | %.1f | %d |\n", res[i].what, res[i].mps,

@@ -442,14 +442,15 @@ static int report(const char *fpath, const char *dpath)
     int nf = load(fpath, fr), nd = load(dpath, dr);
     if (nf < 0 || nd < 0 || nf != nd)
         return 1;
-    char cpu[256];
+    char cpu[256], date[64];
     bench_cpu_model(cpu, sizeof cpu);
     printf("## Primitives (app. D): speed and accuracy, float against double\n\n"
            "Machine: %s, %ld cores; gcc %s; one thread; command `make "
-           "bench-geometry`. Load average when the report was made: %.1f "
-           "(above the core count the machine was shared and the rates are "
-           "low and noisy; the errors do not depend on it).\n\n", cpu,
-           sysconf(_SC_NPROCESSORS_ONLN), __VERSION__, bench_loadavg());
+           "bench-geometry`; date %s. Load average when the report was made: "
+           "%.1f (above the core count the machine was shared and the rates "
+           "are low and noisy; the errors do not depend on it).\n\n", cpu,
+           sysconf(_SC_NPROCESSORS_ONLN), __VERSION__,
+           bench_date(date, sizeof date), bench_loadavg());
     printf("Nearest-hit tests of 2^20 rays aimed at the object's bounds "
            "(best of 3):\n\n| primitive | float Mrays/s | double Mrays/s | "
            "hit fraction |\n|---|---:|---:|---:|\n");

@@ -78,14 +78,15 @@ int main(int argc, char **argv)
     scene_init(&s);
     if (scenefile_read_with(&s, path, scene_features_all(), &e) != SVET_OK)
         die(path, &e);
-    char cpu[256];
+    char cpu[256], date[64];
     bench_cpu_model(cpu, sizeof cpu);
     long px = (long)s.camera.width * s.camera.height;
 
     printf("## Rendering: %s (%dx%d, max depth %d, %s)\n\n", path,
            s.camera.width, s.camera.height, s.render.max_depth, REAL_NAME);
-    printf("Machine: %s, %d cores; compiler %s; command `make bench-render`.\n\n",
-           cpu, (int)sysconf(_SC_NPROCESSORS_ONLN), __VERSION__);
+    printf("Machine: %s, %d cores; compiler %s; command `make bench-render`; "
+           "date %s.\n\n", cpu, (int)sysconf(_SC_NPROCESSORS_ONLN),
+           __VERSION__, bench_date(date, sizeof date));
     printf("| threads | spp | seconds | camera samples/s | rays/s | "
            "CPU seconds | samples per CPU-second |\n");
     printf("|---:|---:|---:|---:|---:|---:|---:|\n");

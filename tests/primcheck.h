@@ -1,6 +1,6 @@
 /*
  * primcheck.h - runs the robustness harness of geomcheck.h over the scales
- * the foundation issue asks for (1e-4 to 1e6 in float, 1e-8 to 1e8 in
+ * every primitive must survive (1e-4 to 1e6 in float, 1e-8 to 1e8 in
  * double), with the object at the origin and moved away from it, and a
  * dense sweep of extreme rays through any COBJECT checking that nothing
  * comes back NaN or infinite. Used by the primitives' suites.

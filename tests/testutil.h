@@ -32,7 +32,7 @@ Suite *test_suite(void);
                        (double)(abs_))
 
 /* Print "<test>: <n> cases" so a reader of `make test` sees how much a
- * randomised test tried (the issues ask each test to say). */
+ * randomised test tried. */
 void test_report_cases(const char *test, long n);
 
 /* --- CSV test vectors ---------------------------------------------------- */

@@ -1,8 +1,8 @@
 #!/bin/sh
 # ab-grid.sh - `make ab-grid BASE=COMMIT`: the grid's speed against an
 # earlier commit's, in runs that alternate between the two builds, so that
-# the machine's drift (another job, the host's load) falls on both alike
-# (chapters/ch07/README.md quotes its ratios). For each kind of ray, PAIRS
+# the machine's drift (another job, the host's load) falls on both alike.
+# For each kind of ray, PAIRS
 # pairs of `bench_grid --trace KIND --passes PASSES` (the best pass of
 # each run, Mrays/s at one thread), which goes first alternating, then
 # each pair's ratio (this build over the base) and their mean. The base

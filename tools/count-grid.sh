@@ -1,6 +1,6 @@
 #!/bin/sh
 # count-grid.sh - `make count-grid`: instructions per ray of the grid at 1e6
-# triangles (chapters/ch07/README.md, "The third round"), for camera rays
+# triangles (bench/results/grid.md, "Instructions per ray"), for camera rays
 # one at a time, in packets of 4 x 4 and 8 x 8, and incoherent rays: one
 # pass of `bench_grid --trace KIND` under valgrind's callgrind, counting
 # trace_pass() only (the queries' set-up, the traversal, their finish),

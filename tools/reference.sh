@@ -121,7 +121,8 @@ table() {
     echo
     echo "In all $(awk -v b="$total" 'BEGIN { printf "%.1f", b / 1048576 }') MB;" \
          "render times as measured by make reference" \
-         "($(sed -n 's/^machine = //p' "$t"); see each NAME.txt)."
+         "($(sed -n 's/^machine = //p' "$t"), $(sed -n 's/^date = //p' "$t");" \
+         "see each NAME.txt)."
 }
 readme="$dir/README.md"
 if [ -f "$readme" ] && grep -q '^<!-- reference-table' "$readme"; then

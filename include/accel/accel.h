@@ -48,7 +48,8 @@ typedef struct {
                            (accel.c): the same answers, for tests */
 } accel_params_t;
 
-/* AUTO's rule (measured by bench/bench_grid.c; chapters/ch07/README.md):
+/* AUTO's rule (bench/results/grid.md shows both grids on both kinds of
+ * scene):
  *  - at most ACCEL_BRUTE_MAX primitives, or no structure offered: brute
  *    force (a grid's walk costs more than testing them all);
  *  - else a uniform grid is built (when offered; else the hierarchical
@@ -57,8 +58,9 @@ typedef struct {
  *    ACCEL_AUTO_CELL of them (the distribution is far from uniform: a
  *    dense mesh in a few cells of a large scene), it is replaced by the
  *    hierarchical grid; otherwise it is kept. On evenly spread meshes the
- *    two run within 25% of each other; on the teapot in a stadium the
- *    uniform grid is hundreds of times slower. */
+ *    two run alike and the children would only cost build time and
+ *    memory; where a dense mesh crowds a few cells the uniform grid is
+ *    far slower. */
 #define ACCEL_BRUTE_MAX 16
 #define ACCEL_AUTO_CELL 64
 #define ACCEL_AUTO_CROWDED 0.05

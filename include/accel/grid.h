@@ -21,22 +21,20 @@
 #include "accel/primset.h"
 
 /* Cells per axis = about k N^(1/3) over the box's aspect (N primitives):
- * k^3 N cells in all. k measured by bench/bench_grid.c (`--tune`, and the
- * benchmark run with each k) on the sphere grids of 1e4 to 1e6 triangles:
- * with eight triangles to one sign test (the quads, AVX), 1.5 is at or
- * above 2 everywhere (5% on camera rays at 1e6, a fifth less memory);
- * 1 gains a little more on camera rays and loses 6% on random ones
- * (chapters/ch07/README.md has the tables). */
+ * k^3 N cells in all (Cleary & Wyvill 1988). With eight triangles to one
+ * sign test (the quads), a coarser grid walks fewer cells for little more
+ * testing: 1.5 runs about as fast as 2 on every size and kind of ray,
+ * faster on camera rays at 1e6, with less memory (`make bench-grid
+ * BENCH_ARGS=--tune`; the tables are in bench/results/grid.md, "Why the
+ * defaults"). */
 #define GRID_K_DEFAULT 1.5
 /* Hierarchical grid (Jevans & Wyvill 1989): the top level is the uniform
  * grid (k = HGRID_K_DEFAULT); a cell with more than HGRID_LEAF_DEFAULT
  * primitives gets a child grid of HGRID_CHILD_K_DEFAULT n^(1/3) cells per
  * axis for its n primitives, at most HGRID_DEPTH_DEFAULT levels below the
- * top. Measured as k above: a coarser top level (k 0.25 to 1, fewer steps
- * through empty space) gained up to 25% on camera rays at 1e6 triangles
- * but lost as much on random rays at 1e5; on evenly spread meshes this
- * one runs as the uniform grid does, and on the teapot in a stadium
- * hundreds of times faster. */
+ * top. A coarser top level takes fewer steps through empty space but
+ * leaves more to the children; what the sweep showed for each setting is
+ * in bench/results/grid.md ("Why the defaults"). */
 #define HGRID_K_DEFAULT 2.0
 #define HGRID_CHILD_K_DEFAULT 1.5
 #define HGRID_LEAF_DEFAULT 32
@@ -52,12 +50,10 @@
 /* Quads (below) only for scenes of at least this many mesh triangles.
  * They copy every triangle's corners into each of its cells (about 4.7
  * times the corners' memory): where the corners come from main memory
- * anyway that costs little and saves the gathers (1e6 triangles: camera
- * rays +9%, incoherent +8%, measured per CPU-second at load 2), but where
- * the corners and the grid fit the caches and the quads do not, the
- * incoherent rays wait on memory instead (1e5 triangles, 10 MB against
- * 33 MB: incoherent -22%, camera +10%; 1e4: incoherent -8%). Between the
- * two sizes it is not measured; 500,000 splits them. */
+ * anyway that costs little and saves the gathers, but where the corners
+ * and the grid fit the caches and the quads do not, incoherent rays wait
+ * on memory instead. The threshold lies between the sizes where each
+ * was measured (bench/results/grid.md, "Why the defaults"). */
 #define GRID_QUAD_MIN_DEFAULT 500000
 
 typedef struct {

@@ -163,7 +163,7 @@ static inline real vec_normalize(VECTOR3 c, const VECTOR3 a)
  * in. This function can't fail. */
 void vec_reflect(VECTOR3 r, const VECTOR3 in, const VECTOR3 n);
 
-/* Refracted direction, eqs. (1.11)-(1.12): `in` (unit, pointing away from
+/* Refracted direction, eq. (1.11) and eq. (1.12): `in` (unit, pointing away from
  * the surface, the book's Psi_i) arrives from the medium of index n1 and
  * leaves into index n2; n is the unit normal (either side). Returns true and
  * the unit transmitted direction t (pointing away from the surface on the

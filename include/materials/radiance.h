@@ -11,6 +11,11 @@
 #include <stdbool.h>
 #include "core/real.h"
 
+/* Radiance, eq. (1.1): L(x, Psi) = dPhi / (ds cos(theta) domega), the flux
+ * through a small area ds around x into a small cone domega around Psi,
+ * per unit of the area seen from Psi (ds cos theta). It stays constant
+ * along a ray in empty space, which is why a path can carry it from point
+ * to point. */
 typedef struct {
     real r, g, b; /* linear Rec. 709 RGB */
 } RADIANCE;

@@ -22,7 +22,7 @@
 #define RENDER_TILE 16
 /* Camera rays go to the tracer RENDER_PACKET x RENDER_PACKET pixels at a
  * time (one sample of each) where it takes packets: the grids' fastest
- * size at 1e6 triangles (chapters/ch07/README.md). */
+ * size at 1e6 triangles (bench/results/grid.md). */
 #define RENDER_PACKET 8
 
 /* Called after each finished tile, from whichever thread finished it, one

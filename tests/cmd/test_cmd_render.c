@@ -126,9 +126,11 @@ START_TEST(bad_input_gives_a_message_and_an_exit_code)
     ck_assert_ptr_nonnull(strstr(out, "typo.scn:2"));
     snprintf(path, sizeof path, "%s/typo.exr", dir);
     ck_assert_int_ne(access(path, F_OK), 0);
-    /* an output that cannot be written: exit 3 */
-    snprintf(args, sizeof args, "render '%s/tiny.scn' -o /nonexistent/x/a.exr "
-             "-q", dir);
+    /* an output that cannot be written: exit 3. Its directory would lie
+     * under a regular file, which no mkdir() can make (a path under
+     * /nonexistent can be made by anyone who creates /nonexistent). */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s/tiny.scn/x/a.exr' "
+             "-q", dir, dir);
     ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
     /* an override with a bad value */
     snprintf(args, sizeof args, "render '%s/tiny.scn' --set spp=-3", dir);

@@ -97,7 +97,8 @@ START_TEST(parallelogram_respects_the_interval_and_parallel_rays_miss)
 }
 END_TEST
 
-/* The rectangles of the Cornell box as issue 5 specifies them. */
+/* The rectangles of the Cornell box, as in the common reference scene
+ * (scenes/cbox.scn). */
 static const real cbox[7][4][3] = {
     { { -1, -1, 1 }, { 1, -1, 1 }, { 1, -1, -1 }, { -1, -1, -1 } }, /* floor */
     { { -1, 1, -1 }, { 1, 1, -1 }, { 1, 1, 1 }, { -1, 1, 1 } },     /* ceiling */

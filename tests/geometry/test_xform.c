@@ -200,7 +200,8 @@ START_TEST(normals_stay_perpendicular_under_non_uniform_scale)
 }
 END_TEST
 
-/* the Cornell box's blocks, as issue 5 words them */
+/* the Cornell box's blocks, as the common reference scene places them
+ * (scenes/cbox.scn) */
 static xform_t block(real sx, real sy, real sz, real deg, real tx, real ty,
                      real tz)
 {

@@ -18,7 +18,8 @@ static real angle_between(const VECTOR3 a, const VECTOR3 b)
 
 START_TEST(cornell_box_camera_spans_its_field_of_view)
 {
-    /* issue 5's Cornell box: eye (0,0,3.9), target 0, up +y, 39.3077 deg */
+    /* the Cornell box (scenes/cbox.scn): eye (0,0,3.9), target 0, up +y,
+     * 39.3077 deg */
     camera_t c;
     VECTOR3 eye = { 0, 0, REAL_C(3.9) }, at = { 0, 0, 0 }, up = { 0, 1, 0 };
     ck_assert_int_eq(camera_init(&c, eye, at, up, REAL_C(39.3077), CAMERA_FOV_X,

@@ -414,7 +414,7 @@ START_TEST(transforms_apply_in_the_written_order)
 }
 END_TEST
 
-START_TEST(cornell_box_boxes_land_where_the_issue_puts_them)
+START_TEST(cornell_box_boxes_land_where_the_reference_scene_puts_them)
 {
     scene_t s;
     svet_error err;
@@ -1221,7 +1221,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, emission_is_front_only_unless_twosided);
     tcase_add_test(tc, parallelogram_normal_follows_the_corner_order);
     tcase_add_test(tc, transforms_apply_in_the_written_order);
-    tcase_add_test(tc, cornell_box_boxes_land_where_the_issue_puts_them);
+    tcase_add_test(tc, cornell_box_boxes_land_where_the_reference_scene_puts_them);
     tcase_add_test(tc, cornell_box_matches_the_reference_numbers);
     tcase_add_test(tc, point_lights_in_every_unit);
     tcase_add_test(tc, environment_is_read_once);
