@@ -8,7 +8,9 @@
  * sampling with the power heuristic (Veach 1997, sec. 9.2), and direct
  * lighting - at EQUAL TIME, and judged against a reference rendered by
  * `path` for many times longer. Writes the images (PFM, PPM), one
- * side-by-side picture per case and a table of error and efficiency.
+ * side-by-side picture per case and a table of error and efficiency
+ * (table.md, and table.csv drawn by table.gp beside this file: `make
+ * figures`).
  * The integrator: src/render/integrator.c (tests: tests/render/test_integrator.c).
  *
  * usage: ch05 [OUTDIR] [--budget S] [--ref-factor K] [--scale F] [--spp N]
@@ -539,6 +541,36 @@ static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
         "1 / (relMSE x seconds), relative to path's.\n");
 }
 
+/* The table as CSV for table.gp: one row per image; efficiency is
+ * relative to path's on the same case. */
+static svet_status write_csv(const char *dir, const row_t *rows, int nrows,
+                             svet_error *err)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/table.csv", dir);
+    fileio_t f;
+    svet_status st = fileio_begin(&f, path, err);
+    if (st != SVET_OK)
+        return st;
+    fprintf(f.f, "# ch05: each case rendered with each strategy; relMSE "
+                 "against the reference, efficiency 1 / (relMSE x seconds) "
+                 "relative to path's\ncase,strategy,spp,seconds,rmse,relmse,"
+                 "relvar,noise_ratio,efficiency_vs_path\n");
+    for (int i = 0; i < nrows; i++) {
+        const row_t *r = &rows[i];
+        double eff_path = 0;
+        for (int j = 0; j < nrows; j++)
+            if (rows[j].scene == r->scene &&
+                strcmp(rows[j].strategy, "path") == 0)
+                eff_path = rows[j].efficiency;
+        fprintf(f.f, "%s,%s,%ld,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g\n", r->scene,
+                r->strategy, r->spp, r->seconds, r->rmse, r->relmse, r->relvar,
+                r->noise_ratio, eff_path > 0 ? r->efficiency / eff_path
+                                             : (double)NAN);
+    }
+    return fileio_commit(&f, err);
+}
+
 /* --- main ----------------------------------------------------------------------- */
 
 static void usage(FILE *f)
@@ -576,6 +608,7 @@ static bool parse_cases(const char *list, unsigned *mask)
 int main(int argc, char **argv)
 {
     opts_t o = { "out/ch05", 1.0, 16.0, 0.5, 0, 0, true, (1u << NCASES) - 1 };
+    bool have_dir = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         char *end = NULL;
@@ -583,7 +616,13 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (a[0] != '-') {
+            if (have_dir) {
+                fprintf(stderr, "ch05: one output directory only: '%s', "
+                                "then '%s'\n", o.dir, a);
+                return 2;
+            }
             o.dir = a;
+            have_dir = true;
             continue;
         } else if (!v) {
             fprintf(stderr, "ch05: %s needs a value\n", a);
@@ -655,7 +694,8 @@ int main(int argc, char **argv)
     table_md = f.f;
     print_table(rows, nrows, refs, nrefs, &o, argc, argv);
     table_md = NULL;
-    if (fileio_commit(&f, &err) != SVET_OK) {
+    if (fileio_commit(&f, &err) != SVET_OK ||
+        write_csv(o.dir, rows, nrows, &err) != SVET_OK) {
         fprintf(stderr, "ch05: %s\n", err.msg);
         return 1;
     }
