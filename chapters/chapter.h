@@ -50,8 +50,8 @@ static inline void chapter_usage(const chapter_cli_t *c, FILE *f)
                "missing)\n", c->what, 14, "", c->dir_default);
     for (int i = 0; i < c->nopts; i++) {
         const chapter_opt_t *o = &c->opts[i];
-        int pad = 19 - (int)(strlen(o->name) + 1 + strlen(o->metavar));
-        fprintf(f, "  %s %s%*s %s (default %g)\n", o->name, o->metavar,
+        int pad = 20 - (int)(strlen(o->name) + 1 + strlen(o->metavar));
+        fprintf(f, "  %s %s%*s %s (default %.10g)\n", o->name, o->metavar,
                 pad > 0 ? pad : 0, "", o->help, *o->value);
     }
     fprintf(f, "  -h, --help%*s this text\n", 10, "");
@@ -137,6 +137,18 @@ static inline int chapter_make_dir(const char *prog, const char *dir)
         buf[i] = ch;
     }
     return 0;
+}
+
+/* chapter_parse, then chapter_make_dir: what a program's main() does
+ * first. Returns -1 when the program should go on, else the status to
+ * exit with (1 when the directory cannot be made). */
+static inline int chapter_begin(const chapter_cli_t *c, int argc, char **argv,
+                                const char **dir)
+{
+    int rc = chapter_parse(c, argc, argv, dir);
+    if (rc < 0 && chapter_make_dir(c->prog, *dir) != 0)
+        rc = CHAPTER_EXIT_FAIL;
+    return rc;
 }
 
 /* A text file written under a temporary name and renamed when complete,

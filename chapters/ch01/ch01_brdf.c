@@ -497,12 +497,10 @@ int main(int argc, char **argv)
         "out", opts, 1
     };
     const char *dir;
-    int rc = chapter_parse(&cli, argc, argv, &dir);
+    int rc = chapter_begin(&cli, argc, argv, &dir);
     if (rc >= 0)
         return rc;
     nsamp = (long)samples;
-    if (chapter_make_dir(cli.prog, dir) != 0)
-        return 1;
     int bad = polar_plots(dir);
     bad |= schlick_plot(dir);
     bad |= albedo_tables(dir);

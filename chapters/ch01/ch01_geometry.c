@@ -254,11 +254,9 @@ int main(int argc, char **argv)
         "out/ch01", NULL, 0
     };
     const char *dir;
-    int rc = chapter_parse(&cli, argc, argv, &dir);
+    int rc = chapter_begin(&cli, argc, argv, &dir);
     if (rc >= 0)
         return rc;
-    if (chapter_make_dir(cli.prog, dir) != 0)
-        return 1;
     vectors();
     pathpoint();
     reflect_refract();

@@ -162,12 +162,10 @@ int main(int argc, char **argv)
         "out", opts, 1
     };
     const char *dir;
-    int rc = chapter_parse(&cli, argc, argv, &dir);
+    int rc = chapter_begin(&cli, argc, argv, &dir);
     if (rc >= 0)
         return rc;
     long nmax = (long)paths;
-    if (chapter_make_dir(cli.prog, dir) != 0)
-        return 1;
     chapter_file_t cf;
     FILE *csv = chapter_open(&cf, cli.prog, dir, "ch03_convergence.csv");
     if (!csv)

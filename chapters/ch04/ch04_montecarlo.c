@@ -390,13 +390,11 @@ int main(int argc, char **argv)
         "out", opts, 2
     };
     const char *dir;
-    int rc = chapter_parse(&cli, argc, argv, &dir);
+    int rc = chapter_begin(&cli, argc, argv, &dir);
     if (rc >= 0)
         return rc;
     kmax = (int)k_opt;
     npaths = (long)paths_opt;
-    if (chapter_make_dir(cli.prog, dir) != 0)
-        return 1;
     chapter_file_t mdf;
     md = chapter_open(&mdf, cli.prog, dir, "ch04_montecarlo.md");
     if (!md)

@@ -18,17 +18,16 @@
  * (default out/ch05; run from the top directory, where scenes/ is)
  */
 #ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* mkdir, sysconf */
+#define _POSIX_C_SOURCE 200809L /* sysconf */
 #endif
-#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "../chapter.h"
 #include "stats/converge.h"
 #include "io/fileio.h"
 #include "stats/imgcompare.h"
@@ -175,26 +174,6 @@ static void out(const char *fmt, ...)
         vfprintf(table_md, fmt, ap);
         va_end(ap);
     }
-}
-
-/* mkdir -p for a relative or absolute path */
-static int make_dirs(const char *dir)
-{
-    char buf[1024];
-    size_t n = strlen(dir);
-    if (n == 0 || n >= sizeof buf)
-        return -1;
-    memcpy(buf, dir, n + 1);
-    for (size_t i = 1; i <= n; i++) {
-        if (buf[i] != '/' && buf[i] != '\0')
-            continue;
-        char c = buf[i];
-        buf[i] = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            return -1;
-        buf[i] = c;
-    }
-    return 0;
 }
 
 /* Every panel of a case is shown with the same fixed mapping - the scene's
@@ -475,6 +454,15 @@ static void cpu_model(char *buf, size_t n)
     fclose(f);
 }
 
+/* The efficiency of `path` on the same case, 0 if it was not run. */
+static double path_efficiency(const row_t *rows, int nrows, const char *scene)
+{
+    for (int j = 0; j < nrows; j++)
+        if (rows[j].scene == scene && strcmp(rows[j].strategy, "path") == 0)
+            return rows[j].efficiency;
+    return 0;
+}
+
 static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
                         int nrefs, const opts_t *o, int argc, char **argv)
 {
@@ -503,11 +491,7 @@ static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
     out("|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < nrows; i++) {
         const row_t *r = &rows[i];
-        double eff_path = 0;
-        for (int j = 0; j < nrows; j++)
-            if (rows[j].scene == r->scene &&
-                strcmp(rows[j].strategy, "path") == 0)
-                eff_path = rows[j].efficiency;
+        double eff_path = path_efficiency(rows, nrows, r->scene);
         out("| %s | %s | %ld | %.2f | %.4g | %.4g | %.3g | %.3g | ", r->scene,
             r->strategy, r->spp, r->seconds, r->rmse, r->relmse, r->relvar,
             r->noise_ratio);
@@ -558,11 +542,7 @@ static svet_status write_csv(const char *dir, const row_t *rows, int nrows,
                  "relvar,noise_ratio,efficiency_vs_path\n");
     for (int i = 0; i < nrows; i++) {
         const row_t *r = &rows[i];
-        double eff_path = 0;
-        for (int j = 0; j < nrows; j++)
-            if (rows[j].scene == r->scene &&
-                strcmp(rows[j].strategy, "path") == 0)
-                eff_path = rows[j].efficiency;
+        double eff_path = path_efficiency(rows, nrows, r->scene);
         fprintf(f.f, "%s,%s,%ld,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g\n", r->scene,
                 r->strategy, r->spp, r->seconds, r->rmse, r->relmse, r->relvar,
                 r->noise_ratio, eff_path > 0 ? r->efficiency / eff_path
@@ -664,10 +644,8 @@ int main(int argc, char **argv)
         }
         i++;
     }
-    if (make_dirs(o.dir) != 0) {
-        fprintf(stderr, "ch05: %s: %s\n", o.dir, strerror(errno));
+    if (chapter_make_dir("ch05", o.dir) != 0)
         return 1;
-    }
 
     row_t rows[NCASES * ST_COUNT];
     refrow_t refs[NCASES];

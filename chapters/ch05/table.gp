@@ -4,7 +4,7 @@
 # 1 / (relMSE x seconds) relative to `path` (higher is better; path = 1).
 # Reads OUTDIR/table.csv (chapters/ch05/ch05_cases.c).
 #   gnuplot -c chapters/ch05/table.gp OUTDIR [png|svg]
-W = 1100; H = 820
+W = 1100; H = 860
 call "chapters/figure.gp" ARG1 ARG2
 
 f = csv("table.csv")
@@ -26,9 +26,14 @@ set grid ytics
 set key outside right top
 set title "relative MSE against the reference (lower is better)"
 set ylabel "relMSE"
+stats f skip 2 using 6 nooutput
+set yrange [10**floor(log10(STATS_min) - 0.5):10**ceil(log10(STATS_max))]
 plot for [k = 1:4] f skip 2 using (bar(k)):6 with boxes lt k title what[k]
 set title "efficiency 1 / (relMSE × seconds), relative to path's (higher is better)"
 set ylabel "efficiency / path's"
+stats f skip 2 using 9 nooutput
+set yrange [10**floor(log10(STATS_min) - 0.5):10**ceil(log10(STATS_max) + 0.1)]
+set bmargin 4
 plot for [k = 1:4] f skip 2 using (bar(k)):9 with boxes lt k title what[k], \
      1 with lines lc rgb "#444444" dt 2 notitle
 unset multiplot

@@ -357,11 +357,9 @@ int main(int argc, char **argv)
         "out", NULL, 0
     };
     const char *dir;
-    int rc = chapter_parse(&cli, argc, argv, &dir);
+    int rc = chapter_begin(&cli, argc, argv, &dir);
     if (rc >= 0)
         return rc;
-    if (chapter_make_dir(cli.prog, dir) != 0)
-        return 1;
     svet_error err;
     image_t hdr, side;
     const int gap = 4;

@@ -187,13 +187,11 @@ int main(int argc, char **argv)
         "out", opts, 1
     };
     const char *dir;
-    int rc = chapter_parse(&cli, argc, argv, &dir);
+    int rc = chapter_begin(&cli, argc, argv, &dir);
     if (rc >= 0)
         return rc;
     W = (int)width;
     H = 3 * W / 4;
-    if (chapter_make_dir(cli.prog, dir) != 0)
-        return 1;
     svet_error err;
     scene_t_ sc[2];
     memset(sc, 0, sizeof sc);

@@ -13,7 +13,7 @@ set output fig("ch07_heatmap")
 set multiplot layout 2, 2 title "Cells visited per camera ray (the walk of Amanatides and Woo), uniform grid against hierarchical grid"
 set palette defined (0 "black", 1 "#590d8c", 2 "#e62633", 3 "#ffcc1a", 4 "white")
 set logscale cb
-set cblabel "cells visited by the ray (logarithmic scale of cells + 1)"
+set cblabel "cells visited per ray (log scale)"
 set cbtics ("0" 1, "1" 2, "3" 4, "10" 11, "30" 31, "100" 101, "300" 301, "1000" 1001)
 set size ratio -1
 unset xtics
