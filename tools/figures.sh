@@ -5,9 +5,11 @@
 # (chapters/chNN/*.gp), as PNG and SVG in the same directory. Without
 # gnuplot the programs still run (their PPM pictures and CSV files are
 # written) and this says that the figures were not drawn; it exits 0.
+# GNUPLOT names the gnuplot to use (default: gnuplot on the PATH).
 set -u
 build=$1; shift
-if command -v gnuplot >/dev/null 2>&1; then have_gnuplot=1; else have_gnuplot=0; fi
+gnuplot=${GNUPLOT:-gnuplot}
+if command -v "$gnuplot" >/dev/null 2>&1; then have_gnuplot=1; else have_gnuplot=0; fi
 mkdir -p out/figures; fail=0; chapters=""
 for src in "$@"; do
     chdir=$(dirname "$src"); ch=$(basename "$chdir"); prog=$(basename "$src" .c)
@@ -29,7 +31,7 @@ for chdir in $chapters; do
     for gp in "$chdir"/*.gp; do
         [ -f "$gp" ] || continue
         for fmt in png svg; do
-            if ! gnuplot -c "$gp" "$out" "$fmt"; then
+            if ! "$gnuplot" -c "$gp" "$out" "$fmt"; then
                 echo "figures: $gp ($fmt) failed"; fail=1
             fi
         done

@@ -20,13 +20,21 @@ set mxtics 2
 set mytics 2
 set grid front lc rgb "#bbbbbb"
 set key right top
-rgb(r, g, b) = int(r) * 65536 + int(g) * 256 + int(b)
+# the line of purples joins the ends of the drawn locus, 380 and 700 nm
+fl = csv("ch02_locus.csv")
+do for [c = 2:3] {
+    stats fl skip 2 using ($1 == 380 ? column(c) : NaN) nooutput
+    if (c == 2) { v_x = STATS_max } else { v_y = STATS_max }
+    stats fl skip 2 using ($1 == 700 ? column(c) : NaN) nooutput
+    if (c == 2) { r_x = STATS_max } else { r_y = STATS_max }
+}
+set arrow 1 from v_x, v_y to r_x, r_y nohead lw 1 lc rgb "black" front
 # wavelengths marked on the locus, as in the book's figure
 marked(l) = (l >= 460 && l <= 620 && int(l) % 10 == 0 && (l <= 600 || l == 620)) || l == 380 || l == 700
 # labels pushed outward from the white point E
 lx(x, y) = x + 0.035 * (x - 1.0/3) / sqrt((x - 1.0/3)**2 + (y - 1.0/3)**2)
 ly(x, y) = y + 0.035 * (y - 1.0/3) / sqrt((x - 1.0/3)**2 + (y - 1.0/3)**2)
-plot csv("ch02_fill.csv") skip 2 using 1:2:(rgb($3, $4, $5)) with points pt 5 ps 0.6 lc rgb variable notitle, \
+plot csv("ch02_fill.csv") skip 2 using 1:2:3:4:5 with rgbimage notitle, \
      csv("ch02_locus.csv") skip 2 using 2:($1 >= 380 && $1 <= 700 ? $3 : NaN) with lines lw 2 lc rgb "black" title "spectral locus (nm)", \
      csv("ch02_locus.csv") skip 2 using (marked($1) ? $2 : NaN):3 with points pt 7 ps 0.6 lc rgb "black" notitle, \
      csv("ch02_locus.csv") skip 2 using (marked($1) ? lx($2, $3) : NaN):(ly($2, $3)):(sprintf("%d", $1)) with labels font ",9" notitle, \
