@@ -106,8 +106,8 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 
 .SECONDARY:
 
-.PHONY: all lib test check-tags sanitize chapters vectors check-vectors cc-lines clean \
-        install uninstall help bench $(BENCHES)
+.PHONY: all lib test check-tags sanitize chapters figures vectors \
+        check-vectors cc-lines clean install uninstall help bench $(BENCHES)
 
 all: lib chapters $(BUILD)/svet
 
@@ -219,6 +219,16 @@ $(foreach c,$(CHAPTERS),$(eval $(call chapter_rule,$(c))))
 .PHONY: $(CHAPTERS)
 
 chapters: $(CHAPTER_PROGS:%=$(BUILD)/%)
+
+# tests/chapters/test_chapters.c runs the chapter programs built beside it
+test: chapters
+
+# `make figures`: every chapter program writes its CSV files and PPM
+# pictures into out/figures/chNN, and the gnuplot scripts beside it
+# (chapters/chNN/*.gp) draw them as PNG and SVG there; without gnuplot it
+# says so and still exits 0 (tools/figures.sh). Not part of `make test`.
+figures: $(CHAPTER_PROGS:%=$(BUILD)/%)
+	@sh tools/figures.sh $(BUILD) $(foreach p,$(CHAPTER_PROGS),$($(p)_SRC))
 
 # Each chapter program's first comment is the one cc line that builds it
 # alone; this runs every such line in a scratch directory to prove it.
@@ -371,6 +381,7 @@ help:
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
 	@echo "make check-tags      the book's equations tagged in src/, include/; paths in *.md"
+	@echo "make figures         chapter programs' plots as PNG and SVG (gnuplot)"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
 	@echo "make reference       re-render tests/reference/ (converged references)"

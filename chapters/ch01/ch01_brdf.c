@@ -12,21 +12,19 @@
  *   ch01_ward_bounded.ppm the same with the bounded normalisation
  *   ch01_ward_aniso.ppm   Ward (1.10), alpha_x = 0.4, alpha_y = 0.08, two planes
  *   ch01_schlick.ppm      rho_s(theta) (1.7) and rho_t(theta) against theta
+ *   ch01_lobe_NAME.csv    the curves of each polar plot (NAME: lambert,
+ *                         phong, ward, ward_bounded, ward_aniso)
+ *   ch01_schlick.csv      the Schlick curves
  *   ch01_albedo.csv       albedo against each parameter and theta_o
  *   ch01_albedo.md        the same tables, as printed
  *
- * usage: ch01_brdf [outdir]   (default out/)
+ * The CSV files are drawn with axes and legends by brdf_lobes.gp,
+ * schlick.gp and albedo.gp beside this file (`make figures`).
+ * usage: ch01_brdf [OUTDIR] [--samples N]   (default out/; --help)
  */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* mkdir */
-#endif
-#include <errno.h>
 #include <stdbool.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
 
+#include "../chapter.h"
 #include "materials/brdf.h"
 #include "core/rng.h"
 #include "core/sample.h"
@@ -92,22 +90,13 @@ static void line(canvas_t *c, double x0, double y0, double x1, double y1,
 /* P6, written to a temporary file and renamed. Returns 0 on success. */
 static int write_ppm(const canvas_t *c, const char *dir, const char *name)
 {
-    char path[1024], tmp[1100];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        fprintf(stderr, "%s: %s\n", tmp, strerror(errno));
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch01_brdf", dir, name);
+    if (!f)
         return 1;
-    }
     fprintf(f, "P6\n%d %d\n255\n", c->w, c->h);
     fwrite(c->px, 3, (size_t)c->w * (size_t)c->h, f);
-    if ((ferror(f) | fclose(f)) || rename(tmp, path) != 0) {
-        fprintf(stderr, "%s: cannot write\n", path);
-        return 1;
-    }
-    printf("wrote %s\n", path);
-    return 0;
+    return chapter_close(&cf, "ch01_brdf");
 }
 
 /* --- polar plots in the plane of incidence --------------------------------- */
@@ -192,56 +181,103 @@ static void check(svet_status st, const svet_error *err)
     }
 }
 
+/* One polar plot: up to three curves, each a BRDF seen in the plane of
+ * azimuth azim[k]; key[k] names its columns in the CSV, what[k] its line
+ * on stdout. */
+typedef struct {
+    const char *name, *title; /* ch01_lobe_NAME.csv, and its first comment */
+    int n;
+    brdf_t b[3];
+    double azim[3];
+    const char *key[3], *what[3];
+} lobes_t;
+
+/* The curves as CSV: theta_r from -89.75 to 89.75 degrees in steps of
+ * 0.25 (the horizon itself is left out: the book's Ward is infinite
+ * there), and for each curve f in 1/sr and f cos(theta_r), the length
+ * the polar plot draws. */
+static int lobe_csv(const lobes_t *l, double theta_i, const char *dir)
+{
+    char name[64];
+    snprintf(name, sizeof name, "ch01_lobe_%s.csv", l->name);
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch01_brdf", dir, name);
+    if (!f)
+        return 1;
+    fprintf(f, "# ch01_brdf: %s, rho = 1, in the plane of incidence; Psi_i "
+               "at theta_r = -%g deg; f in 1/sr\ntheta_r_deg",
+            l->title, theta_i * 180 / PI_D);
+    for (int k = 0; k < l->n; k++)
+        fprintf(f, ",f_%s,fcos_%s", l->key[k], l->key[k]);
+    fprintf(f, "\n");
+    for (int i = 0; i <= 718; i++) {
+        double deg = -89.75 + 0.25 * i, t = deg * PI_D / 180;
+        fprintf(f, "%g", deg);
+        for (int k = 0; k < l->n; k++) {
+            VECTOR3 wi, wo;
+            in_plane(wi, -theta_i, l->azim[k]);
+            in_plane(wo, t, l->azim[k]);
+            double v = (double)brdf_eval(&l->b[k], wi, wo).r;
+            fprintf(f, ",%.6g,%.6g", v, v * (double)wo[Z]);
+        }
+        fprintf(f, "\n");
+    }
+    return chapter_close(&cf, "ch01_brdf");
+}
+
 static int polar_plots(const char *dir)
 {
     const RADIANCE one = rad_grey(1);
     const double ti = 45 * PI_D / 180;
+    static const char *const colour[3] = { "red", "green", "blue" };
     svet_error err;
-    brdf_t b;
-    int bad = 0;
-
-    canvas_t c = canvas_new(PW, PH);
-    polar_axes(&c, ti);
-    check(brdf_lambert(&b, one, &err), &err);
-    printf("Lambert (1.5), theta_i = 45: f = 1/pi = %.4f everywhere\n",
-           polar_curve(&c, &b, ti, 0, PALETTE[0]));
-    bad |= write_ppm(&c, dir, "ch01_lambert.ppm");
-
-    memset(c.px, 255, (size_t)PW * PH * 3);
-    polar_axes(&c, ti);
-    const double es[3] = { 1, 10, 100 };
+    lobes_t l[5] = {
+        { "lambert", "Lambert (1.5)", 1, .key = { "lambert" },
+          .what = { "Lambert (1.5): f = 1/pi everywhere" } },
+        { "phong", "modified Phong (1.8)", 3, .key = { "e1", "e10", "e100" },
+          .what = { "Phong (1.8), e = 1", "Phong (1.8), e = 10",
+                    "Phong (1.8), e = 100" } },
+        { "ward", "Ward (1.9) as the book prints it", 3,
+          .key = { "a0.05", "a0.15", "a0.4" },
+          .what = { "Ward (1.9), alpha = 0.05", "Ward (1.9), alpha = 0.15",
+                    "Ward (1.9), alpha = 0.4" } },
+        { "ward_bounded", "Ward (1.9) with the bounded normalisation", 3,
+          .key = { "a0.05", "a0.15", "a0.4" },
+          .what = { "Ward bounded, alpha = 0.05", "Ward bounded, alpha = 0.15",
+                    "Ward bounded, alpha = 0.4" } },
+        { "ward_aniso", "Ward (1.10), alpha_x = 0.4, alpha_y = 0.08", 2,
+          .azim = { 0, PI_D / 2 }, .key = { "u", "v" },
+          .what = { "Ward (1.10), plane along u", "Ward (1.10), plane along v" } },
+    };
+    check(brdf_lambert(&l[0].b[0], one, &err), &err);
+    const double es[3] = { 1, 10, 100 }, as[3] = { 0.05, 0.15, 0.4 };
     for (int k = 0; k < 3; k++) {
-        check(brdf_phong(&b, one, (real)es[k], &err), &err);
-        printf("Phong (1.8), e = %-4g (%s): peak f = %.4f\n", es[k],
-               k == 0 ? "red" : k == 1 ? "green" : "blue",
-               polar_curve(&c, &b, ti, 0, PALETTE[k]));
+        check(brdf_phong(&l[1].b[k], one, (real)es[k], &err), &err);
+        check(brdf_ward(&l[2].b[k], one, (real)as[k], (real)as[k], false, &err),
+              &err);
+        check(brdf_ward(&l[3].b[k], one, (real)as[k], (real)as[k], true, &err),
+              &err);
     }
-    bad |= write_ppm(&c, dir, "ch01_phong.ppm");
+    check(brdf_ward(&l[4].b[0], one, REAL_C(0.4), REAL_C(0.08), false, &err),
+          &err);
+    l[4].b[1] = l[4].b[0];
 
-    const double as[3] = { 0.05, 0.15, 0.4 };
-    for (int bounded = 0; bounded < 2; bounded++) {
+    int bad = 0;
+    canvas_t c = canvas_new(PW, PH);
+    for (int i = 0; i < 5; i++) {
         memset(c.px, 255, (size_t)PW * PH * 3);
         polar_axes(&c, ti);
-        for (int k = 0; k < 3; k++) {
-            check(brdf_ward(&b, one, (real)as[k], (real)as[k], bounded, &err),
-                  &err);
-            printf("Ward (1.9)%s, alpha = %-4g (%s): peak f = %.4f\n",
-                   bounded ? " bounded" : "", as[k],
-                   k == 0 ? "red" : k == 1 ? "green" : "blue",
-                   polar_curve(&c, &b, ti, 0, PALETTE[k]));
+        for (int k = 0; k < l[i].n; k++) {
+            int pen = l[i].n == 2 ? 2 * k : k; /* two curves: red, blue */
+            printf("%s (%s): peak f = %.4f\n", l[i].what[k],
+                   colour[pen], polar_curve(&c, &l[i].b[k], ti, l[i].azim[k],
+                                            PALETTE[pen]));
         }
-        bad |= write_ppm(&c, dir, bounded ? "ch01_ward_bounded.ppm"
-                                          : "ch01_ward.ppm");
+        char name[64];
+        snprintf(name, sizeof name, "ch01_%s.ppm", l[i].name);
+        bad |= write_ppm(&c, dir, name);
+        bad |= lobe_csv(&l[i], ti, dir);
     }
-
-    memset(c.px, 255, (size_t)PW * PH * 3);
-    polar_axes(&c, ti);
-    check(brdf_ward(&b, one, REAL_C(0.4), REAL_C(0.08), false, &err), &err);
-    printf("Ward (1.10), alpha_x = 0.4, alpha_y = 0.08: plane along u (red) "
-           "peak f = %.4f, ", polar_curve(&c, &b, ti, 0, PALETTE[0]));
-    printf("along v (blue) peak f = %.4f\n",
-           polar_curve(&c, &b, ti, PI_D / 2, PALETTE[2]));
-    bad |= write_ppm(&c, dir, "ch01_ward_aniso.ppm");
     free(c.px);
     return bad;
 }
@@ -296,7 +332,27 @@ static int schlick_plot(const char *dir)
     }
     int bad = write_ppm(&c, dir, "ch01_schlick.ppm");
     free(c.px);
-    return bad;
+
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch01_brdf", dir, "ch01_schlick.csv");
+    if (!f)
+        return 1;
+    fprintf(f, "# ch01_brdf: Schlick's rho_s(theta) (1.7) for four rho_s(0), "
+               "and the book's rho_t(theta) for rho_t(0) = 0.96\ntheta_deg");
+    for (int k = 0; k < 4; k++)
+        fprintf(f, ",rho_s_%g", rho0[k]);
+    fprintf(f, ",rho_t_0.96\n");
+    for (int i = 0; i <= 180; i++) {
+        double t = i * 0.5 * PI_D / 180;
+        double f5 = (double)brdf_schlick_factor((real)cos(t));
+        fprintf(f, "%g", i * 0.5);
+        for (int k = 0; k < 4; k++)
+            fprintf(f, ",%.6g", (double)brdf_schlick(rad_grey((real)rho0[k]),
+                                                    rad_grey(1),
+                                                    (real)cos(t)).r);
+        fprintf(f, ",%.6g\n", 0.96 * (1 - f5));
+    }
+    return bad | chapter_close(&cf, "ch01_brdf");
 }
 
 /* --- albedo against each parameter --------------------------------------- */
@@ -310,7 +366,7 @@ static int schlick_plot(const char *dir)
  */
 #define NA 7
 static const double theta_deg[NA] = { 0, 30, 60, 75, 85, 89, 89.9 };
-#define NSAMP 100000L
+static long nsamp = 100000; /* --samples */
 
 typedef struct {
     const char *model, *param;
@@ -327,7 +383,7 @@ static void albedo(const brdf_t *b, double theta, uint64_t seed, double *mean,
     pcg32_seed(&g, SEED, seed);
     estimator_t e;
     estimator_init(&e);
-    for (long k = 0; k < NSAMP; k++) {
+    for (long k = 0; k < nsamp; k++) {
         real u[2] = { pcg32_real(&g), pcg32_real(&g) };
         brdf_sample_t s;
         estimator_add(&e, brdf_sample(b, wo, u, &s) ? (double)s.weight.r : 0);
@@ -375,24 +431,22 @@ static int albedo_tables(const char *dir)
     check(brdf_specular_transmission(&rows[n++].b, one, REAL_C(1.5), &err),
           &err);
 
-    char path[1024], tmp[1100], mpath[1024], mtmp[1100];
-    snprintf(path, sizeof path, "%s/ch01_albedo.csv", dir);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    snprintf(mpath, sizeof mpath, "%s/ch01_albedo.md", dir);
-    snprintf(mtmp, sizeof mtmp, "%s.tmp", mpath);
-    FILE *f = fopen(tmp, "w"), *md = fopen(mtmp, "w");
-    if (!f || !md) {
-        fprintf(stderr, "%s: cannot write\n", dir);
+    chapter_file_t cf, cm;
+    FILE *f = chapter_open(&cf, "ch01_brdf", dir, "ch01_albedo.csv");
+    FILE *md = f ? chapter_open(&cm, "ch01_brdf", dir, "ch01_albedo.md") : NULL;
+    if (!md) {
+        if (f)
+            fclose(f);
         return 1;
     }
     fprintf(f, "# Albedo (integral of f cos) of each component with rho = 1, by "
                "Monte Carlo, %ld samples each, seed %llu\nmodel,param,value,"
-               "theta_deg,albedo,stderr\n", NSAMP, (unsigned long long)SEED);
+               "theta_deg,albedo,stderr\n", nsamp, (unsigned long long)SEED);
     FILE *outs[2] = { stdout, md };
     for (int o = 0; o < 2; o++) {
         fprintf(outs[o], "\nAlbedo with rho = 1 against theta_o (degrees); "
                          "%ld samples each, standard error < 0.005 unless "
-                         "shown\n\n| model | param | ", NSAMP);
+                         "shown\n\n| model | param | ", nsamp);
         for (int j = 0; j < NA; j++)
             fprintf(outs[o], "%g | ", theta_deg[j]);
         fprintf(outs[o], "\n|---|---|");
@@ -424,22 +478,29 @@ static int albedo_tables(const char *dir)
             fprintf(outs[o], "\n");
         }
     }
-    int bad = (ferror(f) | fclose(f)) || rename(tmp, path) != 0;
-    bad |= (ferror(md) | fclose(md)) || rename(mtmp, mpath) != 0;
-    if (bad)
-        fprintf(stderr, "%s: cannot write\n", dir);
-    else
-        printf("wrote %s\nwrote %s\n", path, mpath);
-    return bad;
+    int bad = chapter_close(&cf, "ch01_brdf");
+    return bad | chapter_close(&cm, "ch01_brdf");
 }
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out";
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "%s: %s\n", dir, strerror(errno));
-        return 1;
-    }
+    double samples = (double)nsamp;
+    const chapter_opt_t opts[] = {
+        { "--samples", "N", "Monte Carlo samples per albedo", &samples, 100,
+          1e9 },
+    };
+    const chapter_cli_t cli = {
+        "ch01_brdf",
+        "Chapter 1's reflection models: polar plots of the lobes, the "
+        "Schlick curves,\nand albedo tables, as PPM pictures, CSV files "
+        "(for `make figures`) and Markdown.",
+        "out", opts, 1
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
+    nsamp = (long)samples;
     int bad = polar_plots(dir);
     bad |= schlick_plot(dir);
     bad |= albedo_tables(dir);

@@ -7,11 +7,13 @@
  * angle, the local frame (app. A), rotation about an axis (app. C), and a
  * picture of every primitive of app. D shaded by its normal.
  *
- * usage: ch01_geometry [OUTDIR]   (default out/ch01; writes primitives.ppm)
+ * usage: ch01_geometry [OUTDIR]   (default out/ch01; writes primitives.ppm;
+ * --help)
  */
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/stat.h>
+
+#include "../chapter.h"
 
 #include "geometry/box.h"
 #include "render/camera.h"
@@ -244,12 +246,20 @@ static int gallery(const char *dir)
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out/ch01";
+    const chapter_cli_t cli = {
+        "ch01_geometry",
+        "The book's structures at work (VECTOR3, PATHPOINT, reflection, "
+        "refraction,\nframes, rotation), printed, and every primitive of "
+        "app. D in OUTDIR/primitives.ppm.",
+        "out/ch01", NULL, 0
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
     vectors();
     pathpoint();
     reflect_refract();
     frames_and_rotation();
-    mkdir("out", 0777);
-    mkdir(dir, 0777);
     return gallery(dir);
 }

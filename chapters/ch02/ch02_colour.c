@@ -12,22 +12,21 @@
  *                          is and corrected to D65 by XYZ scaling, von
  *                          Kries and Bradford, next to a daylight reference
  *
- * Images are PPM (8-bit sRGB, no library). The printed tables: the sRGB
+ *   ch02_locus.csv, ch02_planck.csv, ch02_points.csv, ch02_gamut.csv,
+ *   ch02_fill.csv          the diagram's curves, points and colours
+ *   ch02_blackbody.csv     the ramp's chromaticity and display colour
+ *   ch02_white_balance.csv the colour error of each correction
+ *
+ * Images are PPM (8-bit sRGB, no library); the CSV files are drawn with
+ * axes and legends by chromaticity.gp, blackbody.gp and white_balance.gp
+ * beside this file (`make figures`). The printed tables: the sRGB
  * matrices derived from the primaries, the luminous efficacy of blackbody
  * light (eq. (1.2)), a lamp given in watts turned into lumens, candela and
  * RADIANCE, and the colour error of each white balance.
  *
- * usage: ch02 [outdir]   (default out/)
+ * usage: ch02 [OUTDIR]   (default out/; --help)
  */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* mkdir */
-#endif
-#include <errno.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
-
+#include "../chapter.h"
 #include "colour/colour.h"
 #include "colour/spectrum.h"
 
@@ -119,14 +118,10 @@ static void text(picture_t *p, int x, int y, int s, const char *str, RADIANCE c)
  * so that a failed write never leaves half an image under the real name. */
 static int picture_write(const picture_t *p, const char *dir, const char *name)
 {
-    char path[1024], tmp[1040];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        fprintf(stderr, "ch02: %s: %s\n", tmp, strerror(errno));
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch02", dir, name);
+    if (!f)
         return 1;
-    }
     fprintf(f, "P6\n%d %d\n255\n", p->w, p->h);
     for (int i = 0; i < p->w * p->h; i++) {
         unsigned char b[3] = { colour_srgb_encode_byte(p->px[i].r),
@@ -134,13 +129,7 @@ static int picture_write(const picture_t *p, const char *dir, const char *name)
                                colour_srgb_encode_byte(p->px[i].b) };
         fwrite(b, 1, 3, f);
     }
-    if (ferror(f) | fclose(f) || rename(tmp, path) != 0) {
-        fprintf(stderr, "ch02: cannot write %s\n", path);
-        remove(tmp);
-        return 1;
-    }
-    printf("wrote %s (%d x %d)\n", path, p->w, p->h);
-    return 0;
+    return chapter_close(&cf, "ch02");
 }
 
 /* A displayable version of any linear colour: out-of-gamut colours mixed
@@ -197,6 +186,81 @@ static void mark_white(picture_t *p, colour_xy_t w, const char *name, int dx, in
     dot(p, px_x(w.x), px_y(w.y), 4.5, BLACK);
     dot(p, px_x(w.x), px_y(w.y), 2.5, WHITE);
     text(p, (int)px_x(w.x) + dx, (int)px_y(w.y) + dy, 2, name, BLACK);
+}
+
+/* The diagram's data for chromaticity.gp: the spectral locus, the
+ * Planckian locus, the marked points, and a grid of the colours that
+ * fill the horseshoe (white outside it), as the picture shows them. */
+static int diagram_csv(const char *dir)
+{
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch02", dir, "ch02_locus.csv");
+    if (!f)
+        return 1;
+    fprintf(f, "# ch02: the spectral locus of the CIE 1931 observer, 1 nm "
+               "apart\nlambda_nm,x,y\n");
+    for (int i = 0; i < SPECTRUM_CMF_COUNT; i++)
+        fprintf(f, "%d,%.6f,%.6f\n", SPECTRUM_LAMBDA_MIN + i, locus[i][0],
+                locus[i][1]);
+    int rc = chapter_close(&cf, "ch02");
+
+    if (!(f = chapter_open(&cf, "ch02", dir, "ch02_planck.csv")))
+        return 1;
+    fprintf(f, "# ch02: the Planckian locus, the chromaticity of a "
+               "blackbody at T kelvin\nT_K,x,y\n");
+    for (double T = 1000; T < 25001; T *= 1.01) {
+        colour_xy_t c = spectrum_blackbody_xy((real)T);
+        fprintf(f, "%.1f,%.6f,%.6f\n", T, (double)c.x, (double)c.y);
+    }
+    rc |= chapter_close(&cf, "ch02");
+
+    if (!(f = chapter_open(&cf, "ch02", dir, "ch02_points.csv")))
+        return 1;
+    colour_space_t s;
+    colour_space_standard(&s, COLOUR_SPACE_SRGB);
+    const struct {
+        const char *name;
+        colour_xy_t c;
+    } pts[] = { { "sRGB red", s.red }, { "sRGB green", s.green },
+                { "sRGB blue", s.blue },
+                { "D65", colour_white_xy(COLOUR_WHITE_D65) },
+                { "D50", colour_white_xy(COLOUR_WHITE_D50) },
+                { "A", colour_white_xy(COLOUR_WHITE_A) },
+                { "E", colour_white_xy(COLOUR_WHITE_E) } };
+    fprintf(f, "# ch02: the sRGB primaries and the white points of app. "
+               "J\nname,x,y\n");
+    for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++)
+        fprintf(f, "%s,%.6f,%.6f\n", pts[i].name, (double)pts[i].c.x,
+                (double)pts[i].c.y);
+    rc |= chapter_close(&cf, "ch02");
+
+    if (!(f = chapter_open(&cf, "ch02", dir, "ch02_gamut.csv")))
+        return 1;
+    fprintf(f, "# ch02: the sRGB gamut, the triangle of its primaries, "
+               "closed\ncorner,x,y\n");
+    for (int i = 0; i < 4; i++)
+        fprintf(f, "%s,%.6f,%.6f\n", pts[i % 3].name, (double)pts[i % 3].c.x,
+                (double)pts[i % 3].c.y);
+    rc |= chapter_close(&cf, "ch02");
+
+    if (!(f = chapter_open(&cf, "ch02", dir, "ch02_fill.csv")))
+        return 1;
+    fprintf(f, "# ch02: the colour of each chromaticity at luminance 1, "
+               "brought into the sRGB gamut (sRGB codes 0-255; white outside "
+               "the locus)\nx,y,r,g,b\n");
+    for (int j = 0; j <= 180; j++)
+        for (int i = 0; i <= 160; i++) {
+            double x = i * 0.005, y = j * 0.005;
+            RADIANCE c = WHITE;
+            if (y > 0 && inside_locus(x, y)) {
+                colour_xyY_t q = { (real)x, (real)y, 1 };
+                c = bright(colour_xyz_to_rgb(colour_xyY_to_xyz(q)), REAL_C(0.9));
+            }
+            fprintf(f, "%.3f,%.3f,%d,%d,%d\n", x, y,
+                    colour_srgb_encode_byte(c.r), colour_srgb_encode_byte(c.g),
+                    colour_srgb_encode_byte(c.b));
+        }
+    return rc | chapter_close(&cf, "ch02");
 }
 
 static int chromaticity_diagram(const char *dir)
@@ -288,7 +352,7 @@ static int chromaticity_diagram(const char *dir)
 
     int rc = picture_write(&p, dir, "ch02_chromaticity.ppm");
     free(p.px);
-    return rc;
+    return rc | diagram_csv(dir);
 }
 
 /* --- 2. the blackbody ramp ---------------------------------------------------- */
@@ -323,7 +387,22 @@ static int blackbody_ramp(const char *dir)
     line(&p, x1900, 2, x1900, 8, 0.5, WHITE);
     int rc = picture_write(&p, dir, "ch02_blackbody.ppm");
     free(p.px);
-    return rc;
+
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch02", dir, "ch02_blackbody.csv");
+    if (!f)
+        return 1;
+    fprintf(f, "# ch02: a blackbody's chromaticity and its colour at full "
+               "brightness (sRGB codes 0-255, the top band of "
+               "ch02_blackbody.ppm)\nT_K,x,y,r,g,b\n");
+    for (int T = 1000; T <= 12000; T += 50) {
+        colour_xy_t c = spectrum_blackbody_xy((real)T);
+        RADIANCE top = bright(spectrum_blackbody_rgb((real)T), 1);
+        fprintf(f, "%d,%.6f,%.6f,%d,%d,%d\n", T, (double)c.x, (double)c.y,
+                colour_srgb_encode_byte(top.r), colour_srgb_encode_byte(top.g),
+                colour_srgb_encode_byte(top.b));
+    }
+    return rc | chapter_close(&cf, "ch02");
 }
 
 /* --- 3. white balance ----------------------------------------------------------- */
@@ -426,7 +505,8 @@ static void draw_panel(picture_t *p, int x0, int y0, const colour_xyz_t xyz[24],
 
 /* mean and largest Delta E*ab of a panel against the reference, both seen
  * with the D65 white */
-static void delta_e(const char *name, const colour_xyz_t a[24], const colour_xyz_t ref[24])
+static void delta_e(FILE *csv, const char *name, const colour_xyz_t a[24],
+                    const colour_xyz_t ref[24])
 {
     colour_xyz_t d65 = colour_white_xyz(COLOUR_WHITE_D65);
     double sum = 0, worst = 0;
@@ -437,6 +517,8 @@ static void delta_e(const char *name, const colour_xyz_t a[24], const colour_xyz
         worst = fmax(worst, e);
     }
     printf("  %-28s mean %6.2f   max %6.2f\n", name, sum / 24, worst);
+    if (csv)
+        fprintf(csv, "%s,%.4f,%.4f\n", name, sum / 24, worst);
 }
 
 static int white_balance(const char *dir)
@@ -482,10 +564,17 @@ static int white_balance(const char *dir)
     printf("\nWhite balance: a chart lit by illuminant A (%.1f K), corrected to D65.\n"
            "Delta E*ab (CIE 1976, D65 white) against the chart under 6504 K light:\n",
            (double)T_a);
-    delta_e("uncorrected", under_a, ref);
+    chapter_file_t cf;
+    FILE *csv = chapter_open(&cf, "ch02", dir, "ch02_white_balance.csv");
+    if (csv)
+        fprintf(csv, "# ch02: a chart lit by illuminant A, corrected to D65; "
+                     "Delta E*ab (CIE 1976) against the chart under 6504 K "
+                     "light\nmethod,mean_delta_e,max_delta_e\n");
+    delta_e(csv, "uncorrected", under_a, ref);
     for (int k = 0; k < 3; k++)
-        delta_e(methods[k].name, fixed[k], ref);
-    int rc = picture_write(&p, dir, "ch02_white_balance.ppm");
+        delta_e(csv, methods[k].name, fixed[k], ref);
+    int rc = chapter_close(&cf, "ch02");
+    rc |= picture_write(&p, dir, "ch02_white_balance.ppm");
     free(p.px);
     return rc;
 }
@@ -529,13 +618,19 @@ static void tables(void)
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out";
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "ch02: cannot create %s: %s\n", dir, strerror(errno));
-        return 1;
-    }
+    const chapter_cli_t cli = {
+        "ch02",
+        "Chapter 2 and appendices J, K: the chromaticity diagram, a blackbody "
+        "ramp and a\nwhite balance, as PPM pictures and CSV files (for "
+        "`make figures`), and printed\ntables.",
+        "out", NULL, 0
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
     tables();
-    int rc = white_balance(dir);
+    rc = white_balance(dir);
     putchar('\n');
     rc |= chromaticity_diagram(dir);
     rc |= blackbody_ramp(dir);

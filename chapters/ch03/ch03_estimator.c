@@ -26,10 +26,15 @@
  * standard error sqrt(Var/N). The renderer's integrator (src/render/integrator.c)
  * is the same estimator plus light sampling and MIS (ch. 5).
  *
- * usage: ch03 [N_max]   (default 262144 paths)
+ * The estimate and its standard error at every power of two go to
+ * OUTDIR/ch03_convergence.csv, drawn by convergence.gp beside this file
+ * (`make figures`).
+ * usage: ch03 [OUTDIR] [--paths N]   (default out/, 262144 paths; --help)
  */
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "../chapter.h"
 
 #include "render/camera.h"
 #include "geometry/disk.h"
@@ -145,16 +150,36 @@ static real estimate(const scene3_t *s, ray_t r, pcg32_t *g, bool verbose)
 
 int main(int argc, char **argv)
 {
-    long nmax = argc > 1 ? atol(argv[1]) : 262144;
-    if (nmax < 1) {
-        fprintf(stderr, "usage: ch03 [N_max >= 1]\n");
+    double paths = 262144;
+    const chapter_opt_t opts[] = {
+        { "--paths", "N", "paths through the pixel", &paths, 1, 1e9 },
+    };
+    const chapter_cli_t cli = {
+        "ch03",
+        "Chapter 3: the rendering equation's estimator for one pixel, the "
+        "first paths\nprinted step by step, and its convergence (printed, "
+        "and in OUTDIR/ch03_convergence.csv).",
+        "out", opts, 1
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
+    long nmax = (long)paths;
+    chapter_file_t cf;
+    FILE *csv = chapter_open(&cf, cli.prog, dir, "ch03_convergence.csv");
+    if (!csv)
         return 1;
-    }
+    fprintf(csv, "# ch03: the estimate of L (green, W/(m^2 sr)) at the centre "
+                 "pixel after N paths, its standard error sqrt(Var/N) and "
+                 "sqrt(Var)\nN,mean,stderr,sqrt_var\n");
     scene3_t s;
     build(&s);
     for (int i = 0; i < NOBJ; i++)
         if (!s.obj[i]) {
             fprintf(stderr, "ch03: could not build the scene\n");
+            fclose(csv);
+            remove(cf.tmp);
             return 1;
         }
     camera_t cam;
@@ -188,6 +213,9 @@ int main(int argc, char **argv)
             lit_shown = true;
         }
         estimator_add(&e, (double)L);
+        if (((n + 1) & n) == 0 || n + 1 == nmax) /* a power of two, or the last */
+            fprintf(csv, "%ld,%.9g,%.9g,%.9g\n", n + 1, estimator_mean(&e),
+                    estimator_stderr(&e), sqrt(estimator_variance(&e)));
         if (n + 1 == next || n + 1 == nmax) {
             if (next == 1)
                 printf("%10s %12s %12s %12s\n", "N", "mean L", "std. error",
@@ -201,5 +229,5 @@ int main(int argc, char **argv)
            "the error.\n");
     for (int i = 0; i < NOBJ; i++)
         cobject_free(s.obj[i]);
-    return 0;
+    return chapter_close(&cf, cli.prog);
 }

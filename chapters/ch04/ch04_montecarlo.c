@@ -12,24 +12,22 @@
  *   ch04_roulette.csv    Russian roulette and truncation
  *   ch04_montecarlo.md   all tables, as printed
  *
- * usage: ch04 [outdir]   (default out/)
+ * The CSV files are drawn by error.gp and roulette.gp beside this file
+ * (`make figures`).
+ * usage: ch04 [OUTDIR] [--kmax K] [--paths N]   (default out/; --help)
  */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* mkdir */
-#endif
-#include <errno.h>
 #include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
 
+#include "../chapter.h"
 #include "core/rng.h"
 #include "core/sample.h"
 
 #define PI_D 3.14159265358979323846
-#define KMAX 10                  /* N = 4^0 .. 4^KMAX */
+#define KMAX 10                  /* N = 4^0 .. 4^kmax, kmax <= KMAX */
 #define SEED UINT64_C(20240401)  /* every number below follows from it */
+
+static int kmax = KMAX;          /* --kmax */
+static long npaths = 1000000;    /* --paths: Russian roulette's paths */
 
 /* The irradiance integral: radiance L(theta) = cos^n(theta) arriving at a
  * surface gives the irradiance E = int_H L cos(theta) dw = 2 pi / (n + 2)
@@ -166,28 +164,6 @@ static void out(const char *fmt, ...)
     }
 }
 
-static FILE *open_tmp(const char *dir, const char *name, char *tmp, size_t n)
-{
-    snprintf(tmp, n, "%s/%s.tmp", dir, name);
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        fprintf(stderr, "ch04: %s: %s\n", tmp, strerror(errno));
-    return f;
-}
-
-static int close_tmp(FILE *f, const char *dir, const char *name,
-                     const char *tmp)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    if ((ferror(f) | fclose(f)) || rename(tmp, path) != 0) {
-        fprintf(stderr, "ch04: %s: %s\n", path, strerror(errno));
-        remove(tmp);
-        return 1;
-    }
-    return 0;
-}
-
 /* --- the error against N ----------------------------------------------- */
 
 /* Independent runs at each N: many where a run is cheap, fewer at the top
@@ -202,7 +178,7 @@ static double loglog_slope(const double *err)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int m = 0;
-    for (int k = 2; k <= KMAX; k++) {
+    for (int k = 2; k <= kmax; k++) {
         if (!(err[k] > 0))
             continue;
         double x = log(pow(4.0, k)), y = log(err[k]);
@@ -220,7 +196,7 @@ static int error_table(const char *title, const char *csvname,
                        const char *dir, const method_t *ms, int nm,
                        double exact, uint64_t stream0)
 {
-    long nmax = 1L << (2 * KMAX);
+    long nmax = 1L << (2 * kmax);
     real *pts = malloc((size_t)(2 * nmax) * sizeof *pts);
     double (*rmse)[KMAX + 1] = calloc((size_t)nm, sizeof *rmse);
     double *var_measured = calloc((size_t)nm, sizeof *var_measured);
@@ -230,7 +206,7 @@ static int error_table(const char *title, const char *csvname,
         return 1;
     }
     for (int m = 0; m < nm; m++)
-        for (int k = 0; k <= KMAX; k++) {
+        for (int k = 0; k <= kmax; k++) {
             long n = 1L << (2 * k);
             int runs = runs_at(k);
             estimator_t sq; /* squared errors of the runs */
@@ -244,7 +220,7 @@ static int error_table(const char *title, const char *csvname,
                 estimator_add(&sq, e * e);
             }
             rmse[m][k] = sqrt(estimator_mean(&sq));
-            if (k == KMAX)
+            if (k == kmax)
                 var_measured[m] = (double)n * estimator_mean(&sq);
         }
 
@@ -258,7 +234,7 @@ static int error_table(const char *title, const char *csvname,
     for (int m = 0; m < nm; m++)
         out("---:|");
     out("\n");
-    for (int k = 0; k <= KMAX; k++) {
+    for (int k = 0; k <= kmax; k++) {
         out("| %ld |", 1L << (2 * k));
         for (int m = 0; m < nm; m++)
             out(" %.3e |", rmse[m][k]);
@@ -279,16 +255,16 @@ static int error_table(const char *title, const char *csvname,
         else
             out(" - |");
     }
-    out("\n| **N x MSE** at N = 4^%d |", KMAX);
+    out("\n| **N x MSE** at N = 4^%d |", kmax);
     for (int m = 0; m < nm; m++)
         out(" %.4g |", var_measured[m]);
     out("\n\n");
     for (int m = 0; m < nm; m++)
         out("- *%s*: %s\n", ms[m].name, ms[m].what);
 
-    char tmp[1100];
     int rc = 0;
-    FILE *f = open_tmp(dir, csvname, tmp, sizeof tmp);
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch04", dir, csvname);
     if (!f) {
         rc = 1;
     } else {
@@ -297,13 +273,13 @@ static int error_table(const char *title, const char *csvname,
         for (int m = 0; m < nm; m++)
             fprintf(f, ",%s", ms[m].name);
         fprintf(f, "\n");
-        for (int k = 0; k <= KMAX; k++) {
+        for (int k = 0; k <= kmax; k++) {
             fprintf(f, "%ld", 1L << (2 * k));
             for (int m = 0; m < nm; m++)
                 fprintf(f, ",%.6e", rmse[m][k]);
             fprintf(f, "\n");
         }
-        rc = close_tmp(f, dir, csvname, tmp);
+        rc = chapter_close(&cf, "ch04");
     }
     free(pts);
     free(rmse);
@@ -327,11 +303,10 @@ static int error_table(const char *title, const char *csvname,
 static int roulette_table(const char *dir)
 {
     const double rho = 0.8, exact = 1 / (1 - rho);
-    const long npaths = 1000000;
     static const double qs[] = { 0.99, 0.9, 0.8, 0.7, 0.65, 0.6 };
     static const int depths[] = { 5, 10, 20, 50 };
-    char tmp[1100];
-    FILE *f = open_tmp(dir, "ch04_roulette.csv", tmp, sizeof tmp);
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch04", dir, "ch04_roulette.csv");
     if (f)
         fprintf(f, "# Russian roulette and truncation on the furnace L = Le "
                    "+ rho L, rho = %g, exact %g; written by "
@@ -396,18 +371,32 @@ static int roulette_table(const char *dir)
         "%.2f the variance is infinite: the measured one is then whatever "
         "the rare very long paths made it, and grows with the number of "
         "paths.\n", rho * rho);
-    return f ? close_tmp(f, dir, "ch04_roulette.csv", tmp) : 1;
+    return chapter_close(&cf, "ch04");
 }
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out";
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "ch04: %s: %s\n", dir, strerror(errno));
-        return 1;
-    }
-    char mdtmp[1100];
-    md = open_tmp(dir, "ch04_montecarlo.md", mdtmp, sizeof mdtmp);
+    double k_opt = KMAX, paths_opt = (double)npaths;
+    const chapter_opt_t opts[] = {
+        { "--kmax", "K", "the largest N is 4^K", &k_opt, 2, KMAX },
+        { "--paths", "N", "paths per Russian roulette row", &paths_opt, 1,
+          1e9 },
+    };
+    const chapter_cli_t cli = {
+        "ch04",
+        "Chapter 4: Monte Carlo integration by uniform, importance and "
+        "stratified\nsampling, error against N, and Russian roulette, as "
+        "tables (printed and\nMarkdown) and CSV files (for `make figures`).",
+        "out", opts, 2
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
+    kmax = (int)k_opt;
+    npaths = (long)paths_opt;
+    chapter_file_t mdf;
+    md = chapter_open(&mdf, cli.prog, dir, "ch04_montecarlo.md");
     if (!md)
         return 1;
 
@@ -438,7 +427,7 @@ int main(int argc, char **argv)
     snprintf(title, sizeof title,
              "Irradiance from radiance cos^%d: int_H cos^%d(theta) dw = "
              "2 pi/%d", IRR_N, IRR_N + 1, IRR_N + 2);
-    int rc = error_table(title, "ch04_irradiance.csv", dir, irr, 5,
+    rc = error_table(title, "ch04_irradiance.csv", dir, irr, 5,
                          irr_exact(), 0);
 
     /* Uniform: pi sin(pi u): pi^2/2 - 4. Triangle: E[(sin/p)^2] - 4 by
@@ -473,9 +462,7 @@ int main(int argc, char **argv)
         "(here up to the rounding of `real`).\n");
 
     rc |= roulette_table(dir);
-    rc |= close_tmp(md, dir, "ch04_montecarlo.md", mdtmp);
     md = NULL;
-    printf("\nwrote %s/ch04_irradiance.csv, ch04_sine.csv, ch04_roulette.csv, "
-           "ch04_montecarlo.md\n", dir);
+    rc |= chapter_close(&mdf, cli.prog);
     return rc ? 1 : 0;
 }

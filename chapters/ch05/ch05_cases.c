@@ -8,7 +8,9 @@
  * sampling with the power heuristic (Veach 1997, sec. 9.2), and direct
  * lighting - at EQUAL TIME, and judged against a reference rendered by
  * `path` for many times longer. Writes the images (PFM, PPM), one
- * side-by-side picture per case and a table of error and efficiency.
+ * side-by-side picture per case and a table of error and efficiency
+ * (table.md, and table.csv drawn by table.gp beside this file: `make
+ * figures`).
  * The integrator: src/render/integrator.c (tests: tests/render/test_integrator.c).
  *
  * usage: ch05 [OUTDIR] [--budget S] [--ref-factor K] [--scale F] [--spp N]
@@ -16,17 +18,16 @@
  * (default out/ch05; run from the top directory, where scenes/ is)
  */
 #ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* mkdir, sysconf */
+#define _POSIX_C_SOURCE 200809L /* sysconf */
 #endif
-#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
+#include "../chapter.h"
 #include "stats/converge.h"
 #include "io/fileio.h"
 #include "stats/imgcompare.h"
@@ -173,26 +174,6 @@ static void out(const char *fmt, ...)
         vfprintf(table_md, fmt, ap);
         va_end(ap);
     }
-}
-
-/* mkdir -p for a relative or absolute path */
-static int make_dirs(const char *dir)
-{
-    char buf[1024];
-    size_t n = strlen(dir);
-    if (n == 0 || n >= sizeof buf)
-        return -1;
-    memcpy(buf, dir, n + 1);
-    for (size_t i = 1; i <= n; i++) {
-        if (buf[i] != '/' && buf[i] != '\0')
-            continue;
-        char c = buf[i];
-        buf[i] = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            return -1;
-        buf[i] = c;
-    }
-    return 0;
 }
 
 /* Every panel of a case is shown with the same fixed mapping - the scene's
@@ -473,6 +454,15 @@ static void cpu_model(char *buf, size_t n)
     fclose(f);
 }
 
+/* The efficiency of `path` on the same case, 0 if it was not run. */
+static double path_efficiency(const row_t *rows, int nrows, const char *scene)
+{
+    for (int j = 0; j < nrows; j++)
+        if (rows[j].scene == scene && strcmp(rows[j].strategy, "path") == 0)
+            return rows[j].efficiency;
+    return 0;
+}
+
 static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
                         int nrefs, const opts_t *o, int argc, char **argv)
 {
@@ -501,11 +491,7 @@ static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
     out("|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (int i = 0; i < nrows; i++) {
         const row_t *r = &rows[i];
-        double eff_path = 0;
-        for (int j = 0; j < nrows; j++)
-            if (rows[j].scene == r->scene &&
-                strcmp(rows[j].strategy, "path") == 0)
-                eff_path = rows[j].efficiency;
+        double eff_path = path_efficiency(rows, nrows, r->scene);
         out("| %s | %s | %ld | %.2f | %.4g | %.4g | %.3g | %.3g | ", r->scene,
             r->strategy, r->spp, r->seconds, r->rmse, r->relmse, r->relvar,
             r->noise_ratio);
@@ -537,6 +523,32 @@ static void print_table(const row_t *rows, int nrows, const refrow_t *refs,
         "about 1 when noise explains the error, far above 1 for a biased "
         "image (a strategy that misses light); efficiency: "
         "1 / (relMSE x seconds), relative to path's.\n");
+}
+
+/* The table as CSV for table.gp: one row per image; efficiency is
+ * relative to path's on the same case. */
+static svet_status write_csv(const char *dir, const row_t *rows, int nrows,
+                             svet_error *err)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/table.csv", dir);
+    fileio_t f;
+    svet_status st = fileio_begin(&f, path, err);
+    if (st != SVET_OK)
+        return st;
+    fprintf(f.f, "# ch05: each case rendered with each strategy; relMSE "
+                 "against the reference, efficiency 1 / (relMSE x seconds) "
+                 "relative to path's\ncase,strategy,spp,seconds,rmse,relmse,"
+                 "relvar,noise_ratio,efficiency_vs_path\n");
+    for (int i = 0; i < nrows; i++) {
+        const row_t *r = &rows[i];
+        double eff_path = path_efficiency(rows, nrows, r->scene);
+        fprintf(f.f, "%s,%s,%ld,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g\n", r->scene,
+                r->strategy, r->spp, r->seconds, r->rmse, r->relmse, r->relvar,
+                r->noise_ratio, eff_path > 0 ? r->efficiency / eff_path
+                                             : (double)NAN);
+    }
+    return fileio_commit(&f, err);
 }
 
 /* --- main ----------------------------------------------------------------------- */
@@ -576,6 +588,7 @@ static bool parse_cases(const char *list, unsigned *mask)
 int main(int argc, char **argv)
 {
     opts_t o = { "out/ch05", 1.0, 16.0, 0.5, 0, 0, true, (1u << NCASES) - 1 };
+    bool have_dir = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         char *end = NULL;
@@ -583,7 +596,13 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (a[0] != '-') {
+            if (have_dir) {
+                fprintf(stderr, "ch05: one output directory only: '%s', "
+                                "then '%s'\n", o.dir, a);
+                return 2;
+            }
             o.dir = a;
+            have_dir = true;
             continue;
         } else if (!v) {
             fprintf(stderr, "ch05: %s needs a value\n", a);
@@ -625,10 +644,8 @@ int main(int argc, char **argv)
         }
         i++;
     }
-    if (make_dirs(o.dir) != 0) {
-        fprintf(stderr, "ch05: %s: %s\n", o.dir, strerror(errno));
+    if (chapter_make_dir("ch05", o.dir) != 0)
         return 1;
-    }
 
     row_t rows[NCASES * ST_COUNT];
     refrow_t refs[NCASES];
@@ -655,7 +672,8 @@ int main(int argc, char **argv)
     table_md = f.f;
     print_table(rows, nrows, refs, nrefs, &o, argc, argv);
     table_md = NULL;
-    if (fileio_commit(&f, &err) != SVET_OK) {
+    if (fileio_commit(&f, &err) != SVET_OK ||
+        write_csv(o.dir, rows, nrows, &err) != SVET_OK) {
         fprintf(stderr, "ch05: %s\n", err.msg);
         return 1;
     }

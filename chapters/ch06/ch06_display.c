@@ -18,17 +18,11 @@
  *                             equalisation, with their log-log slopes
  *   ch06_display.md           the table printed below
  *
- * usage: ch06 [outdir]   (default out/)
+ * The CSV files are drawn by trc.gp beside this
+ * file (`make figures`).
+ * usage: ch06 [OUTDIR]   (default out/; --help)
  */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* mkdir */
-#endif
-#include <errno.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/stat.h>
-
+#include "../chapter.h"
 #include "colour/colour.h"
 #include "io/fileio.h"
 #include "io/image.h"
@@ -355,11 +349,17 @@ fail:
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out";
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "ch06: cannot make %s: %s\n", dir, strerror(errno));
-        return 1;
-    }
+    const chapter_cli_t cli = {
+        "ch06",
+        "Chapter 6: one HDR image through every tone-mapping operator, and "
+        "the histogram\nadjustment's tone reproduction curve, as PFM/PPM "
+        "pictures, CSV files (for\n`make figures`) and a Markdown table.",
+        "out", NULL, 0
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
     svet_error err;
     image_t hdr, side;
     const int gap = 4;
@@ -464,7 +464,7 @@ int main(int argc, char **argv)
                     "histogram adjustment: largest log-log slope %.3f with "
                     "the ceiling, %.3f for naive equalisation\n",
                     tonemap_histogram_max_slope(&h), naive_slope);
-    int rc = plot_histogram(&h, cum, dir) | write_csvs(&h, cum, dir);
+    rc = plot_histogram(&h, cum, dir) | write_csvs(&h, cum, dir);
     fputs(table, stdout);
     snprintf(path, sizeof path, "%s/ch06_display.md", dir);
     if (fileio_write_text(path, table, &err) != SVET_OK) {

@@ -6,10 +6,14 @@
  * pixel's camera ray visits (Amanatides & Woo's walk, every level of the
  * hierarchy counted), as a PFM of the raw counts (R = cells, G = triangle
  * tests, B = 1 where the ray hit) and a false-colour PPM on one log scale
- * per scene; and a table of build time, memory and work per ray.
- * Usage: ch07 [OUTDIR]   (default out/; the directory must exist)
+ * per scene, with the cells counts also as CSV (one row of the image a
+ * line) for heatmap.gp beside this file (`make figures`), which draws
+ * them with their colour scale; and a table of build time, memory and
+ * work per ray.
+ * Usage: ch07 [OUTDIR] [--width W]   (default out/, 480 x 360; --help)
  * Benchmark tables: bench/bench_grid.c, chapters/ch07/README.md.
  */
+#include "../chapter.h"
 #include "accel/accel.h"
 #include "accel/grid.h"
 #include "render/camera.h"
@@ -22,7 +26,7 @@
 #include <string.h>
 #include <time.h>
 
-enum { W = 480, H = 360 };
+static int W = 480, H = 360; /* --width W: H = 3 W / 4 */
 
 /* A ramp from black through purple, red and yellow to white: a count c of
  * at most cmax maps to t = ln(1 + c) / ln(1 + cmax). */
@@ -78,7 +82,22 @@ static int write_maps(const char *dir, const scene_t_ *sc, accel_kind kind,
         return 1;
     }
     printf("  wrote %s (and .pfm)\n", path);
-    return 0;
+
+    char name[256];
+    snprintf(name, sizeof name, "ch07_%s_%s_cells.csv", sc->name,
+             accel_kind_name(kind));
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch07", dir, name);
+    if (!f)
+        return 1;
+    fprintf(f, "# ch07: cells visited by the camera ray of each pixel, %s, "
+               "%s; %d rows of %d, the top row first; largest count of the "
+               "scene %.0f\n", sc->title, accel_kind_name(kind), H, W, cmax);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            fprintf(f, "%.0f%c", (double)image_at(counts, x, y)[0],
+                    x + 1 < W ? ',' : '\n');
+    return chapter_close(&cf, "ch07");
 }
 
 static double seconds(void)
@@ -154,7 +173,25 @@ static int run_scene(const char *dir, scene_t_ *sc)
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out";
+    double width = W;
+    const chapter_opt_t opts[] = {
+        { "--width", "W", "image width; the height is 3 W / 4", &width, 4,
+          4096 },
+    };
+    const chapter_cli_t cli = {
+        "ch07",
+        "Chapter 7: heat maps of the cells each camera ray visits in the "
+        "uniform and the\nhierarchical grid, for two scenes of 1e5 "
+        "triangles (PFM, PPM and CSV), and a\ntable of build time, memory "
+        "and work per ray.",
+        "out", opts, 1
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
+    W = (int)width;
+    H = 3 * W / 4;
     svet_error err;
     scene_t_ sc[2];
     memset(sc, 0, sizeof sc);
