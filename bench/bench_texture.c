@@ -2,7 +2,8 @@
  * bench_texture.c - `make bench-texture`: millions of evaluations a second,
  * on one thread, of Perlin's improved noise (ch. 10; texture/noise.h) with
  * and without its gradient and as a 6-octave fractal sum, and of app. L's
- * lookups in a 64^3 grid (texture/interp.h). The points are drawn before
+ * lookups in a 64^3 grid (texture/interp.h), and of lookups in a
+ * 1024 x 1024 RGB mip map by each filter (texture/mipmap.h). The points are drawn before
  * timing; each figure is the best of several runs of at least 0.2 s.
  * Prints a Markdown table, also written to bench/results/texture.md (or
  * the path given as argv[1]).
@@ -14,6 +15,7 @@
 
 #include "core/rng.h"
 #include "texture/interp.h"
+#include "texture/mipmap.h"
 #include "texture/noise.h"
 
 #define NPTS 65536
@@ -23,6 +25,8 @@ static VECTOR3 pts[NPTS];
 static float grid_v[GRID * GRID * GRID];
 static interp_grid_t grid = { GRID, GRID, GRID, grid_v };
 static volatile double sink;
+static mipmap_t mip;
+static real footprint[NPTS];
 
 typedef double (*kernel_fn)(void);
 
@@ -66,6 +70,21 @@ INTERP_KERNEL(k_trilinear, interp_trilinear)
 INTERP_KERNEL(k_parabolic, interp_parabolic)
 INTERP_KERNEL(k_blend, interp_parabolic_blend)
 
+#define MIP_KERNEL(name, filter)                                            \
+    static double name(void)                                                \
+    {                                                                       \
+        real s = 0, c[3];                                                   \
+        for (int i = 0; i < NPTS; i++) {                                    \
+            mipmap_lookup(&mip, filter, pts[i][X] / GRID, pts[i][Y] / GRID, \
+                          footprint[i], c);                                 \
+            s += c[0];                                                      \
+        }                                                                   \
+        return (double)s;                                                   \
+    }
+MIP_KERNEL(k_mip_nearest, MIPMAP_NEAREST)
+MIP_KERNEL(k_mip_bilinear, MIPMAP_BILINEAR)
+MIP_KERNEL(k_mip_trilinear, MIPMAP_TRILINEAR)
+
 /* millions of calls per CPU-second of this thread (a shared machine
  * disturbs that less than the wall clock): best of runs of >= 0.2 s */
 static double rate(kernel_fn k)
@@ -96,6 +115,20 @@ int main(int argc, char **argv)
             pts[i][k] = (GRID - 1) * pcg32_real(&g);
     for (int i = 0; i < GRID * GRID * GRID; i++)
         grid_v[i] = (float)pcg32_real(&g);
+    /* footprints of 1/4 to 64 texels, as camera rays over a plane */
+    for (int i = 0; i < NPTS; i++)
+        footprint[i] = exp2(8 * pcg32_real(&g) - 2) / 1024;
+    float *tex = malloc(sizeof *tex * 1024 * 1024 * 3);
+    if (!tex)
+        return 1;
+    for (int i = 0; i < 1024 * 1024 * 3; i++)
+        tex[i] = (float)pcg32_real(&g);
+    svet_error e;
+    if (mipmap_build(&mip, tex, 1024, 1024, 3, MIPMAP_REPEAT, &e) != SVET_OK) {
+        fprintf(stderr, "bench_texture: %s\n", e.msg);
+        return 1;
+    }
+    free(tex);
 
     static const struct {
         const char *what;
@@ -108,6 +141,9 @@ int main(int argc, char **argv)
         { "grid lookup, trilinear (app. L)", k_trilinear },
         { "grid lookup, parabolic (app. L)", k_parabolic },
         { "grid lookup, parabolic blending (Overhauser)", k_blend },
+        { "mip map lookup, nearest texel, RGB", k_mip_nearest },
+        { "mip map lookup, bilinear, RGB", k_mip_bilinear },
+        { "mip map lookup, trilinear, RGB", k_mip_trilinear },
     };
     char path[1100], load[160];
     snprintf(path, sizeof path, "%s.tmp", out);
@@ -136,6 +172,7 @@ int main(int argc, char **argv)
         perror(out);
         return 1;
     }
+    mipmap_free(&mip);
     printf("written to %s\n", out);
     return 0;
 }
