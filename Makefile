@@ -107,7 +107,8 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 .SECONDARY:
 
 .PHONY: all lib test check-tags sanitize chapters figures vectors \
-        check-vectors cc-lines clean install uninstall help bench $(BENCHES)
+        noise-vectors check-vectors cc-lines clean install uninstall help \
+        bench $(BENCHES)
 
 all: lib chapters $(BUILD)/svet
 
@@ -244,6 +245,17 @@ $(BUILD)/tools/%: tools/%.c $(wildcard tools/*.h) $(LIB)
 # reference: the C tests check the code against the committed files.
 vectors: $(VECTOOLS)
 	@for t in $(VECTOOLS); do echo "$$t"; $$t tests/vectors || exit 1; done
+
+# tests/vectors/noise_perlin.csv comes from Perlin's algorithm in Java, not
+# from svet (tools/perlin/PerlinVectors.java); it needs a JDK, which neither
+# the build nor the tests do.
+noise-vectors:
+	@if command -v javac >/dev/null 2>&1 && command -v java >/dev/null 2>&1; then \
+	    d=$$(mktemp -d) && javac -d $$d tools/perlin/PerlinVectors.java && \
+	    java -cp $$d PerlinVectors > tests/vectors/noise_perlin.csv.tmp && \
+	    mv tests/vectors/noise_perlin.csv.tmp tests/vectors/noise_perlin.csv && \
+	    rm -rf $$d && echo "wrote tests/vectors/noise_perlin.csv"; \
+	else echo "noise-vectors: needs a JDK (javac and java), which is not installed"; exit 1; fi
 
 # --- benchmarks: bench/bench_NAME.c is `make bench-NAME` --------------------
 BENCH_OPT ?= -O2
@@ -383,6 +395,7 @@ help:
 	@echo "make check-tags      the book's equations tagged in src/, include/; paths in *.md"
 	@echo "make figures         chapter programs' plots as PNG and SVG (gnuplot)"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
+	@echo "make noise-vectors   rewrite tests/vectors/noise_perlin.csv (needs a JDK)"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
 	@echo "make reference       re-render tests/reference/ (converged references)"
 	@echo "make tradeoffs       measure speed against accuracy: docs/tradeoffs.md"
