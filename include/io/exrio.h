@@ -43,7 +43,14 @@ svet_status exrio_write(const char *path, const image_t *img,
  * or chunk, a truncated file, R G B incomplete: the message lists the
  * channels found), SVET_ERR_UNSUPPORTED (tiled or deep files, subsampled
  * channels), SVET_ERR_RANGE (dimensions beyond the limits of image.h),
- * SVET_ERR_NOMEM. Every message starts with the path. */
+ * SVET_ERR_NOMEM. A directory, FIFO or device is refused (fileio.h).
+ * Every message starts with the path. */
 svet_status exrio_read(const char *path, image_t *img, svet_error *err);
+
+/* exrio_read() with the limits of `lim` (NULL: the defaults of image.h):
+ * a file of more pixels than lim allows fails with SVET_ERR_RANGE before
+ * its pixels are allocated. */
+svet_status exrio_read_with(const char *path, image_t *img,
+                            const image_read_limits_t *lim, svet_error *err);
 
 #endif

@@ -1,14 +1,21 @@
 /*
  * test_imageio.c - images by name (imageio.h): formats told by content,
- * written by extension, and a render saved as HDR plus display image.
+ * written by extension, and a render saved as HDR plus display image;
+ * every reader's limit of pixels, and what it does with a directory, a
+ * FIFO or a device.
  */
 #include "testutil.h"
 #include "imgtest.h"
+#include "io/exrio.h"
 #include "io/imageio.h"
+#include "io/netpbm.h"
+#include "io/pngio.h"
 #include "colour/colour.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 START_TEST(files_are_read_by_their_content_not_their_name)
 {
@@ -117,6 +124,113 @@ START_TEST(unknown_and_empty_files_are_refused)
 }
 END_TEST
 
+/* The readers, each with the limits of `limits`, as imgtest_reader_fn. */
+static image_read_limits_t limits;
+
+static svet_status read_exr_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return exrio_read_with(path, img, &limits, err);
+}
+
+static svet_status read_pfm_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return netpbm_read_pfm_with(path, img, &limits, err);
+}
+
+static svet_status read_png_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return pngio_read_with(path, img, NULL, &limits, err);
+}
+
+static svet_status read_ppm_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return netpbm_read_ppm_with(path, img, NULL, &limits, err);
+}
+
+static svet_status read_any_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return imageio_read_with(path, img, false, NULL, &limits, err);
+}
+
+static const struct {
+    const char *name;
+    imgtest_reader_fn read;
+} readers[] = {
+    { "x.exr", read_exr_lim }, { "x.pfm", read_pfm_lim },
+    { "x.png", read_png_lim }, { "x.ppm", read_ppm_lim },
+    { "x.exr", read_any_lim }, { "x.png", read_any_lim },
+};
+enum { NREADERS = sizeof readers / sizeof readers[0] };
+
+START_TEST(every_reader_keeps_to_the_pixel_limit)
+{
+    /* A header may claim far more pixels than its bytes hold (a PNG of
+     * 783 KB can declare 16384 x 16384, which deflate can just about
+     * expand to): every reader refuses an image beyond its limit before
+     * allocating, and reads one at the limit. */
+    image_t img;
+    svet_error err;
+    imgtest_hdr_image(&img, 11, 10, 3);
+    for (int i = 0; i < NREADERS; i++) {
+        const char *path = imgtest_path(readers[i].name);
+        ck_assert_int_eq(imageio_write(path, &img, &err), SVET_OK);
+        limits.max_pixels = 110;
+        image_t back;
+        ck_assert_msg(readers[i].read(path, &back, &err) == SVET_OK, "%s",
+                      err.msg);
+        image_free(&back);
+        limits.max_pixels = 109;
+        imgtest_check_bad_file(readers[i].read, path, SVET_ERR_RANGE,
+                               "exceeds the limit of 109 pixels");
+    }
+    image_free(&img);
+
+    /* the default (0, or no limits at all): IMAGE_READ_MAX_PIXELS */
+    limits.max_pixels = 0;
+    const char *pfm = imgtest_path("big.pfm");
+    imgtest_write_bytes(pfm, "PF\n16384 16384\n-1\n0123456789ab", 30);
+    imgtest_check_bad_file(read_pfm_lim, pfm, SVET_ERR_RANGE,
+                           "exceeds the limit of 67108864 pixels");
+    imgtest_check_bad_file(read_any, pfm, SVET_ERR_RANGE, "limit");
+    const char *ppm = imgtest_path("big.ppm");
+    imgtest_write_bytes(ppm, "P6\n8193 8192\n255\n012345", 25);
+    imgtest_check_bad_file(read_any, ppm, SVET_ERR_RANGE, "limit");
+    /* a raised limit lets the header through to the next check */
+    limits.max_pixels = IMAGE_MAX_PIXELS;
+    imgtest_check_bad_file(read_pfm_lim, pfm, SVET_ERR_PARSE, "truncated");
+    test_report_cases("every_reader_keeps_to_the_pixel_limit",
+                      2 * NREADERS + 4);
+}
+END_TEST
+
+START_TEST(directories_fifos_and_devices_are_refused_without_blocking)
+{
+    /* Opening a FIFO for reading waits for a writer; reading /dev/zero
+     * never ends. Every reader says what the file is instead. */
+    const char *dir = imgtest_path("a-dir.exr");
+    ck_assert_int_eq(mkdir(dir, 0755), 0);
+    const char *fifo = imgtest_path("a-fifo.png");
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    limits.max_pixels = 0;
+    for (int i = 0; i < NREADERS; i++) {
+        imgtest_check_bad_file(readers[i].read, dir, SVET_ERR_IO,
+                               "is a directory");
+        imgtest_check_bad_file(readers[i].read, fifo, SVET_ERR_IO, "FIFO");
+        imgtest_check_bad_file(readers[i].read, "/dev/zero", SVET_ERR_IO,
+                               "device");
+    }
+    rmdir(dir);
+    unlink(fifo);
+    test_report_cases("directories_fifos_and_devices_are_refused_without_"
+                      "blocking", 3 * NREADERS);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("imageio");
@@ -125,6 +239,9 @@ Suite *test_suite(void)
     tcase_add_test(tc, display_files_can_be_read_back_as_linear);
     tcase_add_test(tc, a_render_is_saved_as_hdr_and_display_image);
     tcase_add_test(tc, unknown_and_empty_files_are_refused);
+    tcase_add_test(tc, every_reader_keeps_to_the_pixel_limit);
+    tcase_add_test(tc,
+                   directories_fifos_and_devices_are_refused_without_blocking);
     suite_add_tcase(s, tc);
     return s;
 }
