@@ -239,13 +239,17 @@ fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
     rng shape triangle vec parallelogram xform
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
+fuzz_image_MODULES := image imageio exrio pngio netpbm fileio error colour \
+    tonemap spectrum
+fuzz_image_ARGS := -dict=fuzz/image.dict -max_len=65536
+fuzz_image_LIBS := $(PKG_CFLAGS) $(PKG_LIBS)
 
 # the source of module M, wherever its part's folder is
 src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
 $(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $< $(call src_of,$(fuzz_$*_MODULES)) \
-	    -lm -o $@
+	    $(fuzz_$*_LIBS) -lm -o $@
 
 fuzz-%: $(FUZZ_BUILD)/fuzz_%
 	@mkdir -p fuzz/findings/$*/corpus
