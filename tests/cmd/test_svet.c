@@ -187,6 +187,47 @@ START_TEST(diff_refuses_bad_inputs_with_exit_code_2)
 }
 END_TEST
 
+START_TEST(a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs)
+{
+    /* On a full disk the EXR header cannot be written; that once hung
+     * svet render (also with --checkpoint) and svet diff --error-image
+     * for ever, leaving an empty temporary file. */
+    const char *disk = imgtest_small_disk(128);
+    if (!disk)
+        return;
+    char a[1024], b[1024], exr[1100], png[1100], e[1100], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
+    make_pair(a, b, 0.25f);
+    snprintf(exr, sizeof exr, "%s/r.exr", disk);
+    snprintf(png, sizeof png, "%s/r.png", disk);
+    snprintf(e, sizeof e, "%s/e.exr", disk);
+    static const char old[] = "an earlier output";
+    const char *const outputs[] = { exr, png, e };
+    for (int i = 0; i < 3; i++)
+        imgtest_write_bytes(outputs[i], old, sizeof old);
+    imgtest_fill_disk(disk);
+
+    const char *const renders[] = { "", " --checkpoint --passes 2" };
+    for (int i = 0; i < 2; i++) {
+        snprintf(args, sizeof args, "render scenes/cbox.scn -q --spp 2 "
+                 "--set resolution=8x8 -o '%s'%s", exr, renders[i]);
+        ck_assert_msg(cmdtest_run_timed(out, sizeof out, 20, args) == 3,
+                      "svet %s:\n%s", args, out);
+        ck_assert_ptr_nonnull(strstr(out, exr));
+    }
+    snprintf(args, sizeof args, "diff '%s' '%s' --error-image '%s'", a, b, e);
+    ck_assert_msg(cmdtest_run_timed(out, sizeof out, 20, args) == 3,
+                  "svet %s:\n%s", args, out);
+    ck_assert_ptr_nonnull(strstr(out, e));
+    for (int i = 0; i < 3; i++) {
+        ck_assert_msg(imgtest_file_is(outputs[i], old, sizeof old),
+                      "%s was changed", outputs[i]);
+        ck_assert_int_eq(imgtest_count_temps(outputs[i]), 0);
+    }
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -197,6 +238,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
+    tcase_add_test(tc, a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs);
     suite_add_tcase(s, tc);
     return s;
 }

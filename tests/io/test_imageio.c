@@ -2,7 +2,7 @@
  * test_imageio.c - images by name (imageio.h): formats told by content,
  * written by extension, and a render saved as HDR plus display image;
  * every reader's limit of pixels, and what it does with a directory, a
- * FIFO or a device.
+ * FIFO or a device; every writer on a full disk.
  */
 #include "testutil.h"
 #include "imgtest.h"
@@ -231,6 +231,45 @@ START_TEST(directories_fifos_and_devices_are_refused_without_blocking)
 }
 END_TEST
 
+START_TEST(every_writer_fails_cleanly_on_a_full_disk)
+{
+    /* A full disk fails the first write of every format: the EXR header
+     * (whose failure once hung the EXR writer for ever, its error handler
+     * waiting on a lock the failing call held), the PNG rows, the PFM and
+     * PPM data at the final flush. Each must report it, keep the old file
+     * and leave no temporary file. */
+    const char *dir = imgtest_small_disk(64);
+    if (!dir)
+        return;
+    static const char *const names[] = { "a.exr", "b.pfm", "c.png", "d.ppm",
+                                         "e.exr" };
+    enum { N = sizeof names / sizeof names[0] };
+    char paths[N][1100];
+    static const char old[] = "the previous output";
+    for (int i = 0; i < N; i++) {
+        snprintf(paths[i], sizeof paths[i], "%s/%s", dir, names[i]);
+        imgtest_write_bytes(paths[i], old, sizeof old);
+    }
+    imgtest_fill_disk(dir);
+    image_t img;
+    imgtest_hdr_image(&img, 64, 64, 3);
+    for (int i = 0; i < N; i++) {
+        svet_error err;
+        svet_status st = i == 4 ? exrio_write(paths[i], &img, EXRIO_HALF,
+                                              EXRIO_NONE, &err)
+                                : imageio_write(paths[i], &img, &err);
+        ck_assert_msg(st == SVET_ERR_IO, "%s: %s", paths[i],
+                      svet_status_name(st));
+        ck_assert_msg(strstr(err.msg, paths[i]) != NULL, "%s", err.msg);
+        ck_assert_msg(imgtest_file_is(paths[i], old, sizeof old),
+                      "%s was changed", paths[i]);
+        ck_assert_int_eq(imgtest_count_temps(paths[i]), 0);
+    }
+    image_free(&img);
+    test_report_cases("every_writer_fails_cleanly_on_a_full_disk", N);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("imageio");
@@ -242,6 +281,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, every_reader_keeps_to_the_pixel_limit);
     tcase_add_test(tc,
                    directories_fifos_and_devices_are_refused_without_blocking);
+    tcase_add_test(tc, every_writer_fails_cleanly_on_a_full_disk);
     suite_add_tcase(s, tc);
     return s;
 }
