@@ -233,11 +233,12 @@ FUZZ_BUILD ?= build/fuzz
 FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
-    frame material mesh obj parallelogram plane quadric ray rng sample scene \
-    scenefile shape sphere triangle vec xform allparts objmesh grid primset
+    fileio frame material mesh obj parallelogram plane quadric ray rng \
+    sample scene scenefile shape sphere triangle vec xform allparts objmesh \
+    grid primset
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
-fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
-    rng shape triangle vec parallelogram xform
+fuzz_obj_MODULES := accel bbox cobject error fileio frame grid mesh obj \
+    primset ray rng shape triangle vec parallelogram xform
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 fuzz_image_MODULES := image imageio exrio pngio netpbm fileio error colour \
     tonemap spectrum

@@ -21,6 +21,7 @@
 #include "cmdutil.h"
 #include "stats/converge.h"
 #include "io/exrio.h"
+#include "io/fileio.h"
 #include "render/render.h"
 #include "render/scenefile.h"
 #include "stats/ztest.h"
@@ -343,7 +344,10 @@ done:
 static double spp_from_description(const char *ref)
 {
     char *path = cmd_replace_ext(ref, ".txt");
-    FILE *f = path ? fopen(path, "r") : NULL;
+    FILE *f = NULL;
+    svet_error err;
+    if (path && fileio_open_read(path, &f, &err) != SVET_OK)
+        f = NULL; /* no description (or not a regular file): no spp */
     free(path);
     if (!f)
         return 0;

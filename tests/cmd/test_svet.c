@@ -14,6 +14,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static int run(char *out, size_t cap, const char *args)
@@ -187,6 +188,32 @@ START_TEST(diff_refuses_bad_inputs_with_exit_code_2)
 }
 END_TEST
 
+START_TEST(inputs_that_are_not_regular_files_are_refused_at_once)
+{
+    /* A FIFO as the scene or as an image once blocked svet for ever; a
+     * directory was "an empty file". */
+    char a[1024], fifo[1024], dir[1024], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    make_pair(a, imgtest_path("b.pfm"), 0.5f);
+    snprintf(fifo, sizeof fifo, "%s", imgtest_path("fifo"));
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    snprintf(dir, sizeof dir, "%s", imgtest_path("dir"));
+    ck_assert_int_eq(mkdir(dir, 0755), 0);
+    snprintf(args, sizeof args, "render '%s' -q -o '%s'", fifo,
+             imgtest_path("r.exr"));
+    ck_assert_int_eq(cmdtest_run_timed(out, sizeof out, 20, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "is a FIFO"));
+    snprintf(args, sizeof args, "diff '%s' '%s'", fifo, a);
+    ck_assert_int_eq(cmdtest_run_timed(out, sizeof out, 20, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "is a FIFO"));
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, dir);
+    ck_assert_int_eq(cmdtest_run_timed(out, sizeof out, 20, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "is a directory"));
+    unlink(fifo);
+    rmdir(dir);
+}
+END_TEST
+
 START_TEST(a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs)
 {
     /* On a full disk the EXR header cannot be written; that once hung
@@ -238,6 +265,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
+    tcase_add_test(tc, inputs_that_are_not_regular_files_are_refused_at_once);
     tcase_add_test(tc, a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs);
     suite_add_tcase(s, tc);
     return s;
