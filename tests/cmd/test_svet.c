@@ -1,8 +1,10 @@
 /*
  * test_svet.c - the svet command itself (cmd/svet.c, cmd/cmd_diff.c): help,
- * exit codes and `svet diff` on files made here. The command is the one
- * built beside this suite: <build>/svet for <build>/tests/test_svet, so
- * `make test` (which builds it first) tests the matching REAL.
+ * exit codes and `svet diff` on files made here; inputs beyond the pixel
+ * limit, inputs that are not regular files, and a full disk. The command
+ * is the one built beside this suite: <build>/svet for
+ * <build>/tests/test_svet, so `make test` (which builds it first) tests
+ * the matching REAL.
  */
 #include "testutil.h"
 #include "cmdtest.h"
@@ -188,6 +190,58 @@ START_TEST(diff_refuses_bad_inputs_with_exit_code_2)
 }
 END_TEST
 
+START_TEST(images_beyond_the_pixel_limit_are_refused)
+{
+    /* A header claiming 16384 x 16384 pixels (as a 783 KB PNG can) made
+     * svet diff allocate gigabytes; the limit is checked first, and
+     * --max-pixels or SVET_MAX_PIXELS move it. */
+    char a[1024], b[1024], big[1024], args[4096];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
+    make_pair(a, b, 0.5f); /* 24 x 16 = 384 pixels */
+    snprintf(big, sizeof big, "%s", imgtest_path("big.pfm"));
+    imgtest_write_bytes(big, "PF\n16384 16384\n-1\n0123456789ab", 30);
+    snprintf(args, sizeof args, "diff '%s' '%s'", big, a);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "exceeds the limit of 67108864"));
+    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 383", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "exceeds the limit of 383 pixels"));
+    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 384", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 0", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 1);
+    ck_assert_ptr_nonnull(strstr(out, "--max-pixels 0"));
+    /* the environment, when the option is not given */
+    ck_assert_int_eq(setenv("SVET_MAX_PIXELS", "383", 1), 0);
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "limit of 383"));
+    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 400", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    ck_assert_int_eq(setenv("SVET_MAX_PIXELS", "lots", 1), 0);
+    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 1);
+    ck_assert_ptr_nonnull(strstr(out, "SVET_MAX_PIXELS lots"));
+    unsetenv("SVET_MAX_PIXELS");
+    /* svet converge reads its images with the same limit */
+    image_t img;
+    svet_error err;
+    imgtest_hdr_image(&img, 12, 10, 3);
+    snprintf(a, sizeof a, "%s", imgtest_path("img.exr"));
+    snprintf(b, sizeof b, "%s", imgtest_path("ref.exr"));
+    ck_assert_int_eq(exrio_write(a, &img, EXRIO_FLOAT, EXRIO_ZIP, &err),
+                     SVET_OK);
+    ck_assert_int_eq(exrio_write(b, &img, EXRIO_FLOAT, EXRIO_ZIP, &err),
+                     SVET_OK);
+    image_free(&img);
+    snprintf(args, sizeof args, "converge --ztest '%s' --spp 4 --ref '%s' "
+             "--max-pixels 100", a, b);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    ck_assert_ptr_nonnull(strstr(out, "exceeds the limit of 100 pixels"));
+}
+END_TEST
+
 START_TEST(inputs_that_are_not_regular_files_are_refused_at_once)
 {
     /* A FIFO as the scene or as an image once blocked svet for ever; a
@@ -265,6 +319,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
+    tcase_add_test(tc, images_beyond_the_pixel_limit_are_refused);
     tcase_add_test(tc, inputs_that_are_not_regular_files_are_refused_at_once);
     tcase_add_test(tc, a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs);
     suite_add_tcase(s, tc);
