@@ -258,6 +258,27 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 	    -artifact_prefix=fuzz/findings/$*/ fuzz/findings/$*/corpus \
 	    fuzz/corpus/$*
 
+# `make fuzz-all`: every target in turn, FUZZ_TIME seconds each (a minute
+# by default), to rerun them after a change; it stops at the first
+# finding. Not part of `make test`: it needs clang with libFuzzer.
+FUZZ_TARGETS := $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
+fuzz-all:
+	@command -v $(FUZZ_CC) >/dev/null 2>&1 || { echo "make fuzz-all:" \
+	    "$(FUZZ_CC) not found; the fuzz targets need clang with libFuzzer" \
+	    "(Debian: apt-get install clang)" >&2; exit 1; }
+	@mkdir -p $(FUZZ_BUILD)
+	@printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n)%s\n' \
+	    '{ (void)d; (void)n; return 0; }' > $(FUZZ_BUILD)/probe.c
+	@$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_BUILD)/probe.c \
+	    -o $(FUZZ_BUILD)/probe 2>/dev/null || { echo "make fuzz-all:" \
+	    "$(FUZZ_CC) cannot link -fsanitize=fuzzer: libFuzzer is missing" \
+	    "(Debian: apt-get install clang, or FUZZ_CC=clang-NN)" >&2; exit 1; }
+	@for t in $(FUZZ_TARGETS); do \
+	    $(MAKE) --no-print-directory fuzz-$$t FUZZ_TIME=$(FUZZ_TIME) || \
+	        { echo "make fuzz-all: fuzz-$$t found something: see" \
+	          "fuzz/findings/$$t/" >&2; exit 1; }; \
+	done
+
 # --- reference output and the speed/accuracy measurements -----------------
 # `make reference` renders tests/reference/ from every scenes/*.scn with the
 # float build (tools/reference.sh: half resolution, 4096 spp; its README
@@ -265,7 +286,7 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs count-render count-grid ab-grid
+.PHONY: reference tradeoffs count-render count-grid ab-grid fuzz-all
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
@@ -322,6 +343,8 @@ help:
 	@echo "make count-render    instructions per Cornell-box sample (valgrind)"
 	@echo "make count-grid      instructions per ray of the grid at 1e6 (valgrind)"
 	@echo "make ab-grid BASE=C  the grid's rays/s against commit C's, alternating"
+	@echo "make fuzz-NAME       one fuzz target (clang): $(FUZZ_TARGETS)"
+	@echo "make fuzz-all        every fuzz target, FUZZ_TIME=60 seconds each"
 	@echo "make install PREFIX=... DESTDIR=..."
 	@echo "chapters: $(CHAPTERS)"
 

@@ -12,6 +12,8 @@
 #include "io/pngio.h"
 #include "colour/colour.h"
 
+#include <dirent.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -270,6 +272,44 @@ START_TEST(every_writer_fails_cleanly_on_a_full_disk)
 }
 END_TEST
 
+START_TEST(inputs_that_once_failed_are_handled)
+{
+    /* tests/data/image/regress-*: files that once crashed or misread a
+     * reader (and, as they are found, the fuzzer's findings, minimised).
+     * Each must read, or fail with a message that starts with its name;
+     * the fuzz target's check (fuzz/fuzz_image.c). */
+    const char *dir = "tests/data/image";
+    DIR *d = opendir(dir);
+    ck_assert_msg(d != NULL, "no %s (run from the top directory)", dir);
+    struct dirent *e;
+    int n = 0;
+    while ((e = readdir(d)) != NULL) {
+        if (strncmp(e->d_name, "regress-", 8) != 0)
+            continue;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        image_t img;
+        svet_error err;
+        svet_error_clear(&err);
+        svet_status st = imageio_read(path, &img, true, NULL, &err);
+        ck_assert_msg(st == SVET_OK ||
+                          strncmp(err.msg, path, strlen(path)) == 0,
+                      "%s: %s", path, err.msg);
+        if (st == SVET_OK) {
+            size_t k = (size_t)img.width * (size_t)img.height *
+                       (size_t)img.channels;
+            for (size_t i = 0; i < k; i++)
+                ck_assert_msg(isfinite(img.px[i]), "%s: value %zu", path, i);
+        }
+        image_free(&img);
+        n++;
+    }
+    closedir(d);
+    ck_assert_int_ge(n, 2);
+    test_report_cases("inputs_that_once_failed_are_handled", n);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("imageio");
@@ -282,6 +322,7 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    directories_fifos_and_devices_are_refused_without_blocking);
     tcase_add_test(tc, every_writer_fails_cleanly_on_a_full_disk);
+    tcase_add_test(tc, inputs_that_once_failed_are_handled);
     suite_add_tcase(s, tc);
     return s;
 }
