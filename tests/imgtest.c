@@ -32,7 +32,8 @@ static void remove_scratch(void)
             if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
                 continue;
             snprintf(p, sizeof p, "%s/%s", scratch, e->d_name);
-            unlink(p);
+            if (unlink(p) != 0)
+                rmdir(p); /* an (empty) directory a test made */
         }
         closedir(d);
     }
@@ -185,6 +186,14 @@ void imgtest_check_bad_file(imgtest_reader_fn reader, const char *path,
                   "message lacks '%s': %s", words, err.msg);
     ck_assert_ptr_null(img.px);
     ck_assert_int_eq(img.width, 0);
+}
+
+void imgtest_special_files(char *fifo, char *dir, size_t cap)
+{
+    snprintf(fifo, cap, "%s", imgtest_path("a-fifo"));
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    snprintf(dir, cap, "%s", imgtest_path("a-dir"));
+    ck_assert_int_eq(mkdir(dir, 0755), 0);
 }
 
 const char *imgtest_small_disk(int kib)

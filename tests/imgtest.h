@@ -47,6 +47,10 @@ void imgtest_check_failed_write_keeps_old(imgtest_writer_fn writer,
                                           const void *ctx, const char *path,
                                           long limit);
 
+/* Make a FIFO and a directory in the scratch directory, their names into
+ * fifo and dir (cap bytes each): inputs that are not regular files. */
+void imgtest_special_files(char *fifo, char *dir, size_t cap);
+
 /* A directory on a tmpfs of its own of `kib` KiB (a small disk to fill),
  * as "/proc/self/fd/N": the mount is detached at once and lives as long
  * as descriptor N, in this process and the commands it runs. Returns

@@ -14,6 +14,7 @@
 #include "io/exrio.h"
 #include "colour/colour.h"
 
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -35,6 +36,24 @@ static double value_of(const char *out, const char *name)
 }
 
 static char out[16384];
+
+/* Run `svet ARGS` (ARGS made by printf from fmt), killed after a minute
+ * should it hang, and check its exit code and that its output holds
+ * `words` (NULL: anything). */
+static void CK_ATTRIBUTE_FORMAT(printf, 3, 4)
+expect(int rc, const char *words, const char *fmt, ...)
+{
+    char args[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    int got = cmdtest_run_timed(out, sizeof out, 60, args);
+    ck_assert_msg(got == rc, "svet %s: exit %d, not %d:\n%s", args, got, rc,
+                  out);
+    ck_assert_msg(!words || strstr(out, words), "svet %s: no '%s' in:\n%s",
+                  args, words, out);
+}
 
 START_TEST(help_and_usage_errors_have_their_exit_codes)
 {
@@ -195,34 +214,23 @@ START_TEST(images_beyond_the_pixel_limit_are_refused)
     /* A header claiming 16384 x 16384 pixels (as a 783 KB PNG can) made
      * svet diff allocate gigabytes; the limit is checked first, and
      * --max-pixels or SVET_MAX_PIXELS move it. */
-    char a[1024], b[1024], big[1024], args[4096];
+    char a[1024], b[1024], big[1024];
     snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
     snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
     make_pair(a, b, 0.5f); /* 24 x 16 = 384 pixels */
     snprintf(big, sizeof big, "%s", imgtest_path("big.pfm"));
     imgtest_write_bytes(big, "PF\n16384 16384\n-1\n0123456789ab", 30);
-    snprintf(args, sizeof args, "diff '%s' '%s'", big, a);
-    ck_assert_int_eq(run(out, sizeof out, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "exceeds the limit of 67108864"));
-    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 383", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "exceeds the limit of 383 pixels"));
-    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 384", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 0);
-    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 0", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 1);
-    ck_assert_ptr_nonnull(strstr(out, "--max-pixels 0"));
+    expect(2, "exceeds the limit of 67108864", "diff '%s' '%s'", big, a);
+    expect(2, "exceeds the limit of 383 pixels",
+           "diff '%s' '%s' --max-pixels 383", a, b);
+    expect(0, NULL, "diff '%s' '%s' --max-pixels 384", a, b);
+    expect(1, "--max-pixels 0", "diff '%s' '%s' --max-pixels 0", a, b);
     /* the environment, when the option is not given */
     ck_assert_int_eq(setenv("SVET_MAX_PIXELS", "383", 1), 0);
-    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "limit of 383"));
-    snprintf(args, sizeof args, "diff '%s' '%s' --max-pixels 400", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    expect(2, "limit of 383", "diff '%s' '%s'", a, b);
+    expect(0, NULL, "diff '%s' '%s' --max-pixels 400", a, b);
     ck_assert_int_eq(setenv("SVET_MAX_PIXELS", "lots", 1), 0);
-    snprintf(args, sizeof args, "diff '%s' '%s'", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 1);
-    ck_assert_ptr_nonnull(strstr(out, "SVET_MAX_PIXELS lots"));
+    expect(1, "SVET_MAX_PIXELS lots", "diff '%s' '%s'", a, b);
     unsetenv("SVET_MAX_PIXELS");
     /* svet converge reads its images with the same limit */
     image_t img;
@@ -235,10 +243,8 @@ START_TEST(images_beyond_the_pixel_limit_are_refused)
     ck_assert_int_eq(exrio_write(b, &img, EXRIO_FLOAT, EXRIO_ZIP, &err),
                      SVET_OK);
     image_free(&img);
-    snprintf(args, sizeof args, "converge --ztest '%s' --spp 4 --ref '%s' "
-             "--max-pixels 100", a, b);
-    ck_assert_int_eq(run(out, sizeof out, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "exceeds the limit of 100 pixels"));
+    expect(2, "exceeds the limit of 100 pixels",
+           "converge --ztest '%s' --spp 4 --ref '%s' --max-pixels 100", a, b);
 }
 END_TEST
 
@@ -246,25 +252,14 @@ START_TEST(inputs_that_are_not_regular_files_are_refused_at_once)
 {
     /* A FIFO as the scene or as an image once blocked svet for ever; a
      * directory was "an empty file". */
-    char a[1024], fifo[1024], dir[1024], args[4096];
+    char a[1024], fifo[1024], dir[1024];
     snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
     make_pair(a, imgtest_path("b.pfm"), 0.5f);
-    snprintf(fifo, sizeof fifo, "%s", imgtest_path("fifo"));
-    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
-    snprintf(dir, sizeof dir, "%s", imgtest_path("dir"));
-    ck_assert_int_eq(mkdir(dir, 0755), 0);
-    snprintf(args, sizeof args, "render '%s' -q -o '%s'", fifo,
-             imgtest_path("r.exr"));
-    ck_assert_int_eq(cmdtest_run_timed(out, sizeof out, 20, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "is a FIFO"));
-    snprintf(args, sizeof args, "diff '%s' '%s'", fifo, a);
-    ck_assert_int_eq(cmdtest_run_timed(out, sizeof out, 20, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "is a FIFO"));
-    snprintf(args, sizeof args, "diff '%s' '%s'", a, dir);
-    ck_assert_int_eq(cmdtest_run_timed(out, sizeof out, 20, args), 2);
-    ck_assert_ptr_nonnull(strstr(out, "is a directory"));
-    unlink(fifo);
-    rmdir(dir);
+    imgtest_special_files(fifo, dir, sizeof fifo);
+    expect(2, "is a FIFO", "render '%s' -q -o '%s'", fifo,
+           imgtest_path("r.exr"));
+    expect(2, "is a FIFO", "diff '%s' '%s'", fifo, a);
+    expect(2, "is a directory", "diff '%s' '%s'", a, dir);
 }
 END_TEST
 
@@ -276,7 +271,7 @@ START_TEST(a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs)
     const char *disk = imgtest_small_disk(128);
     if (!disk)
         return;
-    char a[1024], b[1024], exr[1100], png[1100], e[1100], args[4096];
+    char a[1024], b[1024], exr[1100], png[1100], e[1100];
     snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
     snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
     make_pair(a, b, 0.25f);
@@ -288,19 +283,11 @@ START_TEST(a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs)
     for (int i = 0; i < 3; i++)
         imgtest_write_bytes(outputs[i], old, sizeof old);
     imgtest_fill_disk(disk);
-
     const char *const renders[] = { "", " --checkpoint --passes 2" };
-    for (int i = 0; i < 2; i++) {
-        snprintf(args, sizeof args, "render scenes/cbox.scn -q --spp 2 "
-                 "--set resolution=8x8 -o '%s'%s", exr, renders[i]);
-        ck_assert_msg(cmdtest_run_timed(out, sizeof out, 20, args) == 3,
-                      "svet %s:\n%s", args, out);
-        ck_assert_ptr_nonnull(strstr(out, exr));
-    }
-    snprintf(args, sizeof args, "diff '%s' '%s' --error-image '%s'", a, b, e);
-    ck_assert_msg(cmdtest_run_timed(out, sizeof out, 20, args) == 3,
-                  "svet %s:\n%s", args, out);
-    ck_assert_ptr_nonnull(strstr(out, e));
+    for (int i = 0; i < 2; i++)
+        expect(3, exr, "render scenes/cbox.scn -q --spp 2 "
+               "--set resolution=8x8 -o '%s'%s", exr, renders[i]);
+    expect(3, e, "diff '%s' '%s' --error-image '%s'", a, b, e);
     for (int i = 0; i < 3; i++) {
         ck_assert_msg(imgtest_file_is(outputs[i], old, sizeof old),
                       "%s was changed", outputs[i]);

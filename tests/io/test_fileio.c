@@ -103,10 +103,8 @@ START_TEST(readers_refuse_what_is_not_a_regular_file_without_blocking)
      * file that is a FIFO hung svet; a directory read as "an empty file".
      * fileio_open_read() and every reader that opens through it say what
      * the file is instead, at once. */
-    const char *fifo = imgtest_path("a-fifo");
-    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
-    const char *dir = imgtest_path("a-dir");
-    ck_assert_int_eq(mkdir(dir, 0755), 0);
+    char fifo[1024], dir[1024];
+    imgtest_special_files(fifo, dir, sizeof fifo);
     const struct {
         const char *path, *words;
     } cases[] = { { fifo, "is a FIFO (named pipe), not a regular file" },
@@ -154,8 +152,6 @@ START_TEST(readers_refuse_what_is_not_a_regular_file_without_blocking)
     ck_assert_int_eq(fileio_open_read(imgtest_path("none"), &f, &err),
                      SVET_ERR_IO);
     ck_assert_ptr_nonnull(strstr(err.msg, "cannot open: No such file"));
-    unlink(fifo);
-    rmdir(dir);
     test_report_cases("readers_refuse_what_is_not_a_regular_file_without_"
                       "blocking", n + 2);
 }
