@@ -287,12 +287,6 @@ static svet_status map_channels(const exr_attr_chlist_t *cl,
         const exr_attr_chlist_entry_t *e = &cl->entries[i];
         const char *name = e->name.str ? e->name.str : "";
         int k = channel_index(name);
-        bool wanted = k >= 0 || strcmp(name, "Y") == 0;
-        if (wanted && (e->x_sampling != 1 || e->y_sampling != 1))
-            return svet_error_set(err, SVET_ERR_UNSUPPORTED,
-                                  "%s: channel %s is subsampled (%d x %d); "
-                                  "svet reads full-resolution channels only",
-                                  path, name, e->x_sampling, e->y_sampling);
         if (k >= 0)
             map->rgba[k] = i;
         else if (strcmp(name, "Y") == 0)
@@ -312,6 +306,21 @@ static svet_status map_channels(const exr_attr_chlist_t *cl,
                               cl->num_channels ? found : "no channels");
     if (rgb)
         map->y = -1; /* colour wins over a luminance channel beside it */
+    /* The channels read must be full resolution; others may be anything. */
+    const int read[4] = { rgb ? map->rgba[0] : map->y,
+                          rgb ? map->rgba[1] : -1, rgb ? map->rgba[2] : -1,
+                          map->rgba[3] };
+    for (int j = 0; j < 4; j++) {
+        if (read[j] < 0)
+            continue;
+        const exr_attr_chlist_entry_t *e = &cl->entries[read[j]];
+        if (e->x_sampling != 1 || e->y_sampling != 1)
+            return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                                  "%s: channel %s is subsampled (%d x %d); "
+                                  "svet reads full-resolution channels only",
+                                  path, e->name.str ? e->name.str : "",
+                                  e->x_sampling, e->y_sampling);
+    }
     return SVET_OK;
 }
 

@@ -333,6 +333,8 @@ START_TEST(every_layout_and_compression_reads_back)
         { "Y A", { { "Y", H, 1 }, { "A", H, 1 } }, 2, "YA" },
         { "R G B depth", { { "R", H, 1 }, { "G", H, 1 }, { "B", H, 1 },
                            { "depth", H, 1 } }, 4, "RGB" },
+        { "R G B + Y 2 x 2", { { "R", H, 1 }, { "G", H, 1 }, { "B", H, 1 },
+                               { "Y", H, 2 } }, 4, "RGB" },
     };
     const exr_compression_t comps[] = {
         EXR_COMPRESSION_NONE, EXR_COMPRESSION_RLE,  EXR_COMPRESSION_ZIPS,
@@ -412,6 +414,14 @@ START_TEST(missing_channels_are_named_in_the_error)
     static const char *const z[] = { "Z" };
     write_channels(path, 4, 4, z, 1, EXR_STORAGE_SCANLINE);
     imgtest_check_bad_file(read_exr, path, SVET_ERR_PARSE, "no R, G, B");
+    /* a channel that is read must be full resolution */
+    const test_channel_t sub[] = { { "R", EXR_PIXEL_HALF, 1 },
+                                   { "G", EXR_PIXEL_HALF, 2 },
+                                   { "B", EXR_PIXEL_HALF, 1 } };
+    ck_assert(write_layout(path, 4, 4, sub, 3, EXR_STORAGE_SCANLINE,
+                           EXR_COMPRESSION_ZIP, layout_value));
+    imgtest_check_bad_file(read_exr, path, SVET_ERR_UNSUPPORTED,
+                           "channel G is subsampled (2 x 2)");
 }
 END_TEST
 
