@@ -519,6 +519,13 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
             if (rv != EXR_ERR_SUCCESS)
                 break;
         }
+        /* An uncompressed chunk shorter than its pixels: without a
+         * decompress step the library would leave the rest of its buffer
+         * unwritten, and the image would read garbage (or zeros). */
+        if (!dec.decompress_fn && cinfo.packed_size != cinfo.unpacked_size) {
+            rv = EXR_ERR_CORRUPT_CHUNK;
+            break;
+        }
         if ((rv = exr_decoding_run(ctx, 0, &dec)) != EXR_ERR_SUCCESS)
             break;
         for (int c = 0; c < dec.channel_count; c++) {

@@ -481,6 +481,20 @@ START_TEST(bad_exr_files_get_clear_errors)
     imgtest_check_bad_file(read_exr, path, SVET_ERR_PARSE, "pixels");
     cases++;
 
+    /* an uncompressed chunk that claims fewer bytes than its pixels hold
+     * (found by fuzz_image): it read as zeros, or garbage, with SVET_OK */
+    unsigned char *raw;
+    size_t nraw = good_file(&raw, EXRIO_NONE);
+    const size_t chunk = 8 + 40 * 3 * 2; /* y, size, one line of halves */
+    unsigned char *c0 = raw + nraw - 40 * chunk;
+    ck_assert_int_eq(c0[0] | c0[1] << 8, 0);     /* line 0 */
+    ck_assert_int_eq(c0[4] | c0[5] << 8, 240);   /* its size */
+    c0[4] = 120;
+    imgtest_write_bytes(path, raw, nraw);
+    imgtest_check_bad_file(read_exr, path, SVET_ERR_PARSE, "pixels");
+    free(raw);
+    cases++;
+
     /* an absurd data window: 2^31 - 1 pixels a side */
     memcpy(bad, good, n);
     static const char key[] = "dataWindow\0box2i";
