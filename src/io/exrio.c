@@ -329,7 +329,9 @@ static svet_status map_channels(const exr_attr_chlist_t *cl,
  * height. */
 typedef struct {
     float *buf;
-    size_t cap; /* floats */
+    size_t cap;  /* floats */
+    int *filled; /* per channel: lines unpacked into its plane so far */
+    int nchannels;
 } scratch_t;
 
 /* Point every channel of the chunk at its own plane of scratch, growing it
@@ -398,11 +400,11 @@ static exr_result_t unpack_to_planes(exr_decode_pipeline_t *dec)
 {
     const uint8_t *src = dec->unpacked_buffer;
     const uint8_t *end = src ? src + dec->chunk.unpacked_size : NULL;
-    if (!src)
+    scratch_t *sc = dec->decoding_user_data;
+    if (!src || !sc || dec->channel_count > sc->nchannels)
         return EXR_ERR_CORRUPT_CHUNK;
-    int filled[256] = { 0 }; /* lines written per channel, for <= 256 */
-    if (dec->channel_count > 256)
-        return EXR_ERR_CORRUPT_CHUNK;
+    int *filled = sc->filled;
+    memset(filled, 0, (size_t)dec->channel_count * sizeof *filled);
     for (int j = 0; j < dec->chunk.height; j++) {
         int64_t y = (int64_t)dec->chunk.start_y + j;
         for (int c = 0; c < dec->channel_count; c++) {
@@ -483,12 +485,15 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
         return rv;
     if (lines < 1 || lines > 256) /* 1, 16, 32 or 256 in the format */
         return EXR_ERR_CORRUPT_CHUNK;
-    size_t *at = malloc((size_t)(nchannels > 0 ? nchannels : 1) *
-                        sizeof *at);
-    if (!at)
+    size_t nch = (size_t)(nchannels > 0 ? nchannels : 1);
+    size_t *at = malloc(nch * sizeof *at);
+    scratch_t sc = { NULL, 0, calloc(nch, sizeof(int)), nchannels };
+    if (!at || !sc.filled) {
+        free(at);
+        free(sc.filled);
         return EXR_ERR_OUT_OF_MEMORY;
+    }
     const size_t w = (size_t)img->width;
-    scratch_t sc = { NULL, 0 };
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     bool started = false;
     for (int64_t y = dw->min.y; y <= dw->max.y && rv == EXR_ERR_SUCCESS;
@@ -526,6 +531,7 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
             rv = EXR_ERR_CORRUPT_CHUNK;
             break;
         }
+        dec.decoding_user_data = &sc; /* for unpack_to_planes */
         if ((rv = exr_decoding_run(ctx, 0, &dec)) != EXR_ERR_SUCCESS)
             break;
         for (int c = 0; c < dec.channel_count; c++) {
@@ -548,6 +554,7 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
     if (started)
         exr_decoding_destroy(ctx, &dec);
     free(sc.buf);
+    free(sc.filled);
     free(at);
     return rv;
 }
