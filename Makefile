@@ -292,12 +292,17 @@ FUZZ_BUILD ?= build/fuzz
 FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
-    frame material mesh obj parallelogram plane quadric ray rng sample scene \
-    scenefile shape sphere triangle vec xform allparts objmesh grid primset
+    fileio frame material mesh obj parallelogram plane quadric ray rng \
+    sample scene scenefile shape sphere triangle vec xform allparts objmesh \
+    grid primset
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
-fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
-    rng shape triangle vec parallelogram xform
+fuzz_obj_MODULES := accel bbox cobject error fileio frame grid mesh obj \
+    primset ray rng shape triangle vec parallelogram xform
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
+fuzz_image_MODULES := image imageio exrio pngio netpbm fileio error colour \
+    tonemap spectrum
+fuzz_image_ARGS := -dict=fuzz/image.dict -max_len=65536
+fuzz_image_LIBS := $(PKG_CFLAGS) $(PKG_LIBS)
 
 # the source of module M, wherever its part's folder is
 src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
@@ -305,13 +310,34 @@ $(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $(SIMDDEF) $< \
 	    $(call src_of,$(fuzz_$*_MODULES) $(call fast_of,$(fuzz_$*_MODULES))) \
-	    -lm -o $@
+	    $(fuzz_$*_LIBS) -lm -o $@
 
 fuzz-%: $(FUZZ_BUILD)/fuzz_%
 	@mkdir -p fuzz/findings/$*/corpus
 	$< -max_total_time=$(FUZZ_TIME) -timeout=5 $(fuzz_$*_ARGS) \
 	    -artifact_prefix=fuzz/findings/$*/ fuzz/findings/$*/corpus \
 	    fuzz/corpus/$*
+
+# `make fuzz-all`: every target in turn, FUZZ_TIME seconds each (a minute
+# by default), to rerun them after a change; it stops at the first
+# finding. Not part of `make test`: it needs clang with libFuzzer.
+FUZZ_TARGETS := $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
+fuzz-all:
+	@command -v $(FUZZ_CC) >/dev/null 2>&1 || { echo "make fuzz-all:" \
+	    "$(FUZZ_CC) not found; the fuzz targets need clang with libFuzzer" \
+	    "(Debian: apt-get install clang)" >&2; exit 1; }
+	@mkdir -p $(FUZZ_BUILD)
+	@printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n)%s\n' \
+	    '{ (void)d; (void)n; return 0; }' > $(FUZZ_BUILD)/probe.c
+	@$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_BUILD)/probe.c \
+	    -o $(FUZZ_BUILD)/probe 2>/dev/null || { echo "make fuzz-all:" \
+	    "$(FUZZ_CC) cannot link -fsanitize=fuzzer: libFuzzer is missing" \
+	    "(Debian: apt-get install clang, or FUZZ_CC=clang-NN)" >&2; exit 1; }
+	@for t in $(FUZZ_TARGETS); do \
+	    $(MAKE) --no-print-directory fuzz-$$t FUZZ_TIME=$(FUZZ_TIME) || \
+	        { echo "make fuzz-all: fuzz-$$t found something: see" \
+	          "fuzz/findings/$$t/" >&2; exit 1; }; \
+	done
 
 # --- reference output and the speed/accuracy measurements -----------------
 # `make reference` renders tests/reference/ from every scenes/*.scn with the
@@ -321,7 +347,7 @@ fuzz-%: $(FUZZ_BUILD)/fuzz_%
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
 .PHONY: reference tradeoffs count-render count-grid ab-grid ab-render \
-        bitcheck
+        bitcheck fuzz-all
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
@@ -405,6 +431,8 @@ help:
 	@echo "make ab-render BASE=C the Cornell box's samples/s against commit C's"
 	@echo "make SIMD=off ...    any target without the speed layers (build/REAL-plain/)"
 	@echo "make bitcheck        every scene the same bytes with SIMD=on and off [BASE=C]"
+	@echo "make fuzz-NAME       one fuzz target (clang): $(FUZZ_TARGETS)"
+	@echo "make fuzz-all        every fuzz target, FUZZ_TIME=60 seconds each"
 	@echo "make install PREFIX=... DESTDIR=..."
 	@echo "chapters: $(CHAPTERS)"
 

@@ -21,6 +21,7 @@
 #include "cmdutil.h"
 #include "stats/converge.h"
 #include "io/exrio.h"
+#include "io/fileio.h"
 #include "render/render.h"
 #include "render/scenefile.h"
 #include "stats/ztest.h"
@@ -71,6 +72,8 @@ void cmd_converge_help(FILE *f)
 "  --threads N           render threads (0 = every core)\n"
 "  --seed N              seed of the random numbers (use one other than the\n"
 "                        reference's, so that the errors are independent)\n"
+"  --max-pixels N        read images of up to N pixels (default 67108864,\n"
+"                        8192 x 8192, or the environment's SVET_MAX_PIXELS)\n"
 "  --no-plot             write the CSV only\n"
 "  --plot-script FILE    the gnuplot script (default " DEFAULT_SCRIPT ",\n"
 "                        relative to the current directory)\n"
@@ -343,7 +346,10 @@ done:
 static double spp_from_description(const char *ref)
 {
     char *path = cmd_replace_ext(ref, ".txt");
-    FILE *f = path ? fopen(path, "r") : NULL;
+    FILE *f = NULL;
+    svet_error err;
+    if (path && fileio_open_read(path, &f, &err) != SVET_OK)
+        f = NULL; /* no description (or not a regular file): no spp */
     free(path);
     if (!f)
         return 0;
@@ -382,7 +388,8 @@ static bool values_ok(const image_t *img, const char *path)
 static int ztest_files(const char *img_path, const char *var_path,
                        double spp, const char *ref_path,
                        const char *ref_var_path, double ref_spp,
-                       const char *pvalue_path)
+                       const char *pvalue_path,
+                       const image_read_limits_t *lim)
 {
     image_t img, var, ref, rvar, pv;
     memset(&img, 0, sizeof img);
@@ -403,10 +410,10 @@ static int ztest_files(const char *img_path, const char *var_path,
         rc = SVET_EXIT_INPUT;
         goto done;
     }
-    if (exrio_read(img_path, &img, &err) != SVET_OK ||
-        exrio_read(var_path, &var, &err) != SVET_OK ||
-        exrio_read(ref_path, &ref, &err) != SVET_OK ||
-        exrio_read(ref_var_path, &rvar, &err) != SVET_OK) {
+    if (exrio_read_with(img_path, &img, lim, &err) != SVET_OK ||
+        exrio_read_with(var_path, &var, lim, &err) != SVET_OK ||
+        exrio_read_with(ref_path, &ref, lim, &err) != SVET_OK ||
+        exrio_read_with(ref_var_path, &rvar, lim, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s\n", err.msg);
         rc = SVET_EXIT_INPUT;
         goto done;
@@ -572,7 +579,8 @@ int cmd_converge(int argc, char **argv)
     char *files[256];
     int nfiles = 0, nlist = 0;
     double list[MAX_POINTS], T = 0, E = 0, zspp = 0, ref_spp = 0;
-    const char *ztest_img = NULL, *ztest_var = NULL, *pvalue_path = NULL;
+    const char *ztest_img = NULL, *ztest_var = NULL, *pvalue_path = NULL,
+               *max_pixels = NULL;
     converge_metric metric = CONVERGE_REL;
     bool time_mode = false, have_list = false, no_plot = false,
          quiet = false, report_mode = false;
@@ -641,6 +649,8 @@ int cmd_converge(int argc, char **argv)
             if (!cmd_parse_double(v, &x) || !(x > 0) || x > 1e12)
                 return cmd_bad_value("converge", a, v);
             *(!strcmp(a, "--spp") ? &zspp : &ref_spp) = x;
+        } else if (!strcmp(a, "--max-pixels")) {
+            max_pixels = v;
         } else if (!strcmp(a, "--metric")) {
             if (!strcmp(v, "rel"))
                 metric = CONVERGE_REL;
@@ -665,6 +675,9 @@ int cmd_converge(int argc, char **argv)
         if (takes)
             i++;
     }
+    image_read_limits_t lim;
+    if (cmd_read_limits("converge", max_pixels, &lim) != SVET_EXIT_OK)
+        return SVET_EXIT_USAGE;
     if (ztest_img) {
         if (!ref_path || !(zspp > 0) || nfiles) {
             fprintf(stderr, "svet converge: --ztest IMAGE.exr needs --spp N "
@@ -672,7 +685,7 @@ int cmd_converge(int argc, char **argv)
             return SVET_EXIT_USAGE;
         }
         return ztest_files(ztest_img, ztest_var, zspp, ref_path,
-                           ref_var_path, ref_spp, pvalue_path);
+                           ref_var_path, ref_spp, pvalue_path, &lim);
     }
     if (report_mode) {
         if (nfiles == 0) {
@@ -709,7 +722,7 @@ int cmd_converge(int argc, char **argv)
     int rc = cmd_scene_load("converge", &scene, scene_path, &so);
     if (rc != SVET_EXIT_OK)
         goto done;
-    if (exrio_read(ref_path, &ref, &err) != SVET_OK) {
+    if (exrio_read_with(ref_path, &ref, &lim, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s\n", err.msg);
         rc = SVET_EXIT_INPUT;
         goto done;
@@ -720,7 +733,7 @@ int cmd_converge(int argc, char **argv)
             ref_var_path = var_default;
     }
     if (ref_var_path) {
-        if (exrio_read(ref_var_path, &ref_var, &err) != SVET_OK) {
+        if (exrio_read_with(ref_var_path, &ref_var, &lim, &err) != SVET_OK) {
             fprintf(stderr, "svet converge: %s\n", err.msg);
             rc = SVET_EXIT_INPUT;
             goto done;

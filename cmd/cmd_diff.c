@@ -47,6 +47,9 @@ void cmd_diff_help(FILE *f)
 "  --eps E              the epsilon of relmse (default 0.01)\n"
 "  --fail-above X       exit with 5 if the first metric listed exceeds X\n"
 "                       (for psnr: falls below X)\n"
+"  --max-pixels N       read images of up to N pixels (default 67108864,\n"
+"                       8192 x 8192, or the environment's SVET_MAX_PIXELS);\n"
+"                       a larger one is refused before it is allocated\n"
 "  -h, --help           this text\n"
 "\n"
 "exit codes: 0 compared (and within --fail-above); 1 bad command line;\n"
@@ -103,11 +106,12 @@ static const char *format_name(imageio_format_t f)
     return "?";
 }
 
-static int read_input(const char *path, image_t *img, imageio_format_t *f)
+static int read_input(const char *path, image_t *img, imageio_format_t *f,
+                      const image_read_limits_t *lim)
 {
     svet_error err;
     svet_error_clear(&err);
-    if (imageio_read(path, img, false, f, &err) != SVET_OK) {
+    if (imageio_read_with(path, img, false, f, lim, &err) != SVET_OK) {
         fprintf(stderr, "svet diff: %s\n", err.msg);
         return SVET_EXIT_INPUT;
     }
@@ -116,7 +120,8 @@ static int read_input(const char *path, image_t *img, imageio_format_t *f)
 
 int cmd_diff(int argc, char **argv)
 {
-    const char *paths[2] = { NULL, NULL }, *err_path = NULL;
+    const char *paths[2] = { NULL, NULL }, *err_path = NULL,
+               *max_pixels = NULL;
     int metrics[M_COUNT] = { M_MSE, M_RMSE, M_RELMSE, M_MAE, M_PSNR, M_MAX };
     int nmetrics = M_COUNT, npaths = 0;
     imgcompare_kind_t kind = IMGCOMPARE_ABS;
@@ -178,6 +183,8 @@ int cmd_diff(int argc, char **argv)
                         v);
                 return SVET_EXIT_USAGE;
             }
+        } else if (!strcmp(a, "--max-pixels")) {
+            max_pixels = v;
         } else if (!strcmp(a, "--fail-above")) {
             if (!cmd_parse_double(v, &fail_above)) {
                 fprintf(stderr, "svet diff: --fail-above %s: a number\n", v);
@@ -194,11 +201,14 @@ int cmd_diff(int argc, char **argv)
         return SVET_EXIT_USAGE;
     }
 
+    image_read_limits_t lim;
+    int rc = cmd_read_limits("diff", max_pixels, &lim);
+    if (rc != SVET_EXIT_OK)
+        return rc;
     image_t img[2] = { { 0 }, { 0 } };
     imageio_format_t fmt[2];
-    int rc = SVET_EXIT_OK;
     for (int k = 0; k < 2 && rc == SVET_EXIT_OK; k++)
-        rc = read_input(paths[k], &img[k], &fmt[k]);
+        rc = read_input(paths[k], &img[k], &fmt[k], &lim);
     bool display[2] = { imageio_is_display(fmt[0]),
                         imageio_is_display(fmt[1]) };
     if (rc == SVET_EXIT_OK && display[0] != display[1])

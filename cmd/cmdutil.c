@@ -36,6 +36,22 @@ bool cmd_parse_long(const char *s, long lo, long hi, long *out)
     return true;
 }
 
+int cmd_read_limits(const char *cmd, const char *max_pixels,
+                    image_read_limits_t *lim)
+{
+    lim->max_pixels = IMAGE_READ_MAX_PIXELS;
+    const char *v = max_pixels ? max_pixels : getenv("SVET_MAX_PIXELS");
+    if (!v)
+        return SVET_EXIT_OK;
+    long n;
+    if (!cmd_parse_long(v, 1, (long)IMAGE_MAX_PIXELS, &n))
+        return cmd_error(cmd, SVET_EXIT_USAGE, "%s %s: a whole number of "
+                         "pixels from 1 to %ld", max_pixels ? "--max-pixels"
+                         : "SVET_MAX_PIXELS", v, (long)IMAGE_MAX_PIXELS);
+    lim->max_pixels = (uint64_t)n;
+    return SVET_EXIT_OK;
+}
+
 bool cmd_parse_seed(const char *s, unsigned long long *out)
 {
     char *end;

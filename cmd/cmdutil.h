@@ -10,6 +10,7 @@
 
 #include <stdbool.h>
 
+#include "io/image.h"
 #include "render/scene.h"
 
 #if defined(__GNUC__)
@@ -46,6 +47,14 @@ int cmd_error(const char *cmd, int rc, const char *fmt, ...) CMD_PRINTF(3, 4);
 int cmd_missing_value(const char *cmd, const char *opt);
 int cmd_unknown_option(const char *cmd, const char *opt);
 int cmd_bad_value(const char *cmd, const char *opt, const char *value);
+
+/* The limits of an image read from a file: `max_pixels` (the value of
+ * --max-pixels, or NULL when not given), else the environment variable
+ * SVET_MAX_PIXELS, else IMAGE_READ_MAX_PIXELS (image.h). A value must be
+ * a whole number from 1 to IMAGE_MAX_PIXELS. Returns SVET_EXIT_OK, or
+ * SVET_EXIT_USAGE after printing why the value was refused. */
+int cmd_read_limits(const char *cmd, const char *max_pixels,
+                    image_read_limits_t *lim);
 
 /* path with its extension (the last '.' after the last '/', if any)
  * replaced by ext: ("a/b.exr", ".png") -> "a/b.png", ("a/b", "-var.exr")

@@ -27,10 +27,8 @@ const char *cmdtest_svet(void)
     return svet_path;
 }
 
-int cmdtest_run(char *out, size_t cap, const char *args)
+static int run_shell(char *out, size_t cap, const char *cmd)
 {
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", cmdtest_svet(), args);
     FILE *p = popen(cmd, "r");
     ck_assert_ptr_nonnull(p);
     size_t n = fread(out, 1, cap - 1, p);
@@ -38,4 +36,19 @@ int cmdtest_run(char *out, size_t cap, const char *args)
     int status = pclose(p);
     ck_assert(WIFEXITED(status));
     return WEXITSTATUS(status);
+}
+
+int cmdtest_run(char *out, size_t cap, const char *args)
+{
+    char cmd[4096];
+    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", cmdtest_svet(), args);
+    return run_shell(out, cap, cmd);
+}
+
+int cmdtest_run_timed(char *out, size_t cap, int seconds, const char *args)
+{
+    char cmd[4096];
+    snprintf(cmd, sizeof cmd, "timeout -k 2 %d '%s' %s 2>&1", seconds,
+             cmdtest_svet(), args);
+    return run_shell(out, cap, cmd);
 }

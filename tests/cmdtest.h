@@ -16,4 +16,9 @@ const char *cmdtest_svet(void);
  * test if the command did not exit normally. */
 int cmdtest_run(char *out, size_t cap, const char *args);
 
+/* cmdtest_run() for a command that might hang: killed after `seconds`
+ * (by timeout(1)), when it returns 124 or 137 rather than leave a stray
+ * process behind the test's own time-out. */
+int cmdtest_run_timed(char *out, size_t cap, int seconds, const char *args);
+
 #endif

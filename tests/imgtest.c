@@ -5,11 +5,17 @@
 #include "testutil.h"
 
 #include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
+#if defined(__linux__)
+#include <sys/mount.h>
+#endif
 
 static char scratch[512];
 static pid_t scratch_owner;
@@ -26,7 +32,8 @@ static void remove_scratch(void)
             if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
                 continue;
             snprintf(p, sizeof p, "%s/%s", scratch, e->d_name);
-            unlink(p);
+            if (unlink(p) != 0)
+                rmdir(p); /* an (empty) directory a test made */
         }
         closedir(d);
     }
@@ -179,4 +186,58 @@ void imgtest_check_bad_file(imgtest_reader_fn reader, const char *path,
                   "message lacks '%s': %s", words, err.msg);
     ck_assert_ptr_null(img.px);
     ck_assert_int_eq(img.width, 0);
+}
+
+void imgtest_special_files(char *fifo, char *dir, size_t cap)
+{
+    snprintf(fifo, cap, "%s", imgtest_path("a-fifo"));
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    snprintf(dir, cap, "%s", imgtest_path("a-dir"));
+    ck_assert_int_eq(mkdir(dir, 0755), 0);
+}
+
+const char *imgtest_small_disk(int kib)
+{
+#if defined(__linux__)
+    static char disk[1100];
+    snprintf(disk, sizeof disk, "%s", imgtest_path("small-disk"));
+    ck_assert_int_eq(mkdir(disk, 0755), 0);
+    char opts[64];
+    snprintf(opts, sizeof opts, "size=%dk", kib);
+    if (mount("tmpfs", disk, "tmpfs", 0, opts) != 0) {
+        printf("  skipped: cannot mount a %d KiB tmpfs at %s (%s; the full "
+               "disk tests need root)\n", kib, disk, strerror(errno));
+        rmdir(disk);
+        return NULL;
+    }
+    /* Detach the mount at once and reach it through an open descriptor:
+     * it lives while the descriptor does (this process and the commands
+     * it runs, which inherit it), however the test ends. */
+    int fd = open(disk, O_RDONLY | O_DIRECTORY);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(umount2(disk, MNT_DETACH), 0);
+    rmdir(disk);
+    snprintf(disk, sizeof disk, "/proc/self/fd/%d", fd);
+    return disk;
+#else
+    (void)kib;
+    printf("  skipped: the full disk tests mount a tmpfs (Linux only)\n");
+    return NULL;
+#endif
+}
+
+void imgtest_fill_disk(const char *dir)
+{
+    char p[1100];
+    snprintf(p, sizeof p, "%s/filler", dir);
+    FILE *f = fopen(p, "wb");
+    ck_assert_msg(f != NULL, "cannot create %s", p);
+    setvbuf(f, NULL, _IONBF, 0);
+    static const char block[4096];
+    while (fwrite(block, 1, sizeof block, f) == sizeof block)
+        continue;
+    while (fwrite(block, 1, 1, f) == 1) /* the last partial block */
+        continue;
+    ck_assert_int_eq(errno, ENOSPC);
+    fclose(f);
 }

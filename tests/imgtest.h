@@ -2,7 +2,8 @@
  * imgtest.h - what the image suites share (test_image, test_fileio,
  * test_netpbm, test_exrio, test_pngio, test_imageio, test_svet): a scratch
  * directory, raw file bytes for hand-made bad files, deterministic test
- * images, and the check that a writer failing half-way keeps the old file.
+ * images, the check that a writer failing half-way keeps the old file, and
+ * a small disk to fill.
  */
 #ifndef SVET_IMGTEST_H
 #define SVET_IMGTEST_H
@@ -45,6 +46,21 @@ typedef svet_status (*imgtest_writer_fn)(const char *path, const void *ctx,
 void imgtest_check_failed_write_keeps_old(imgtest_writer_fn writer,
                                           const void *ctx, const char *path,
                                           long limit);
+
+/* Make a FIFO and a directory in the scratch directory, their names into
+ * fifo and dir (cap bytes each): inputs that are not regular files. */
+void imgtest_special_files(char *fifo, char *dir, size_t cap);
+
+/* A directory on a tmpfs of its own of `kib` KiB (a small disk to fill),
+ * as "/proc/self/fd/N": the mount is detached at once and lives as long
+ * as descriptor N, in this process and the commands it runs. Returns
+ * NULL, after printing why, where it cannot be mounted (not root, not
+ * Linux): the caller skips its test. */
+const char *imgtest_small_disk(int kib);
+
+/* Fill the file system that holds dir to the last byte with a file
+ * "<dir>/filler", so that the next write fails with ENOSPC. */
+void imgtest_fill_disk(const char *dir);
 
 /* The bad-file check of every reader: reader(path) must fail with `status`
  * and a message that starts with the path and contains `words` (NULL: any

@@ -35,15 +35,26 @@ svet_status exrio_write(const char *path, const image_t *img,
 /* Read the first part of an EXR file into img (allocated here): its data
  * window becomes the image (the display window and the window's offset are
  * not kept). Channels are found by name in any order: R, G and B give a
- * 3-channel image, plus A a 4-channel one; a lone Y (with or without A) is
- * read as grey, copied to R, G and B. Half, float and uint channels are
- * converted to float; every compression the library knows is read. img is
+ * 3-channel image, plus A a 4-channel one; without R, G and B, a Y (with
+ * or without A) is read as grey, copied to R, G and B: so are luminance
+ * and chroma files (Y RY BY) and X Y Z files, whose other channels are not
+ * used. Every other channel (Z, depth, subsampled chroma, ...) is decoded
+ * and left out. Half, float and uint channels are converted to float;
+ * every compression the library knows is read. img is
  * zeroed on entry and left zeroed on failure. Fails with SVET_ERR_IO
  * (cannot open or read), SVET_ERR_PARSE (not an EXR file, a corrupt header
  * or chunk, a truncated file, R G B incomplete: the message lists the
- * channels found), SVET_ERR_UNSUPPORTED (tiled or deep files, subsampled
- * channels), SVET_ERR_RANGE (dimensions beyond the limits of image.h),
- * SVET_ERR_NOMEM. Every message starts with the path. */
+ * channels found), SVET_ERR_UNSUPPORTED (tiled or deep files; R, G, B,
+ * A or the Y read subsampled), SVET_ERR_RANGE (dimensions beyond the
+ * limits of image.h or `lim`), SVET_ERR_NOMEM. A directory, FIFO or
+ * device is refused (fileio.h).
+ * Every message starts with the path. */
 svet_status exrio_read(const char *path, image_t *img, svet_error *err);
+
+/* exrio_read() with the limits of `lim` (NULL: the defaults of image.h):
+ * a file of more pixels than lim allows fails with SVET_ERR_RANGE before
+ * its pixels are allocated. */
+svet_status exrio_read_with(const char *path, image_t *img,
+                            const image_read_limits_t *lim, svet_error *err);
 
 #endif

@@ -4,6 +4,8 @@
  * replaces the target by rename() only once everything is written and
  * flushed to disk. A failed or interrupted write therefore never destroys
  * an earlier output; at worst it leaves a stray "<name>.tmp-*" file.
+ * The read side is one call, fileio_open_read(), that opens regular files
+ * only.
  * POSIX (open, fsync, rename). Tests: tests/io/test_fileio.c
  */
 #ifndef SVET_FILEIO_H
@@ -42,5 +44,14 @@ void fileio_abort(fileio_t *out);
  * fileio_begin, fputs(text), fileio_commit. Fails as they do. */
 svet_status fileio_write_text(const char *path, const char *text,
                               svet_error *err);
+
+/* Open path for binary reading into *f, for every reader of svet (scene
+ * files, images, OBJ files): a directory, FIFO, device or socket is
+ * refused with a message naming the file and what it is ("is a
+ * directory, not a file"), without blocking on a FIFO that has no writer
+ * and without reading from a device such as /dev/zero for ever. *f is
+ * NULL on failure. Fails with SVET_ERR_IO (cannot open: the system's
+ * reason; not a regular file), SVET_ERR_NOMEM. */
+svet_status fileio_open_read(const char *path, FILE **f, svet_error *err);
 
 #endif

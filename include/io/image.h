@@ -21,6 +21,21 @@
 #define IMAGE_MAX_DIM 65536
 #define IMAGE_MAX_PIXELS (UINT64_C(1) << 28)
 
+/* The pixels a reader loads from one file unless told otherwise: 2^26
+ * (8192 x 8192, 768 MiB as RGB floats, about four 8K frames). A file's
+ * header can claim far more than its bytes hold (a few hundred kilobytes
+ * of deflate stream expand a thousandfold), so the claim is checked
+ * against this before anything is allocated. The svet command raises or
+ * lowers it with --max-pixels or SVET_MAX_PIXELS (cmd/README.md). */
+#define IMAGE_READ_MAX_PIXELS (UINT64_C(1) << 26)
+
+/* What a reader may load; every reader's *_with() variant takes one, and
+ * NULL means the defaults. */
+typedef struct {
+    uint64_t max_pixels; /* width x height at most; 0: IMAGE_READ_MAX_PIXELS
+                            (never more than IMAGE_MAX_PIXELS) */
+} image_read_limits_t;
+
 /* A resolved image: linear values as floats whatever `real` is (files hold
  * 32-bit floats or halves, and an image of doubles would double the memory
  * for nothing a display can show). Pixel (x, y) is at
@@ -51,6 +66,16 @@ void image_free(image_t *img);
  * dimensions a header claims before allocating anything. */
 svet_status image_check_size(long long width, long long height, int channels,
                              size_t elem, size_t *bytes, svet_error *err);
+
+/* The check of a reader on the size a header claims, before it allocates:
+ * fails with SVET_ERR_RANGE when width x height exceeds lim's max_pixels
+ * (the message gives both numbers and says how svet raises the limit), and
+ * otherwise as image_check_size() does; *bytes as there. lim may be NULL
+ * (the defaults). */
+svet_status image_check_read_size(long long width, long long height,
+                                  int channels, size_t elem,
+                                  const image_read_limits_t *lim,
+                                  size_t *bytes, svet_error *err);
 
 /* Copy src into dst (allocated here; dst must not hold pixels). Fails as
  * image_alloc() does. */

@@ -38,6 +38,13 @@ bool imageio_is_display(imageio_format_t f);
 svet_status imageio_read(const char *path, image_t *img, bool linearise,
                          imageio_format_t *format, svet_error *err);
 
+/* imageio_read() with the limits of `lim` (NULL: the defaults of
+ * image.h), handed to the format's reader. */
+svet_status imageio_read_with(const char *path, image_t *img, bool linearise,
+                              imageio_format_t *format,
+                              const image_read_limits_t *lim,
+                              svet_error *err);
+
 /* Replace the R, G, B display codes of img by linear values with the sRGB
  * curve (colour_srgb_decode); alpha is left alone. Can't fail. */
 void imageio_decode_srgb(image_t *img);

@@ -28,8 +28,15 @@ svet_status netpbm_write_pfm(const char *path, const image_t *img,
  * SVET_ERR_PARSE (not a PFM, a malformed header, truncated data, a zero or
  * non-finite scale), SVET_ERR_RANGE (dimensions below 1 or beyond the
  * limits of image.h) or SVET_ERR_NOMEM; every message starts with the
- * path. */
+ * path. A directory, FIFO or device is refused (fileio.h). */
 svet_status netpbm_read_pfm(const char *path, image_t *img, svet_error *err);
+
+/* netpbm_read_pfm() with the limits of `lim` (NULL: the defaults of
+ * image.h): a file of more pixels than lim allows fails with
+ * SVET_ERR_RANGE before anything is allocated. */
+svet_status netpbm_read_pfm_with(const char *path, image_t *img,
+                                 const image_read_limits_t *lim,
+                                 svet_error *err);
 
 /* Write img (3 or 4 channels; alpha is dropped) as a binary PPM ("P6")
  * with `bits` 8 (maxval 255) or 16 (maxval 65535, big-endian as the format
@@ -46,5 +53,10 @@ svet_status netpbm_write_ppm(const char *path, const image_t *img, int bits,
  * netpbm_read_pfm() does. */
 svet_status netpbm_read_ppm(const char *path, image_t *img, int *bits,
                             svet_error *err);
+
+/* netpbm_read_ppm() with the limits of `lim`, as netpbm_read_pfm_with(). */
+svet_status netpbm_read_ppm_with(const char *path, image_t *img, int *bits,
+                                 const image_read_limits_t *lim,
+                                 svet_error *err);
 
 #endif

@@ -29,8 +29,14 @@ svet_status pngio_write(const char *path, const image_t *img, int bits,
  * Fails with SVET_ERR_IO (cannot open), SVET_ERR_PARSE (not a PNG; a
  * corrupt, truncated or lying file: libpng's message follows the path),
  * SVET_ERR_RANGE (dimensions beyond the limits of image.h),
- * SVET_ERR_NOMEM. */
+ * SVET_ERR_NOMEM. A directory, FIFO or device is refused (fileio.h). */
 svet_status pngio_read(const char *path, image_t *img, int *bits,
                        svet_error *err);
+
+/* pngio_read() with the limits of `lim` (NULL: the defaults of image.h):
+ * a file of more pixels than lim allows fails with SVET_ERR_RANGE before
+ * its rows are allocated or decoded. */
+svet_status pngio_read_with(const char *path, image_t *img, int *bits,
+                            const image_read_limits_t *lim, svet_error *err);
 
 #endif

@@ -13,7 +13,7 @@
 #include "io/fileio.h"
 
 #include <errno.h>
-#include <fcntl.h>
+#include <math.h>
 #include <openexr.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -30,13 +30,21 @@ typedef struct {
     char msg[256]; /* the library's first error message, if any */
 } stream_t;
 
+/* The stream of the read or write this thread is running. The error
+ * handler cannot ask the context for its user data: in a write context
+ * exr_get_user_data() takes the context's lock, which the failing call
+ * (exr_write_header on a full disk) already holds, and the handler would
+ * wait on it for ever. The library calls the handler on the thread of the
+ * call that failed, so a thread-local pointer reaches the right stream. */
+static _Thread_local stream_t *active_stream;
+
 static void on_error(exr_const_context_t ctxt, exr_result_t code,
                      const char *msg)
 {
-    void *ud = NULL;
-    if (exr_get_user_data(ctxt, &ud) != EXR_ERR_SUCCESS || !ud)
+    (void)ctxt;
+    stream_t *s = active_stream;
+    if (!s)
         return;
-    stream_t *s = ud;
     /* The first message names the cause; later ones its consequences. */
     if (s->msg[0] == '\0')
         snprintf(s->msg, sizeof s->msg, "%s",
@@ -234,6 +242,8 @@ svet_status exrio_write(const char *path, const image_t *img,
     init.write_fn = write_cb;
     exr_context_t ctx = NULL;
     const char *doing = "cannot start writing";
+    stream_t *outer = active_stream;
+    active_stream = &s;
     exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY,
                                       &init);
     if (rv == EXR_ERR_SUCCESS)
@@ -246,6 +256,7 @@ svet_status exrio_write(const char *path, const image_t *img,
             doing = "cannot finish the file";
         }
     }
+    active_stream = outer;
     if (rv != EXR_ERR_SUCCESS) {
         fileio_abort(&out);
         return fail(err, rv == EXR_ERR_OUT_OF_MEMORY ? SVET_ERR_NOMEM
@@ -276,12 +287,6 @@ static svet_status map_channels(const exr_attr_chlist_t *cl,
         const exr_attr_chlist_entry_t *e = &cl->entries[i];
         const char *name = e->name.str ? e->name.str : "";
         int k = channel_index(name);
-        bool wanted = k >= 0 || strcmp(name, "Y") == 0;
-        if (wanted && (e->x_sampling != 1 || e->y_sampling != 1))
-            return svet_error_set(err, SVET_ERR_UNSUPPORTED,
-                                  "%s: channel %s is subsampled (%d x %d); "
-                                  "svet reads full-resolution channels only",
-                                  path, name, e->x_sampling, e->y_sampling);
         if (k >= 0)
             map->rgba[k] = i;
         else if (strcmp(name, "Y") == 0)
@@ -301,17 +306,178 @@ static svet_status map_channels(const exr_attr_chlist_t *cl,
                               cl->num_channels ? found : "no channels");
     if (rgb)
         map->y = -1; /* colour wins over a luminance channel beside it */
+    /* The channels read must be full resolution; others may be anything. */
+    const int read[4] = { rgb ? map->rgba[0] : map->y,
+                          rgb ? map->rgba[1] : -1, rgb ? map->rgba[2] : -1,
+                          map->rgba[3] };
+    for (int j = 0; j < 4; j++) {
+        if (read[j] < 0)
+            continue;
+        const exr_attr_chlist_entry_t *e = &cl->entries[read[j]];
+        if (e->x_sampling != 1 || e->y_sampling != 1)
+            return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                                  "%s: channel %s is subsampled (%d x %d); "
+                                  "svet reads full-resolution channels only",
+                                  path, e->name.str ? e->name.str : "",
+                                  e->x_sampling, e->y_sampling);
+    }
     return SVET_OK;
 }
 
-/* Decode every chunk into planar floats (one plane per channel) and
- * interleave them into img. Planes rather than decoding straight into the
- * interleaved image: OpenEXRCore 3.1.5 picks a specialised routine for
- * four interleaved half channels converted to float that puts A where R
- * belongs (found by the RGBA half round-trip test); planar output takes
- * the library's generic path, which is right for every layout. */
+/* The scratch planes of one chunk: one float plane per channel of the
+ * file, sized by the channel's own (possibly subsampled) width and
+ * height. */
+typedef struct {
+    float *buf;
+    size_t cap;  /* floats */
+    int *filled; /* per channel: lines unpacked into its plane so far */
+    int nchannels;
+} scratch_t;
+
+/* Point every channel of the chunk at its own plane of scratch, growing it
+ * as needed; at[c] is where channel c's plane starts. Every channel gets a
+ * buffer, skipped ones too: OpenEXRCore 3.1.5 takes a NULL decode_to_ptr
+ * for "skip this channel", but its specialised half unpackers (three or
+ * four channels of one type) write through every pointer without looking,
+ * so a half R G B file with a Z or Y beside it crashed the reader. */
+static exr_result_t point_channels(exr_decode_pipeline_t *dec, scratch_t *sc,
+                                   size_t *at)
+{
+    size_t need = 0;
+    for (int c = 0; c < dec->channel_count; c++) {
+        const exr_coding_channel_info_t *ch = &dec->channels[c];
+        if (ch->width < 0 || ch->height < 0)
+            return EXR_ERR_CORRUPT_CHUNK;
+        at[c] = need;
+        need += (size_t)ch->width * (size_t)ch->height;
+    }
+    if (need > sc->cap) {
+        float *nb = realloc(sc->buf, (need ? need : 1) * sizeof(float));
+        if (!nb)
+            return EXR_ERR_OUT_OF_MEMORY;
+        sc->buf = nb;
+        sc->cap = need;
+    }
+    for (int c = 0; c < dec->channel_count; c++) {
+        exr_coding_channel_info_t *ch = &dec->channels[c];
+        ch->decode_to_ptr = (uint8_t *)(sc->buf + at[c]);
+        ch->user_pixel_stride = sizeof(float);
+        ch->user_line_stride = (int32_t)((size_t)ch->width * sizeof(float));
+        ch->user_data_type = EXR_PIXEL_FLOAT;
+        ch->user_bytes_per_element = sizeof(float);
+    }
+    return EXR_ERR_SUCCESS;
+}
+
+/* An IEEE 754 binary16 value as a float, exactly (NaN payloads kept). */
+static float half_to_float(uint16_t h)
+{
+    uint32_t sign = (uint32_t)(h >> 15) << 31, e = (h >> 10) & 31u,
+             m = h & 1023u, bits;
+    if (e == 31) { /* Inf, NaN */
+        bits = sign | 0x7f800000u | m << 13;
+    } else if (e != 0) { /* normal: rebias the exponent 15 -> 127 */
+        bits = sign | (e + 112u) << 23 | m << 13;
+    } else { /* zero and subnormals: m 2^-24 */
+        float v = ldexpf((float)m, -24);
+        return sign ? -v : v;
+    }
+    float v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
+/* The decoded (uncompressed) chunk into the float planes: the unpack step
+ * of the decode pipeline, in place of the library's. The format stores,
+ * line by line, each channel's samples of that line in channel order,
+ * little-endian (half, float or uint); a channel subsampled in y has a
+ * line only where y is a multiple of its factor. OpenEXRCore 3.1.5's own
+ * routines for three or four channels of one type ignore subsampling
+ * (they read every channel as wide as the first, so Y of a Y RY BY file
+ * came out half garbage) and put A where R belongs when interleaving four
+ * halves; this loop is the format's plain definition. */
+static exr_result_t unpack_to_planes(exr_decode_pipeline_t *dec)
+{
+    const uint8_t *src = dec->unpacked_buffer;
+    const uint8_t *end = src ? src + dec->chunk.unpacked_size : NULL;
+    scratch_t *sc = dec->decoding_user_data;
+    if (!src || !sc || dec->channel_count > sc->nchannels)
+        return EXR_ERR_CORRUPT_CHUNK;
+    int *filled = sc->filled;
+    memset(filled, 0, (size_t)dec->channel_count * sizeof *filled);
+    for (int j = 0; j < dec->chunk.height; j++) {
+        int64_t y = (int64_t)dec->chunk.start_y + j;
+        for (int c = 0; c < dec->channel_count; c++) {
+            const exr_coding_channel_info_t *ch = &dec->channels[c];
+            if (ch->y_samples > 1 && y % ch->y_samples != 0)
+                continue;
+            size_t bpe = (size_t)ch->bytes_per_element;
+            size_t n = (size_t)ch->width;
+            if ((bpe != 2 && bpe != 4) || filled[c] >= ch->height ||
+                (size_t)(end - src) / bpe < n)
+                return EXR_ERR_CORRUPT_CHUNK;
+            float *out = (float *)ch->decode_to_ptr + (size_t)filled[c] * n;
+            for (size_t x = 0; x < n; x++, src += bpe) {
+                uint32_t v = bpe == 2 ? (uint32_t)src[0] | (uint32_t)src[1] << 8
+                                      : (uint32_t)src[0] |
+                                            (uint32_t)src[1] << 8 |
+                                            (uint32_t)src[2] << 16 |
+                                            (uint32_t)src[3] << 24;
+                if (ch->data_type == EXR_PIXEL_HALF)
+                    out[x] = half_to_float((uint16_t)v);
+                else if (ch->data_type == EXR_PIXEL_FLOAT)
+                    memcpy(&out[x], &v, sizeof v);
+                else
+                    out[x] = (float)v; /* uint */
+            }
+            filled[c]++;
+        }
+    }
+    return EXR_ERR_SUCCESS;
+}
+
+/* The library's read and decompress steps, and unpack_to_planes. For an
+ * uncompressed file whose channels are all float, the library would
+ * choose a reader that copies the chunk straight into the planes and skips
+ * the unpack step; it does so only when no channel changes type, so the
+ * choice is made with one channel asking for halves (unpack_to_planes
+ * does not look at the requested type). */
+static exr_result_t choose_routines(exr_context_t ctx,
+                                    exr_decode_pipeline_t *dec)
+{
+    exr_coding_channel_info_t *ch0 = &dec->channels[0];
+    bool changes = false;
+    for (int c = 0; c < dec->channel_count; c++)
+        changes |= dec->channels[c].data_type != EXR_PIXEL_FLOAT;
+    if (!changes) {
+        ch0->user_data_type = EXR_PIXEL_HALF;
+        ch0->user_bytes_per_element = 2;
+    }
+    exr_result_t rv = exr_decoding_choose_default_routines(ctx, 0, dec);
+    ch0->user_data_type = EXR_PIXEL_FLOAT;
+    ch0->user_bytes_per_element = sizeof(float);
+    dec->unpack_and_convert_fn = unpack_to_planes;
+    return rv;
+}
+
+/* Which of img's channels (0..3, or -1 for none) the file's channel
+ * `name` fills. */
+static int target_channel(const char *name, const channel_map_t *map,
+                          const image_t *img)
+{
+    int k = channel_index(name);
+    if (map->y >= 0) /* grey: Y into R, A into A */
+        k = (name && strcmp(name, "Y") == 0) ? 0 : (k == 3 ? 3 : -1);
+    return k < img->channels ? k : -1;
+}
+
+/* Decode every chunk into planar floats (one plane per channel, by
+ * unpack_to_planes) and interleave the wanted ones into img
+ * (test_exrio's every_layout_and_compression_reads_back tries the
+ * layouts). */
 static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
-                                const channel_map_t *map, image_t *img)
+                                const channel_map_t *map, int nchannels,
+                                image_t *img)
 {
     int32_t lines = 1;
     exr_result_t rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
@@ -319,10 +485,15 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
         return rv;
     if (lines < 1 || lines > 256) /* 1, 16, 32 or 256 in the format */
         return EXR_ERR_CORRUPT_CHUNK;
-    const size_t w = (size_t)img->width, plane = w * (size_t)lines;
-    float *scratch = malloc(4 * plane * sizeof(float));
-    if (!scratch)
+    size_t nch = (size_t)(nchannels > 0 ? nchannels : 1);
+    size_t *at = malloc(nch * sizeof *at);
+    scratch_t sc = { NULL, 0, calloc(nch, sizeof(int)), nchannels };
+    if (!at || !sc.filled) {
+        free(at);
+        free(sc.filled);
         return EXR_ERR_OUT_OF_MEMORY;
+    }
+    const size_t w = (size_t)img->width;
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     bool started = false;
     for (int64_t y = dw->min.y; y <= dw->max.y && rv == EXR_ERR_SUCCESS;
@@ -341,54 +512,69 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
                      : exr_decoding_initialize(ctx, 0, &cinfo, &dec);
         if (rv != EXR_ERR_SUCCESS)
             break;
-        for (int c = 0; c < dec.channel_count; c++) {
-            exr_coding_channel_info_t *ch = &dec.channels[c];
-            const char *name = ch->channel_name;
-            int k = channel_index(name);
-            if (map->y >= 0) /* grey: Y into R, A into A */
-                k = (name && strcmp(name, "Y") == 0) ? 0 : (k == 3 ? 3 : -1);
-            if (k >= img->channels)
-                k = -1;
-            /* A NULL pointer tells the decoder to skip the channel. */
-            ch->decode_to_ptr =
-                k < 0 ? NULL : (uint8_t *)(scratch + (size_t)k * plane);
-            ch->user_pixel_stride = sizeof(float);
-            ch->user_line_stride = (int32_t)(w * sizeof(float));
-            ch->user_data_type = EXR_PIXEL_FLOAT;
-            ch->user_bytes_per_element = sizeof(float);
+        if (dec.channel_count != nchannels) {
+            rv = EXR_ERR_CORRUPT_CHUNK;
+            break;
         }
+        if ((rv = point_channels(&dec, &sc, at)) != EXR_ERR_SUCCESS)
+            break;
         if (!started) {
-            rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
+            rv = choose_routines(ctx, &dec);
             started = true;
             if (rv != EXR_ERR_SUCCESS)
                 break;
         }
+        /* An uncompressed chunk shorter than its pixels: without a
+         * decompress step the library would leave the rest of its buffer
+         * unwritten, and the image would read garbage (or zeros). */
+        if (!dec.decompress_fn && cinfo.packed_size != cinfo.unpacked_size) {
+            rv = EXR_ERR_CORRUPT_CHUNK;
+            break;
+        }
+        dec.decoding_user_data = &sc; /* for unpack_to_planes */
         if ((rv = exr_decoding_run(ctx, 0, &dec)) != EXR_ERR_SUCCESS)
             break;
-        bool grey = map->y >= 0; /* R, G and B all come from plane 0 */
-        for (int j = 0; j < cinfo.height; j++)
-            for (size_t x = 0; x < w; x++) {
-                float *p = image_at(img, (int)x, (int)row + j);
-                size_t i = (size_t)j * w + x;
-                for (int k = 0; k < img->channels; k++) {
-                    size_t from = grey && k < 3 ? 0 : (size_t)k;
-                    p[k] = scratch[from * plane + i];
+        for (int c = 0; c < dec.channel_count; c++) {
+            const exr_coding_channel_info_t *ch = &dec.channels[c];
+            int k = target_channel(ch->channel_name, map, img);
+            /* map_channels refused subsampled channels that are read */
+            if (k < 0 || (size_t)ch->width != w ||
+                ch->height != cinfo.height)
+                continue;
+            const float *plane = sc.buf + at[c];
+            int kmax = map->y >= 0 && k == 0 ? 3 : k + 1; /* grey: R G B */
+            for (int j = 0; j < cinfo.height; j++)
+                for (size_t x = 0; x < w; x++) {
+                    float *p = image_at(img, (int)x, (int)row + j);
+                    for (int kk = k; kk < kmax; kk++)
+                        p[kk] = plane[(size_t)j * w + x];
                 }
-            }
+        }
     }
     if (started)
         exr_decoding_destroy(ctx, &dec);
-    free(scratch);
+    free(sc.buf);
+    free(sc.filled);
+    free(at);
     return rv;
 }
 
 svet_status exrio_read(const char *path, image_t *img, svet_error *err)
 {
+    return exrio_read_with(path, img, NULL, err);
+}
+
+svet_status exrio_read_with(const char *path, image_t *img,
+                            const image_read_limits_t *lim, svet_error *err)
+{
     memset(img, 0, sizeof *img);
-    stream_t s = { .fd = open(path, O_RDONLY) };
-    if (s.fd < 0)
-        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                              strerror(errno));
+    FILE *f;
+    svet_status st = fileio_open_read(path, &f, err);
+    if (st != SVET_OK)
+        return st;
+    stream_t s = { .fd = fileno(f) };
+    stream_t *outer = active_stream;
+    active_stream = &s;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = on_error;
     init.user_data = &s;
@@ -400,7 +586,6 @@ svet_status exrio_read(const char *path, image_t *img, svet_error *err)
     init.max_image_height = IMAGE_MAX_DIM;
     init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
 
-    svet_status st = SVET_OK;
     exr_context_t ctx = NULL;
     exr_result_t rv = exr_start_read(&ctx, path, &init);
     if (rv != EXR_ERR_SUCCESS) {
@@ -438,13 +623,13 @@ svet_status exrio_read(const char *path, image_t *img, svet_error *err)
     int64_t w = (int64_t)dw.max.x - dw.min.x + 1;
     int64_t h = (int64_t)dw.max.y - dw.min.y + 1;
     int nch = map.rgba[3] >= 0 ? 4 : 3;
-    if ((st = image_check_size(w, h, nch, sizeof(float), NULL, err)) !=
-            SVET_OK ||
+    if ((st = image_check_read_size(w, h, nch, sizeof(float), lim, NULL,
+                                    err)) != SVET_OK ||
         (st = image_alloc(img, (int)w, (int)h, nch, err)) != SVET_OK) {
         svet_error_prefix(err, path);
         goto done;
     }
-    if ((rv = read_pixels(ctx, &dw, &map, img)) != EXR_ERR_SUCCESS) {
+    if ((rv = read_pixels(ctx, &dw, &map, cl->num_channels, img)) != EXR_ERR_SUCCESS) {
         st = fail(err, rv == EXR_ERR_OUT_OF_MEMORY ? SVET_ERR_NOMEM
                   : s.os_error                    ? SVET_ERR_IO
                                                   : SVET_ERR_PARSE,
@@ -455,7 +640,8 @@ svet_status exrio_read(const char *path, image_t *img, svet_error *err)
 done:
     if (ctx)
         exr_finish(&ctx);
-    close(s.fd);
+    active_stream = outer;
+    fclose(f);
     if (st != SVET_OK)
         image_free(img);
     return st;

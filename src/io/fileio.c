@@ -1,5 +1,6 @@
 /*
- * fileio.c - write to a temporary file, then rename() over the target.
+ * fileio.c - write to a temporary file, then rename() over the target;
+ * open an input, refusing what is not a regular file.
  * rename() within one directory is atomic on POSIX file systems: a reader
  * sees the old file or the new one, never half of either. fsync() before
  * the rename keeps a crash right after it from leaving an empty file.
@@ -14,6 +15,7 @@
 #include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static char *dup_string(const char *s)
@@ -132,4 +134,54 @@ svet_status fileio_write_text(const char *path, const char *text,
         return st;
     fputs(text, out.f); /* a failure shows in ferror(), checked at commit */
     return fileio_commit(&out, err);
+}
+
+/* --- reading ------------------------------------------------------------- */
+
+/* What a file that is not a regular one is, for the message. */
+static const char *kind_of(mode_t m)
+{
+    if (S_ISDIR(m))
+        return "is a directory, not a file";
+    if (S_ISFIFO(m))
+        return "is a FIFO (named pipe), not a regular file";
+    if (S_ISCHR(m) || S_ISBLK(m))
+        return "is a device, not a regular file";
+    if (S_ISSOCK(m))
+        return "is a socket, not a regular file";
+    return "is not a regular file";
+}
+
+svet_status fileio_open_read(const char *path, FILE **f, svet_error *err)
+{
+    *f = NULL;
+    /* O_NONBLOCK: opening a FIFO for reading would otherwise wait for a
+     * writer before fstat() could say what it is. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK);
+    if (fd < 0)
+        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
+                              strerror(errno));
+    struct stat sb;
+    if (fstat(fd, &sb) != 0) {
+        int e = errno;
+        close(fd);
+        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
+                              strerror(e));
+    }
+    if (!S_ISREG(sb.st_mode)) {
+        close(fd);
+        return svet_error_set(err, SVET_ERR_IO, "%s: %s", path,
+                              kind_of(sb.st_mode));
+    }
+    int fl = fcntl(fd, F_GETFL);
+    if (fl != -1)
+        fcntl(fd, F_SETFL, fl & ~O_NONBLOCK);
+    *f = fdopen(fd, "rb");
+    if (!*f) {
+        int e = errno;
+        close(fd);
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: cannot open: %s",
+                              path, strerror(e));
+    }
+    return SVET_OK;
 }

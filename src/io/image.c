@@ -42,6 +42,28 @@ svet_status image_check_size(long long width, long long height, int channels,
     return SVET_OK;
 }
 
+svet_status image_check_read_size(long long width, long long height,
+                                  int channels, size_t elem,
+                                  const image_read_limits_t *lim,
+                                  size_t *bytes, svet_error *err)
+{
+    uint64_t max = lim && lim->max_pixels ? lim->max_pixels
+                                          : IMAGE_READ_MAX_PIXELS;
+    if (max > IMAGE_MAX_PIXELS)
+        max = IMAGE_MAX_PIXELS;
+    if (width >= 1 && height >= 1 && width <= IMAGE_MAX_DIM &&
+        height <= IMAGE_MAX_DIM && (uint64_t)width * (uint64_t)height > max)
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "image size %lld x %lld (%llu pixels) exceeds "
+                              "the limit of %llu pixels for an image read "
+                              "from a file (svet: --max-pixels N or "
+                              "SVET_MAX_PIXELS=N)", width, height,
+                              (unsigned long long)((uint64_t)width *
+                                                   (uint64_t)height),
+                              (unsigned long long)max);
+    return image_check_size(width, height, channels, elem, bytes, err);
+}
+
 svet_status image_alloc(image_t *img, int width, int height, int channels,
                         svet_error *err)
 {

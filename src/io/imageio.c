@@ -6,11 +6,11 @@
 #include "io/imageio.h"
 #include "colour/colour.h"
 #include "io/exrio.h"
+#include "io/fileio.h"
 #include "io/netpbm.h"
 #include "io/pngio.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -48,10 +48,10 @@ bool imageio_is_display(imageio_format_t f)
 static svet_status sniff(const char *path, imageio_format_t *f,
                          svet_error *err)
 {
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                              strerror(errno));
+    FILE *fp;
+    svet_status st = fileio_open_read(path, &fp, err);
+    if (st != SVET_OK)
+        return st;
     unsigned char m[4] = { 0 };
     size_t n = fread(m, 1, sizeof m, fp);
     fclose(fp);
@@ -75,6 +75,13 @@ static svet_status sniff(const char *path, imageio_format_t *f,
 svet_status imageio_read(const char *path, image_t *img, bool linearise,
                          imageio_format_t *format, svet_error *err)
 {
+    return imageio_read_with(path, img, linearise, format, NULL, err);
+}
+
+svet_status imageio_read_with(const char *path, image_t *img, bool linearise,
+                              imageio_format_t *format,
+                              const image_read_limits_t *lim, svet_error *err)
+{
     memset(img, 0, sizeof *img);
     imageio_format_t f = IMAGEIO_UNKNOWN;
     svet_status st = sniff(path, &f, err);
@@ -82,17 +89,17 @@ svet_status imageio_read(const char *path, image_t *img, bool linearise,
         return st;
     switch (f) {
     case IMAGEIO_EXR:
-        st = exrio_read(path, img, err);
+        st = exrio_read_with(path, img, lim, err);
         break;
     case IMAGEIO_PFM:
-        st = netpbm_read_pfm(path, img, err);
+        st = netpbm_read_pfm_with(path, img, lim, err);
         break;
     case IMAGEIO_PNG:
-        st = pngio_read(path, img, NULL, err);
+        st = pngio_read_with(path, img, NULL, lim, err);
         break;
     case IMAGEIO_PPM:
     case IMAGEIO_UNKNOWN:
-        st = netpbm_read_ppm(path, img, NULL, err);
+        st = netpbm_read_ppm_with(path, img, NULL, lim, err);
         break;
     }
     if (st == SVET_OK && linearise && imageio_is_display(f))

@@ -9,7 +9,6 @@
 #include "io/fileio.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -20,6 +19,7 @@
 typedef struct {
     FILE *f;
     const char *path;
+    const image_read_limits_t *lim;
     svet_error *err;
 } reader_t;
 
@@ -27,14 +27,15 @@ typedef struct {
  * `grey` (1 plane). On failure nothing stays open. */
 static svet_status open_reader(reader_t *r, const char *path, char colour,
                                char grey, const char *what, int *planes,
+                               const image_read_limits_t *lim,
                                svet_error *err)
 {
     r->path = path;
+    r->lim = lim;
     r->err = err;
-    r->f = fopen(path, "rb");
-    if (!r->f)
-        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                              strerror(errno));
+    svet_status st = fileio_open_read(path, &r->f, err);
+    if (st != SVET_OK)
+        return st;
     int m0 = getc(r->f), m1 = getc(r->f);
     if (m0 != 'P' || (m1 != colour && m1 != grey)) {
         fclose(r->f);
@@ -111,7 +112,8 @@ static svet_status load_raster(reader_t *r, long long w, long long h,
                                unsigned char **buf)
 {
     size_t need;
-    svet_status st = image_check_size(w, h, planes, elem, &need, r->err);
+    svet_status st = image_check_read_size(w, h, planes, elem, r->lim,
+                                           &need, r->err);
     if (st != SVET_OK) {
         svet_error_prefix(r->err, r->path);
         return st;
@@ -151,11 +153,18 @@ static bool host_is_little_endian(void)
 
 svet_status netpbm_read_pfm(const char *path, image_t *img, svet_error *err)
 {
+    return netpbm_read_pfm_with(path, img, NULL, err);
+}
+
+svet_status netpbm_read_pfm_with(const char *path, image_t *img,
+                                 const image_read_limits_t *lim,
+                                 svet_error *err)
+{
     memset(img, 0, sizeof *img);
     reader_t r;
-    int planes;
+    int planes = 3;
     svet_status st = open_reader(&r, path, 'F', 'f', "a PFM file", &planes,
-                                 err);
+                                 lim, err);
     if (st != SVET_OK)
         return st;
     unsigned char *buf = NULL;
@@ -249,11 +258,18 @@ svet_status netpbm_write_pfm(const char *path, const image_t *img,
 svet_status netpbm_read_ppm(const char *path, image_t *img, int *bits,
                             svet_error *err)
 {
+    return netpbm_read_ppm_with(path, img, bits, NULL, err);
+}
+
+svet_status netpbm_read_ppm_with(const char *path, image_t *img, int *bits,
+                                 const image_read_limits_t *lim,
+                                 svet_error *err)
+{
     memset(img, 0, sizeof *img);
     reader_t r;
-    int planes;
+    int planes = 3;
     svet_status st = open_reader(&r, path, '6', '5', "a binary PPM/PGM file",
-                                 &planes, err);
+                                 &planes, lim, err);
     if (st != SVET_OK)
         return st;
     unsigned char *buf = NULL;

@@ -10,7 +10,6 @@
 #include "io/pngio.h"
 #include "io/fileio.h"
 
-#include <errno.h>
 #include <png.h>
 #include <stdlib.h>
 #include <string.h>
@@ -119,6 +118,7 @@ svet_status pngio_write(const char *path, const image_t *img, int bits,
 
 /* Buffers of one read, owned by pngio_read. */
 typedef struct {
+    const image_read_limits_t *lim; /* what may be loaded */
     unsigned char *data;  /* the decoded rows */
     png_bytep *rows;      /* pointers into data */
     png_uint_32 w, h;
@@ -148,7 +148,8 @@ static int read_rows(png_structp png, png_infop info, FILE *f, png_read_t *r,
     png_read_info(png, info);
     int depth, color;
     png_get_IHDR(png, info, &r->w, &r->h, &depth, &color, NULL, NULL, NULL);
-    if (image_check_size(r->w, r->h, 4, 2, NULL, m->err) != SVET_OK) {
+    if (image_check_read_size(r->w, r->h, 4, 2, r->lim, NULL, m->err) !=
+        SVET_OK) {
         svet_error_prefix(m->err, m->path);
         return -1;
     }
@@ -203,15 +204,21 @@ static int read_rows(png_structp png, png_infop info, FILE *f, png_read_t *r,
 svet_status pngio_read(const char *path, image_t *img, int *bits,
                        svet_error *err)
 {
+    return pngio_read_with(path, img, bits, NULL, err);
+}
+
+svet_status pngio_read_with(const char *path, image_t *img, int *bits,
+                            const image_read_limits_t *lim, svet_error *err)
+{
     memset(img, 0, sizeof *img);
     svet_error local;
     if (!err) /* the callbacks write the message somewhere */
         err = &local;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                              strerror(errno));
-    png_read_t r = { .file_bytes = -1 };
+    FILE *f;
+    svet_status st = fileio_open_read(path, &f, err);
+    if (st != SVET_OK)
+        return st;
+    png_read_t r = { .lim = lim, .file_bytes = -1 };
     if (fseek(f, 0, SEEK_END) == 0) {
         long end = ftell(f);
         r.file_bytes = end;
@@ -229,7 +236,6 @@ svet_status pngio_read(const char *path, image_t *img, int *bits,
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &msg,
                                              on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
-    svet_status st = SVET_OK;
     if (!info) {
         st = svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", path);
     } else if (read_rows(png, info, f, &r, &msg) != 0) {

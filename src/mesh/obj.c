@@ -7,6 +7,7 @@
  */
 #include "mesh/obj.h"
 #include "mesh/mesh.h"
+#include "io/fileio.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -680,15 +681,14 @@ svet_status obj_read(const char *path, const obj_limits_t *lim, obj_t *o,
                      svet_error *err)
 {
     memset(o, 0, sizeof *o);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                              strerror(errno));
+    FILE *f;
+    svet_status st = fileio_open_read(path, &f, err); /* regular files */
+    if (st != SVET_OK)
+        return st;
     /* Read in chunks: no trust in a size from fseek/ftell (pipes, files
      * that grow while read). */
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
-    svet_status st = SVET_OK;
     while (buf) {
         if (n > OBJ_MAX_FILE_BYTES) {
             st = svet_error_set(err, SVET_ERR_IO, "%s: larger than %zu bytes",

@@ -29,6 +29,7 @@
 #include "geometry/sphere.h"
 #include "geometry/triangle.h"
 #include "geometry/xform.h"
+#include "io/fileio.h"
 
 /* The largest number of transforms on one line. */
 #define MAX_XFORMS 64
@@ -733,10 +734,10 @@ static svet_status read_file(const char *path, long max, char **text,
 {
     *text = NULL;
     *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                              strerror(errno));
+    FILE *f;
+    svet_status st = fileio_open_read(path, &f, err); /* regular files */
+    if (st != SVET_OK)
+        return st;
     struct stat sb;
     if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode)) {
         fclose(f);

@@ -290,15 +290,14 @@ svet_status converge_csv_read(const char *path, char *method,
     *n = 0;
     if (method_len)
         method[0] = '\0';
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return svet_error_set(err, SVET_ERR_IO, "%s: %s", path,
-                              strerror(errno));
+    FILE *f;
+    svet_status st = fileio_open_read(path, &f, err);
+    if (st != SVET_OK)
+        return st;
     char line[4096];
     char *field[CSV_MAXFIELDS];
     int col[NCOLS], lineno = 0, cap = 0;
     bool have_header = false;
-    svet_status st = SVET_OK;
     while (fgets(line, sizeof line, f)) {
         lineno++;
         if (!strchr(line, '\n') && !feof(f)) {

@@ -1,8 +1,10 @@
 /*
  * test_svet.c - the svet command itself (cmd/svet.c, cmd/cmd_diff.c): help,
- * exit codes and `svet diff` on files made here. The command is the one
- * built beside this suite: <build>/svet for <build>/tests/test_svet, so
- * `make test` (which builds it first) tests the matching REAL.
+ * exit codes and `svet diff` on files made here; inputs beyond the pixel
+ * limit, inputs that are not regular files, and a full disk. The command
+ * is the one built beside this suite: <build>/svet for
+ * <build>/tests/test_svet, so `make test` (which builds it first) tests
+ * the matching REAL.
  */
 #include "testutil.h"
 #include "cmdtest.h"
@@ -12,8 +14,10 @@
 #include "io/exrio.h"
 #include "colour/colour.h"
 
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static int run(char *out, size_t cap, const char *args)
@@ -32,6 +36,24 @@ static double value_of(const char *out, const char *name)
 }
 
 static char out[16384];
+
+/* Run `svet ARGS` (ARGS made by printf from fmt), killed after a minute
+ * should it hang, and check its exit code and that its output holds
+ * `words` (NULL: anything). */
+static void CK_ATTRIBUTE_FORMAT(printf, 3, 4)
+expect(int rc, const char *words, const char *fmt, ...)
+{
+    char args[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(args, sizeof args, fmt, ap);
+    va_end(ap);
+    int got = cmdtest_run_timed(out, sizeof out, 60, args);
+    ck_assert_msg(got == rc, "svet %s: exit %d, not %d:\n%s", args, got, rc,
+                  out);
+    ck_assert_msg(!words || strstr(out, words), "svet %s: no '%s' in:\n%s",
+                  args, words, out);
+}
 
 START_TEST(help_and_usage_errors_have_their_exit_codes)
 {
@@ -187,6 +209,93 @@ START_TEST(diff_refuses_bad_inputs_with_exit_code_2)
 }
 END_TEST
 
+START_TEST(images_beyond_the_pixel_limit_are_refused)
+{
+    /* A header claiming 16384 x 16384 pixels (as a 783 KB PNG can) made
+     * svet diff allocate gigabytes; the limit is checked first, and
+     * --max-pixels or SVET_MAX_PIXELS move it. */
+    char a[1024], b[1024], big[1024];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
+    make_pair(a, b, 0.5f); /* 24 x 16 = 384 pixels */
+    snprintf(big, sizeof big, "%s", imgtest_path("big.pfm"));
+    imgtest_write_bytes(big, "PF\n16384 16384\n-1\n0123456789ab", 30);
+    expect(2, "exceeds the limit of 67108864", "diff '%s' '%s'", big, a);
+    expect(2, "exceeds the limit of 383 pixels",
+           "diff '%s' '%s' --max-pixels 383", a, b);
+    expect(0, NULL, "diff '%s' '%s' --max-pixels 384", a, b);
+    expect(1, "--max-pixels 0", "diff '%s' '%s' --max-pixels 0", a, b);
+    /* the environment, when the option is not given */
+    ck_assert_int_eq(setenv("SVET_MAX_PIXELS", "383", 1), 0);
+    expect(2, "limit of 383", "diff '%s' '%s'", a, b);
+    expect(0, NULL, "diff '%s' '%s' --max-pixels 400", a, b);
+    ck_assert_int_eq(setenv("SVET_MAX_PIXELS", "lots", 1), 0);
+    expect(1, "SVET_MAX_PIXELS lots", "diff '%s' '%s'", a, b);
+    unsetenv("SVET_MAX_PIXELS");
+    /* svet converge reads its images with the same limit */
+    image_t img;
+    svet_error err;
+    imgtest_hdr_image(&img, 12, 10, 3);
+    snprintf(a, sizeof a, "%s", imgtest_path("img.exr"));
+    snprintf(b, sizeof b, "%s", imgtest_path("ref.exr"));
+    ck_assert_int_eq(exrio_write(a, &img, EXRIO_FLOAT, EXRIO_ZIP, &err),
+                     SVET_OK);
+    ck_assert_int_eq(exrio_write(b, &img, EXRIO_FLOAT, EXRIO_ZIP, &err),
+                     SVET_OK);
+    image_free(&img);
+    expect(2, "exceeds the limit of 100 pixels",
+           "converge --ztest '%s' --spp 4 --ref '%s' --max-pixels 100", a, b);
+}
+END_TEST
+
+START_TEST(inputs_that_are_not_regular_files_are_refused_at_once)
+{
+    /* A FIFO as the scene or as an image once blocked svet for ever; a
+     * directory was "an empty file". */
+    char a[1024], fifo[1024], dir[1024];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    make_pair(a, imgtest_path("b.pfm"), 0.5f);
+    imgtest_special_files(fifo, dir, sizeof fifo);
+    expect(2, "is a FIFO", "render '%s' -q -o '%s'", fifo,
+           imgtest_path("r.exr"));
+    expect(2, "is a FIFO", "diff '%s' '%s'", fifo, a);
+    expect(2, "is a directory", "diff '%s' '%s'", a, dir);
+}
+END_TEST
+
+START_TEST(a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs)
+{
+    /* On a full disk the EXR header cannot be written; that once hung
+     * svet render (also with --checkpoint) and svet diff --error-image
+     * for ever, leaving an empty temporary file. */
+    const char *disk = imgtest_small_disk(128);
+    if (!disk)
+        return;
+    char a[1024], b[1024], exr[1100], png[1100], e[1100];
+    snprintf(a, sizeof a, "%s", imgtest_path("a.pfm"));
+    snprintf(b, sizeof b, "%s", imgtest_path("b.pfm"));
+    make_pair(a, b, 0.25f);
+    snprintf(exr, sizeof exr, "%s/r.exr", disk);
+    snprintf(png, sizeof png, "%s/r.png", disk);
+    snprintf(e, sizeof e, "%s/e.exr", disk);
+    static const char old[] = "an earlier output";
+    const char *const outputs[] = { exr, png, e };
+    for (int i = 0; i < 3; i++)
+        imgtest_write_bytes(outputs[i], old, sizeof old);
+    imgtest_fill_disk(disk);
+    const char *const renders[] = { "", " --checkpoint --passes 2" };
+    for (int i = 0; i < 2; i++)
+        expect(3, exr, "render scenes/cbox.scn -q --spp 2 "
+               "--set resolution=8x8 -o '%s'%s", exr, renders[i]);
+    expect(3, e, "diff '%s' '%s' --error-image '%s'", a, b, e);
+    for (int i = 0; i < 3; i++) {
+        ck_assert_msg(imgtest_file_is(outputs[i], old, sizeof old),
+                      "%s was changed", outputs[i]);
+        ck_assert_int_eq(imgtest_count_temps(outputs[i]), 0);
+    }
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -197,6 +306,9 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
+    tcase_add_test(tc, images_beyond_the_pixel_limit_are_refused);
+    tcase_add_test(tc, inputs_that_are_not_regular_files_are_refused_at_once);
+    tcase_add_test(tc, a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs);
     suite_add_tcase(s, tc);
     return s;
 }

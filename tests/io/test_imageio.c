@@ -1,14 +1,23 @@
 /*
  * test_imageio.c - images by name (imageio.h): formats told by content,
- * written by extension, and a render saved as HDR plus display image.
+ * written by extension, and a render saved as HDR plus display image;
+ * every reader's limit of pixels, and what it does with a directory, a
+ * FIFO or a device; every writer on a full disk.
  */
 #include "testutil.h"
 #include "imgtest.h"
+#include "io/exrio.h"
 #include "io/imageio.h"
+#include "io/netpbm.h"
+#include "io/pngio.h"
 #include "colour/colour.h"
 
+#include <dirent.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 START_TEST(files_are_read_by_their_content_not_their_name)
 {
@@ -117,6 +126,186 @@ START_TEST(unknown_and_empty_files_are_refused)
 }
 END_TEST
 
+/* The readers, each with the limits of `limits`, as imgtest_reader_fn. */
+static image_read_limits_t limits;
+
+static svet_status read_exr_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return exrio_read_with(path, img, &limits, err);
+}
+
+static svet_status read_pfm_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return netpbm_read_pfm_with(path, img, &limits, err);
+}
+
+static svet_status read_png_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return pngio_read_with(path, img, NULL, &limits, err);
+}
+
+static svet_status read_ppm_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return netpbm_read_ppm_with(path, img, NULL, &limits, err);
+}
+
+static svet_status read_any_lim(const char *path, image_t *img,
+                                svet_error *err)
+{
+    return imageio_read_with(path, img, false, NULL, &limits, err);
+}
+
+static const struct {
+    const char *name;
+    imgtest_reader_fn read;
+} readers[] = {
+    { "x.exr", read_exr_lim }, { "x.pfm", read_pfm_lim },
+    { "x.png", read_png_lim }, { "x.ppm", read_ppm_lim },
+    { "x.exr", read_any_lim }, { "x.png", read_any_lim },
+};
+enum { NREADERS = sizeof readers / sizeof readers[0] };
+
+START_TEST(every_reader_keeps_to_the_pixel_limit)
+{
+    /* A header may claim far more pixels than its bytes hold (a PNG of
+     * 783 KB can declare 16384 x 16384, which deflate can just about
+     * expand to): every reader refuses an image beyond its limit before
+     * allocating, and reads one at the limit. */
+    image_t img;
+    svet_error err;
+    imgtest_hdr_image(&img, 11, 10, 3);
+    for (int i = 0; i < NREADERS; i++) {
+        const char *path = imgtest_path(readers[i].name);
+        ck_assert_int_eq(imageio_write(path, &img, &err), SVET_OK);
+        limits.max_pixels = 110;
+        image_t back;
+        ck_assert_msg(readers[i].read(path, &back, &err) == SVET_OK, "%s",
+                      err.msg);
+        image_free(&back);
+        limits.max_pixels = 109;
+        imgtest_check_bad_file(readers[i].read, path, SVET_ERR_RANGE,
+                               "exceeds the limit of 109 pixels");
+    }
+    image_free(&img);
+
+    /* the default (0, or no limits at all): IMAGE_READ_MAX_PIXELS */
+    limits.max_pixels = 0;
+    const char *pfm = imgtest_path("big.pfm");
+    imgtest_write_bytes(pfm, "PF\n16384 16384\n-1\n0123456789ab", 30);
+    imgtest_check_bad_file(read_pfm_lim, pfm, SVET_ERR_RANGE,
+                           "exceeds the limit of 67108864 pixels");
+    imgtest_check_bad_file(read_any, pfm, SVET_ERR_RANGE, "limit");
+    const char *ppm = imgtest_path("big.ppm");
+    imgtest_write_bytes(ppm, "P6\n8193 8192\n255\n012345", 23);
+    imgtest_check_bad_file(read_any, ppm, SVET_ERR_RANGE, "limit");
+    /* a raised limit lets the header through to the next check */
+    limits.max_pixels = IMAGE_MAX_PIXELS;
+    imgtest_check_bad_file(read_pfm_lim, pfm, SVET_ERR_PARSE, "truncated");
+    test_report_cases("every_reader_keeps_to_the_pixel_limit",
+                      2 * NREADERS + 4);
+}
+END_TEST
+
+START_TEST(directories_fifos_and_devices_are_refused_without_blocking)
+{
+    /* Opening a FIFO for reading waits for a writer; reading /dev/zero
+     * never ends. Every reader says what the file is instead. */
+    char fifo[1024], dir[1024];
+    imgtest_special_files(fifo, dir, sizeof fifo);
+    limits.max_pixels = 0;
+    for (int i = 0; i < NREADERS; i++) {
+        imgtest_check_bad_file(readers[i].read, dir, SVET_ERR_IO,
+                               "is a directory");
+        imgtest_check_bad_file(readers[i].read, fifo, SVET_ERR_IO, "FIFO");
+        imgtest_check_bad_file(readers[i].read, "/dev/zero", SVET_ERR_IO,
+                               "device");
+    }
+    test_report_cases("directories_fifos_and_devices_are_refused_without_"
+                      "blocking", 3 * NREADERS);
+}
+END_TEST
+
+START_TEST(every_writer_fails_cleanly_on_a_full_disk)
+{
+    /* A full disk fails the first write of every format: the EXR header
+     * (whose failure once hung the EXR writer for ever, its error handler
+     * waiting on a lock the failing call held), the PNG rows, the PFM and
+     * PPM data at the final flush. Each must report it, keep the old file
+     * and leave no temporary file. */
+    const char *dir = imgtest_small_disk(64);
+    if (!dir)
+        return;
+    static const char *const names[] = { "a.exr", "b.pfm", "c.png", "d.ppm",
+                                         "e.exr" };
+    enum { N = sizeof names / sizeof names[0] };
+    char paths[N][1100];
+    static const char old[] = "the previous output";
+    for (int i = 0; i < N; i++) {
+        snprintf(paths[i], sizeof paths[i], "%s/%s", dir, names[i]);
+        imgtest_write_bytes(paths[i], old, sizeof old);
+    }
+    imgtest_fill_disk(dir);
+    image_t img;
+    imgtest_hdr_image(&img, 64, 64, 3);
+    for (int i = 0; i < N; i++) {
+        svet_error err;
+        svet_status st = i == 4 ? exrio_write(paths[i], &img, EXRIO_HALF,
+                                              EXRIO_NONE, &err)
+                                : imageio_write(paths[i], &img, &err);
+        ck_assert_msg(st == SVET_ERR_IO, "%s: %s", paths[i],
+                      svet_status_name(st));
+        ck_assert_msg(strstr(err.msg, paths[i]) != NULL, "%s", err.msg);
+        ck_assert_msg(imgtest_file_is(paths[i], old, sizeof old),
+                      "%s was changed", paths[i]);
+        ck_assert_int_eq(imgtest_count_temps(paths[i]), 0);
+    }
+    image_free(&img);
+    test_report_cases("every_writer_fails_cleanly_on_a_full_disk", N);
+}
+END_TEST
+
+START_TEST(inputs_that_once_failed_are_handled)
+{
+    /* tests/data/image/regress-*: files that once crashed or misread a
+     * reader (and, as they are found, the fuzzer's findings, minimised).
+     * Each must read, or fail with a message that starts with its name;
+     * the fuzz target's check (fuzz/fuzz_image.c). */
+    const char *dir = "tests/data/image";
+    DIR *d = opendir(dir);
+    ck_assert_msg(d != NULL, "no %s (run from the top directory)", dir);
+    struct dirent *e;
+    int n = 0;
+    while ((e = readdir(d)) != NULL) {
+        if (strncmp(e->d_name, "regress-", 8) != 0)
+            continue;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        image_t img;
+        svet_error err;
+        svet_error_clear(&err);
+        svet_status st = imageio_read(path, &img, true, NULL, &err);
+        ck_assert_msg(st == SVET_OK ||
+                          strncmp(err.msg, path, strlen(path)) == 0,
+                      "%s: %s", path, err.msg);
+        if (st == SVET_OK) {
+            size_t k = (size_t)img.width * (size_t)img.height *
+                       (size_t)img.channels;
+            for (size_t i = 0; i < k; i++)
+                ck_assert_msg(isfinite(img.px[i]), "%s: value %zu", path, i);
+        }
+        image_free(&img);
+        n++;
+    }
+    closedir(d);
+    ck_assert_int_ge(n, 2);
+    test_report_cases("inputs_that_once_failed_are_handled", n);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("imageio");
@@ -125,6 +314,11 @@ Suite *test_suite(void)
     tcase_add_test(tc, display_files_can_be_read_back_as_linear);
     tcase_add_test(tc, a_render_is_saved_as_hdr_and_display_image);
     tcase_add_test(tc, unknown_and_empty_files_are_refused);
+    tcase_add_test(tc, every_reader_keeps_to_the_pixel_limit);
+    tcase_add_test(tc,
+                   directories_fifos_and_devices_are_refused_without_blocking);
+    tcase_add_test(tc, every_writer_fails_cleanly_on_a_full_disk);
+    tcase_add_test(tc, inputs_that_once_failed_are_handled);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -181,9 +181,9 @@ START_TEST(bad_pfm_files_get_clear_errors)
     bad(read_pfm, "cut.pfm", "PF\n4 4\n-1\n", 4 * 4 * 12 - 1,
         SVET_ERR_PARSE, "truncated");
     bad(read_pfm, "nohead.pfm", "PF\n4", 0, SVET_ERR_PARSE, "truncated");
-    /* a header that promises 16384^2 pixels (within the limits) over 12
-     * bytes: refused before the 3 GiB allocation */
-    bad(read_pfm, "lying.pfm", "PF\n16384 16384\n-1\n", 12, SVET_ERR_PARSE,
+    /* a header that promises 8192^2 pixels (within the limit of pixels
+     * read) over 12 bytes: refused before the 768 MiB allocation */
+    bad(read_pfm, "lying.pfm", "PF\n8192 8192\n-1\n", 12, SVET_ERR_PARSE,
         "truncated");
     bad(read_pfm, "missing.pfm", "PF", 0, SVET_ERR_PARSE,
         "truncated");

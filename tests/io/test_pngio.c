@@ -224,11 +224,18 @@ START_TEST(bad_png_files_get_clear_errors)
     patch_ihdr(bad, 400, 40);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, NULL);
-    /* lying by far: 16000 x 16000 (within the limits) from a few hundred
-     * bytes, refused before the 1.5 GB allocation */
-    patch_ihdr(bad, 16000, 16000);
+    /* lying by far: 8000 x 8000 (within the limit of pixels read) from a
+     * few hundred bytes, refused before the 370 MB allocation */
+    patch_ihdr(bad, 8000, 8000);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, "cannot hold");
+    /* 16384 x 16384, as a 783 KB file can claim and deflate can just
+     * about fill: beyond the limit of pixels read, refused before libpng
+     * decodes a row */
+    patch_ihdr(bad, 16384, 16384);
+    imgtest_write_bytes(path, bad, n);
+    imgtest_check_bad_file(read_png, path, SVET_ERR_RANGE,
+                           "exceeds the limit of 67108864 pixels");
     patch_ihdr(bad, 20000, 20000); /* 4e8 pixels: beyond IMAGE_MAX_PIXELS */
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_RANGE, "limit");

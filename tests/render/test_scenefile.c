@@ -954,9 +954,10 @@ START_TEST(read_reports_missing_and_irregular_files)
                               "such file or directory");
     ck_assert_int_eq(read_scene(&s, "tests/data/scene", &err),
                      SVET_ERR_IO);
-    ck_assert_str_eq(err.msg, "tests/data/scene: not a regular file");
+    ck_assert_str_eq(err.msg, "tests/data/scene: is a directory, not a "
+                              "file");
     ck_assert_int_eq(read_scene(&s, "/dev/zero", &err), SVET_ERR_IO);
-    ck_assert_str_eq(err.msg, "/dev/zero: not a regular file");
+    ck_assert_str_eq(err.msg, "/dev/zero: is a device, not a regular file");
     scene_free(&s);
 }
 END_TEST
