@@ -170,15 +170,17 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
     return st;
 }
 
-int cmd_render(int argc, char **argv)
+/* The options that take a value, for cmd_missing_value(). */
+static const char *const valued[] = { "-o", "--output", "--png",
+                                      "--variance", "--spp", "--passes",
+                                      "--time-limit", NULL };
+
+int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
 {
-    const char *scene_path = NULL, *opt_exr = NULL, *opt_png = NULL,
-               *opt_var = NULL;
-    long spp = -1, passes = -1;
-    double time_limit = -1;
-    bool checkpoint = false, quiet = false, half = false;
-    cmd_scene_opts_t so;
-    cmd_scene_opts_init(&so);
+    memset(o, 0, sizeof *o);
+    o->spp = o->passes = -1;
+    o->time_limit = -1;
+    cmd_scene_opts_init(&o->so);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -188,65 +190,79 @@ int cmd_render(int argc, char **argv)
             cmd_render_help(stdout);
             return SVET_EXIT_OK;
         } else if (!strcmp(a, "--checkpoint")) {
-            checkpoint = true, takes = false;
+            o->checkpoint = true, takes = false;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            quiet = true, takes = false;
+            o->quiet = true, takes = false;
         } else if (!strcmp(a, "--half")) {
-            half = true, takes = false;
+            o->half = true, takes = false;
         } else if (a[0] == '-' && !v) {
-            return cmd_missing_value("render", a);
+            return cmd_missing_value("render", a, valued);
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            opt_exr = v;
+            if (!(o->exr = cmd_file_name("render", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--png")) {
-            opt_png = v;
+            if (!(o->png = cmd_file_name("render", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--variance")) {
-            opt_var = v;
+            if (!(o->var = cmd_file_name("render", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--spp")) {
-            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &spp))
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->spp))
                 return cmd_bad_value("render", a, v);
         } else if (!strcmp(a, "--passes")) {
-            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &passes))
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->passes))
                 return cmd_bad_value("render", a, v);
         } else if (!strcmp(a, "--time-limit")) {
-            if (!cmd_parse_double(v, &time_limit) || time_limit < 0 ||
-                time_limit > 1e9)
+            if (!cmd_parse_double(v, &o->time_limit) || o->time_limit < 0 ||
+                o->time_limit > 1e9)
                 return cmd_bad_value("render", a, v);
         } else if (a[0] == '-') {
-            int k = cmd_scene_option("render", a, v, &so);
+            int k = cmd_scene_option("render", a, v, &o->so);
             if (k == CMD_OPT_BAD)
                 return SVET_EXIT_USAGE;
             if (k == CMD_OPT_NONE)
                 return cmd_unknown_option("render", a);
         } else {
-            if (scene_path)
+            if (o->scene)
                 return cmd_error("render", SVET_EXIT_USAGE, "one scene at a "
-                                 "time ('%s' and '%s')", scene_path, a);
-            scene_path = a;
+                                 "time ('%s' and '%s')", o->scene, a);
+            o->scene = a;
             takes = false;
         }
         if (takes)
             i++;
     }
-    if (!scene_path)
+    if (!o->scene)
         return cmd_error("render", SVET_EXIT_USAGE,
                          "no scene file (svet render --help)");
+    return CMD_RUN;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    cmd_render_args_t o;
+    int rc = cmd_render_parse(argc, argv, &o);
+    if (rc != CMD_RUN)
+        return rc;
+    const char *scene_path = o.scene, *opt_exr = o.exr, *opt_png = o.png,
+               *opt_var = o.var;
 
     svet_error err;
     svet_error_clear(&err);
     scene_t scene;
-    int rc = cmd_scene_load("render", &scene, scene_path, &so);
+    rc = cmd_scene_load("render", &scene, scene_path, &o.so);
     if (rc != SVET_EXIT_OK) {
         scene_free(&scene);
         return rc;
     }
-    if (spp > 0)
-        scene.render.spp = spp;
-    if (time_limit >= 0)
-        scene.render.time_limit = time_limit;
-    if (checkpoint)
+    if (o.spp > 0)
+        scene.render.spp = o.spp;
+    if (o.time_limit >= 0)
+        scene.render.time_limit = o.time_limit;
+    if (o.checkpoint)
         scene.render.checkpoint = true;
-    if (passes > 0)
-        scene.render.passes = (int)passes;
+    if (o.passes > 0)
+        scene.render.passes = (int)o.passes;
 
     char *exr = opt_exr ? strdup(opt_exr) : default_exr(&scene, scene_path);
     char *png = opt_png ? strdup(opt_png)
@@ -281,9 +297,9 @@ int cmd_render(int argc, char **argv)
                                          : (total < 16 ? total : 16);
     if (npass > total)
         npass = total;
-    outputs_t out = { exr, png, opt_var, half };
+    outputs_t out = { exr, png, opt_var, o.half };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
-                      !quiet && isatty(STDERR_FILENO) };
+                      !o.quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
     for (long k = 1; k <= npass; k++) {
         long end = (long)((double)total * (double)k / (double)npass);
@@ -314,7 +330,7 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
     uint64_t nonfinite = image_accum_nonfinite(&r.acc);
-    if (!quiet) {
+    if (!o.quiet) {
         double samples = (double)r.spp_done * (double)scene.camera.width *
                          (double)scene.camera.height;
         fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s: %.3g "

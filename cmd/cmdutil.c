@@ -63,8 +63,14 @@ int cmd_error(const char *cmd, int rc, const char *fmt, ...)
     return rc;
 }
 
-int cmd_missing_value(const char *cmd, const char *opt)
+int cmd_missing_value(const char *cmd, const char *opt,
+                      const char *const *valued)
 {
+    bool known = cmd_is_scene_option(opt);
+    for (int i = 0; valued[i] && !known; i++)
+        known = !strcmp(opt, valued[i]);
+    if (!known)
+        return cmd_unknown_option(cmd, opt);
     return cmd_error(cmd, SVET_EXIT_USAGE, "%s needs a value (svet %s --help)",
                      opt, cmd);
 }
@@ -79,6 +85,15 @@ int cmd_bad_value(const char *cmd, const char *opt, const char *value)
 {
     return cmd_error(cmd, SVET_EXIT_USAGE, "bad value '%s' for %s", value,
                      opt);
+}
+
+const char *cmd_file_name(const char *cmd, const char *opt,
+                          const char *value)
+{
+    if (*value)
+        return value;
+    cmd_error(cmd, SVET_EXIT_USAGE, "%s '': a file name cannot be empty", opt);
+    return NULL;
 }
 
 char *cmd_replace_ext(const char *path, const char *ext)
@@ -99,6 +114,12 @@ void cmd_scene_opts_init(cmd_scene_opts_t *o)
 {
     memset(o, 0, sizeof *o);
     o->threads = -1;
+}
+
+bool cmd_is_scene_option(const char *opt)
+{
+    return !strcmp(opt, "--threads") || !strcmp(opt, "--seed") ||
+           !strcmp(opt, "--set");
 }
 
 int cmd_scene_option(const char *cmd, const char *opt, const char *value,

@@ -41,11 +41,19 @@ bool cmd_parse_double(const char *s, double *out);
 int cmd_error(const char *cmd, int rc, const char *fmt, ...) CMD_PRINTF(3, 4);
 
 /* The usage errors every subcommand reports alike: an option at the end
- * of the line without its value, an option it does not know, a value out
- * of range. Each prints one line and returns SVET_EXIT_USAGE. */
-int cmd_missing_value(const char *cmd, const char *opt);
+ * of the line without its value (or, when opt is neither in the command's
+ * NULL-terminated list `valued` nor a scene option, an unknown option),
+ * an option it does not know, a value out of range. Each prints one line
+ * and returns SVET_EXIT_USAGE. */
+int cmd_missing_value(const char *cmd, const char *opt,
+                      const char *const *valued);
 int cmd_unknown_option(const char *cmd, const char *opt);
 int cmd_bad_value(const char *cmd, const char *opt, const char *value);
+
+/* value as the file name given to opt: value itself, or NULL after
+ * printing that a file name cannot be empty. */
+const char *cmd_file_name(const char *cmd, const char *opt,
+                          const char *value);
 
 /* path with its extension (the last '.' after the last '/', if any)
  * replaced by ext: ("a/b.exr", ".png") -> "a/b.png", ("a/b", "-var.exr")
@@ -66,6 +74,9 @@ typedef struct {
 
 /* No options given. This function can't fail. */
 void cmd_scene_opts_init(cmd_scene_opts_t *o);
+
+/* Whether opt is one of the scene options below. */
+bool cmd_is_scene_option(const char *opt);
 
 /* If opt is --threads, --seed or --set, take its value (not NULL) into o.
  * Returns CMD_OPT_NONE when opt is another option, CMD_OPT_TAKEN when

@@ -136,6 +136,39 @@ START_TEST(bad_input_gives_a_message_and_an_exit_code)
 }
 END_TEST
 
+/* An unknown option at the end of the line is unknown, not short of a
+ * value; an empty file name is refused before anything is written. */
+START_TEST(usage_errors_name_the_real_problem)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --frobnicate", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "unknown option '--frobnicate'"), "%s", out);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --spp", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "--spp needs a value"), "%s", out);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --seed", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "--seed needs a value"), "%s", out);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, "diff a b --frobnicate"),
+                     1);
+    ck_assert_msg(strstr(out, "unknown option '--frobnicate'"), "%s", out);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out,
+                                 "converge a --ref r.exr --frobnicate"), 1);
+    ck_assert_msg(strstr(out, "unknown option '--frobnicate'"), "%s", out);
+    const char *empty[] = { "-o", "--png", "--variance" };
+    for (int i = 0; i < 3; i++) {
+        snprintf(args, sizeof args, "render '%s/tiny.scn' %s ''", dir,
+                 empty[i]);
+        ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+        ck_assert_msg(strstr(out, "a file name cannot be empty"), "%s", out);
+    }
+    ck_assert_int_eq(cmdtest_run(out, sizeof out,
+                                 "converge a --ref '' --no-plot"), 1);
+    ck_assert_msg(strstr(out, "a file name cannot be empty"), "%s", out);
+}
+END_TEST
+
 START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 {
     /* A render long enough to be stopped: many passes of many samples. */
@@ -181,6 +214,7 @@ Suite *test_suite(void)
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, render_writes_an_exr_and_a_png_beside_it);
     tcase_add_test(tc, bad_input_gives_a_message_and_an_exit_code);
+    tcase_add_test(tc, usage_errors_name_the_real_problem);
     tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
     suite_add_tcase(s, tc);
     return s;
