@@ -127,8 +127,9 @@ typedef struct {
 } outputs_t;
 
 /* Write the EXR, the PNG and (if asked) the variance image of what r holds
- * so far. Each file goes through a temporary file and a rename (fileio.h),
- * so an interrupted write leaves the previous checkpoint intact. */
+ * so far, as one set of outputs (fileio.h): each is written in full to a
+ * temporary file before any replaces its target, so an interrupted or
+ * failed write leaves the previous checkpoint's files, all of them. */
 static svet_status write_outputs(const render_t *r, const scene_t *s,
                                  const outputs_t *o, svet_error *err)
 {
@@ -137,9 +138,14 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
     svet_status st = render_image(r, &img, err);
     if (st != SVET_OK)
         return st;
+    fileio_set_t set;
+    fileio_set_init(&set);
+    fileio_t *f;
     ensure_dir(o->exr);
-    st = exrio_write(o->exr, &img, o->half ? EXRIO_HALF : EXRIO_FLOAT,
-                     EXRIO_ZIP, err);
+    st = fileio_set_begin(&set, o->exr, &f, err);
+    if (st == SVET_OK)
+        st = exrio_write_to(f, &img, o->half ? EXRIO_HALF : EXRIO_FLOAT,
+                            EXRIO_ZIP, err);
     if (st == SVET_OK) {
         tonemap_params_t tp;
         const scene_tonemap_t *t = &s->render.tonemap;
@@ -153,18 +159,26 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
         st = tonemap_apply(&img, &ldr, &tp, NULL, err);
         if (st == SVET_OK) {
             ensure_dir(o->png);
-            st = pngio_write(o->png, &ldr, 8, err);
+            st = fileio_set_begin(&set, o->png, &f, err);
         }
+        if (st == SVET_OK)
+            st = pngio_write_to(f, &ldr, 8, err);
     }
     if (st == SVET_OK && o->var) {
         image_t var;
         st = render_variance(r, &var, err);
         if (st == SVET_OK) {
             ensure_dir(o->var);
-            st = exrio_write(o->var, &var, EXRIO_FLOAT, EXRIO_ZIP, err);
+            st = fileio_set_begin(&set, o->var, &f, err);
+            if (st == SVET_OK)
+                st = exrio_write_to(f, &var, EXRIO_FLOAT, EXRIO_ZIP, err);
             image_free(&var);
         }
     }
+    if (st == SVET_OK)
+        st = fileio_set_commit(&set, err);
+    else
+        fileio_set_abort(&set);
     image_free(&ldr);
     image_free(&img);
     return st;

@@ -169,6 +169,43 @@ START_TEST(usage_errors_name_the_real_problem)
 }
 END_TEST
 
+/* The outputs of a render replace the old ones together: a PNG that
+ * cannot be written leaves the old EXR (and PNG) in place, so the pair on
+ * disk still belongs together. A read-only output is kept, exit 3. */
+START_TEST(outputs_are_replaced_together_or_not_at_all)
+{
+    char args[1024], exr[600], png[600], notdir[600];
+    snprintf(exr, sizeof exr, "%s/pair.exr", dir);
+    snprintf(png, sizeof png, "%s/pair.png", dir);
+    snprintf(notdir, sizeof notdir, "%s/plain-file", dir);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' -q", dir, exr);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    char old_exr[600];
+    snprintf(old_exr, sizeof old_exr, "%s/old.exr", dir);
+    snprintf(args, sizeof args, "cp '%s' '%s'; : > '%s'", exr, old_exr,
+             notdir);
+    ck_assert_int_eq(system(args), 0);
+    /* another seed, and a PNG under a plain file: ENOTDIR */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --png "
+             "'%s/a.png' --seed 9 -q", dir, exr, notdir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    ck_assert_msg(strstr(out, "plain-file/a.png"), "%s", out);
+    ck_assert_msg(same_file(exr, old_exr), "the EXR was replaced alone");
+    /* the variance image likewise */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --variance "
+             "'%s/v.exr' --seed 9 -q", dir, exr, notdir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    ck_assert_msg(same_file(exr, old_exr), "the EXR was replaced alone");
+    /* mode 444: refused, untouched */
+    ck_assert_int_eq(chmod(exr, 0444), 0);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --seed 9 -q",
+             dir, exr);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    ck_assert_msg(strstr(out, "read-only"), "%s", out);
+    ck_assert(same_file(exr, old_exr));
+}
+END_TEST
+
 START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 {
     /* A render long enough to be stopped: many passes of many samples. */
@@ -215,6 +252,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, render_writes_an_exr_and_a_png_beside_it);
     tcase_add_test(tc, bad_input_gives_a_message_and_an_exit_code);
     tcase_add_test(tc, usage_errors_name_the_real_problem);
+    tcase_add_test(tc, outputs_are_replaced_together_or_not_at_all);
     tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
     suite_add_tcase(s, tc);
     return s;
