@@ -12,6 +12,7 @@
 #ifndef SVET_FILEIO_H
 #define SVET_FILEIO_H
 
+#include <stdbool.h>
 #include <stdio.h>
 #include "core/error.h"
 
@@ -81,6 +82,13 @@ svet_status fileio_set_commit(fileio_set_t *set, svet_error *err);
 /* Give the whole set up: every temporary file removed, every target as it
  * was. Safe on an empty or committed set. This function can't fail. */
 void fileio_set_abort(fileio_set_t *set);
+
+/* Whether the paths a and b name one file: for files that exist, the same
+ * device and inode (so "x.exr", "./x.exr", "../d/x.exr" and a link to it
+ * are one); for a name not yet there, the same existing directory and the
+ * same rest of the name. This function can't fail (out of memory it
+ * compares the names). */
+bool fileio_same_file(const char *a, const char *b);
 
 /* Write a whole text file through the same path (for CSV and Markdown):
  * fileio_begin, fputs(text), fileio_commit. Fails as they do. */

@@ -364,6 +364,66 @@ void fileio_set_abort(fileio_set_t *set)
     set->n = 0;
 }
 
+/* --- which file a name means ------------------------------------------------ */
+
+/* The identity of path: the device and inode of its longest leading part
+ * that exists (st), and the components after that part, each followed by
+ * '/' ("" when the whole path exists). Malloc'ed; NULL when out of
+ * memory. */
+static char *identify(const char *path, struct stat *st)
+{
+    size_t n = strlen(path);
+    char *p = malloc(n + 2), *rest = malloc(n + 2);
+    if (!p || !rest) {
+        free(p);
+        free(rest);
+        return NULL;
+    }
+    memcpy(p, path, n + 1);
+    rest[0] = '\0';
+    memset(st, 0, sizeof *st);
+    for (;;) {
+        while (n > 1 && p[n - 1] == '/')
+            p[--n] = '\0';
+        if (stat(n ? p : ".", st) == 0)
+            break;
+        char *cut = strrchr(p, '/');
+        const char *comp = cut ? cut + 1 : p;
+        if (strcmp(comp, ".") != 0) { /* "a/./b" is "a/b" */
+            size_t nc = strlen(comp), nr = strlen(rest);
+            memmove(rest + nc + 1, rest, nr + 1);
+            memcpy(rest, comp, nc);
+            rest[nc] = '/';
+        }
+        if (!cut) {
+            p[0] = '\0';
+            n = 0;
+        } else if (cut == p) {
+            strcpy(p, "/");
+            n = 1;
+        } else {
+            *cut = '\0';
+            n = (size_t)(cut - p);
+        }
+        if (n == 1 && p[0] == '/' && stat(p, st) != 0)
+            break; /* no root: nothing more to learn */
+    }
+    free(p);
+    return rest;
+}
+
+bool fileio_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    char *ra = identify(a, &sa), *rb = identify(b, &sb);
+    bool same = ra && rb ? sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino &&
+                               strcmp(ra, rb) == 0
+                         : strcmp(a, b) == 0;
+    free(ra);
+    free(rb);
+    return same;
+}
+
 svet_status fileio_write_text(const char *path, const char *text,
                               svet_error *err)
 {

@@ -278,6 +278,47 @@ START_TEST(a_killed_writers_temporary_file_is_removed_by_the_next_write)
 }
 END_TEST
 
+/* One file under several names is one file; two names in one place are
+ * two; a name not yet there is compared by its directory's identity. */
+START_TEST(same_file_compares_files_not_names)
+{
+    char a[1100], dot[1100], sym[1100], up[1100], sub[1100], none1[1100],
+        none2[1100], deep1[1100], deep2[1100];
+    const char *d = imgtest_path("same"); /* a directory of its own */
+    ck_assert_int_eq(mkdir(d, 0777), 0);
+    snprintf(a, sizeof a, "%s/a.exr", d);
+    snprintf(dot, sizeof dot, "%s/./a.exr", d);
+    snprintf(sym, sizeof sym, "%s/link.exr", d);
+    snprintf(sub, sizeof sub, "%s/sub", d);
+    snprintf(up, sizeof up, "%s/sub/../a.exr", d);
+    imgtest_write_bytes(a, "a", 1);
+    ck_assert_int_eq(symlink(a, sym), 0);
+    ck_assert_int_eq(mkdir(sub, 0777), 0);
+    ck_assert(fileio_same_file(a, a));
+    ck_assert(fileio_same_file(a, dot));
+    ck_assert(fileio_same_file(a, sym));
+    ck_assert(fileio_same_file(up, a));
+    snprintf(none1, sizeof none1, "%s/new.png", d);
+    snprintf(none2, sizeof none2, "%s/sub/.././new.png", d);
+    ck_assert(fileio_same_file(none1, none2));   /* neither exists yet */
+    ck_assert(!fileio_same_file(none1, a));
+    snprintf(deep1, sizeof deep1, "%s/x/y/z.exr", d);
+    snprintf(deep2, sizeof deep2, "%s/sub/../x/./y/z.exr", d);
+    ck_assert(fileio_same_file(deep1, deep2));   /* x/ is missing too */
+    snprintf(deep2, sizeof deep2, "%s/x/y/w.exr", d);
+    ck_assert(!fileio_same_file(deep1, deep2));
+    ck_assert(!fileio_same_file(a, sub));
+    /* a hard link is the same file; a copy is not */
+    char hard[1100], copy[1100];
+    snprintf(hard, sizeof hard, "%s/hard.exr", d);
+    snprintf(copy, sizeof copy, "%s/copy.exr", d);
+    ck_assert_int_eq(link(a, hard), 0);
+    imgtest_write_bytes(copy, "a", 1);
+    ck_assert(fileio_same_file(hard, a));
+    ck_assert(!fileio_same_file(copy, a));
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("fileio");
@@ -287,6 +328,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_write_failing_midway_keeps_the_old_file);
     tcase_add_test(tc, an_unwritable_place_is_a_clear_io_error);
     tcase_add_test(tc, a_read_only_file_is_not_replaced);
+    tcase_add_test(tc, same_file_compares_files_not_names);
     tcase_add_test(tc, a_set_replaces_all_its_files_or_none);
     tcase_add_test(tc,
                    a_killed_writers_temporary_file_is_removed_by_the_next_write);
