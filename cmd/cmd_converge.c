@@ -403,6 +403,14 @@ static int ztest_files(const char *img_path, const char *var_path,
         rc = SVET_EXIT_INPUT;
         goto done;
     }
+    const cmd_file_t outs[] = { { pvalue_path, "the p-value image" } };
+    const cmd_file_t ins[] = { { img_path, "the image" },
+                               { var_path, "its variance" },
+                               { ref_path, "the reference" },
+                               { ref_var_path, "the reference's variance" } };
+    rc = cmd_check_outputs("converge", outs, 1, ins, 4);
+    if (rc != SVET_EXIT_OK)
+        goto done;
     if (exrio_read(img_path, &img, &err) != SVET_OK ||
         exrio_read(var_path, &var, &err) != SVET_OK ||
         exrio_read(ref_path, &ref, &err) != SVET_OK ||
@@ -728,15 +736,44 @@ int cmd_converge(int argc, char **argv)
     rc = cmd_scene_load("converge", &scene, scene_path, &o.so);
     if (rc != SVET_EXIT_OK)
         goto done;
-    if (exrio_read(ref_path, &ref, &err) != SVET_OK) {
-        fprintf(stderr, "svet converge: %s\n", err.msg);
-        rc = SVET_EXIT_INPUT;
-        goto done;
-    }
     if (!ref_var_path) {
         var_default = cmd_replace_ext(ref_path, "-var.exr");
         if (var_default && file_exists(var_default))
             ref_var_path = var_default;
+    }
+    stem = scene_stem(scene_path);
+    if (!stem) {
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    if (o.label)
+        snprintf(method, sizeof method, "%s", o.label);
+    else
+        make_label(method, sizeof method, stem, o.so.sets, o.so.nsets);
+    size_t dn = strlen(out_dir) + strlen(method) + 8;
+    csv = malloc(dn);
+    png = malloc(dn);
+    comment = malloc(8192);
+    if (!csv || !png || !comment) {
+        fprintf(stderr, "svet converge: out of memory\n");
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    snprintf(csv, dn, "%s/%s.csv", out_dir, method);
+    snprintf(png, dn, "%s/%s.png", out_dir, method);
+    const cmd_file_t outs[] = { { csv, "the CSV output" },
+                                { o.no_plot ? NULL : png, "the plot" } };
+    const cmd_file_t ins[] = { { scene_path, "the scene file" },
+                               { ref_path, "the reference" },
+                               { ref_var_path, "the reference's variance" },
+                               { o.script, "the gnuplot script" } };
+    rc = cmd_check_outputs("converge", outs, 2, ins, o.no_plot ? 3 : 4);
+    if (rc != SVET_EXIT_OK)
+        goto done;
+    if (exrio_read(ref_path, &ref, &err) != SVET_OK) {
+        fprintf(stderr, "svet converge: %s\n", err.msg);
+        rc = SVET_EXIT_INPUT;
+        goto done;
     }
     if (ref_var_path) {
         if (exrio_read(ref_var_path, &ref_var, &err) != SVET_OK) {
@@ -767,26 +804,6 @@ int cmd_converge(int argc, char **argv)
         for (long s = 1; s <= scene.render.spp && nlist < MAX_POINTS; s *= 2)
             list[nlist++] = (double)s;
     }
-    stem = scene_stem(scene_path);
-    if (!stem) {
-        rc = SVET_EXIT_OUTPUT;
-        goto done;
-    }
-    if (o.label)
-        snprintf(method, sizeof method, "%s", o.label);
-    else
-        make_label(method, sizeof method, stem, o.so.sets, o.so.nsets);
-    size_t dn = strlen(out_dir) + strlen(method) + 8;
-    csv = malloc(dn);
-    png = malloc(dn);
-    comment = malloc(8192);
-    if (!csv || !png || !comment) {
-        fprintf(stderr, "svet converge: out of memory\n");
-        rc = SVET_EXIT_OUTPUT;
-        goto done;
-    }
-    snprintf(csv, dn, "%s/%s.csv", out_dir, method);
-    snprintf(png, dn, "%s/%s.png", out_dir, method);
     make_dirs(out_dir);
 
     double t0 = cmd_now();

@@ -212,6 +212,12 @@ int cmd_diff(int argc, char **argv)
     const char *const *paths = o.paths, *err_path = o.err_path;
     const int *metrics = o.metrics, nmetrics = o.nmetrics;
     double peak = o.peak;
+    const cmd_file_t outs[] = { { err_path, "the error image" } };
+    const cmd_file_t ins[] = { { paths[0], "the image A" },
+                               { paths[1], "the reference B" } };
+    rc = cmd_check_outputs("diff", outs, 1, ins, 2);
+    if (rc != SVET_EXIT_OK)
+        return rc;
 
     image_t img[2] = { { 0 }, { 0 } };
     imageio_format_t fmt[2];

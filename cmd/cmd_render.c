@@ -290,6 +290,13 @@ int cmd_render(int argc, char **argv)
         rc = SVET_EXIT_OUTPUT;
         goto done;
     }
+    const cmd_file_t outs[] = { { exr, "the EXR output" },
+                                { png, "the PNG output" },
+                                { opt_var, "the variance output" } };
+    const cmd_file_t ins[] = { { scene_path, "the scene file" } };
+    rc = cmd_check_outputs("render", outs, 3, ins, 1);
+    if (rc != SVET_EXIT_OK)
+        goto done;
     if (scene_validate(&scene, &err) != SVET_OK ||
         render_init(&r, &scene, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);

@@ -126,9 +126,10 @@ START_TEST(bad_input_gives_a_message_and_an_exit_code)
     ck_assert_ptr_nonnull(strstr(out, "typo.scn:2"));
     snprintf(path, sizeof path, "%s/typo.exr", dir);
     ck_assert_int_ne(access(path, F_OK), 0);
-    /* an output that cannot be written: exit 3 */
-    snprintf(args, sizeof args, "render '%s/tiny.scn' -o /nonexistent/x/a.exr "
-             "-q", dir);
+    /* an output that cannot be written (under a plain file, which no one
+     * can make a directory of): exit 3 */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s/tiny.scn/x/a.exr' "
+             "-q", dir, dir);
     ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
     /* an override with a bad value */
     snprintf(args, sizeof args, "render '%s/tiny.scn' --set spp=-3", dir);
@@ -206,6 +207,62 @@ START_TEST(outputs_are_replaced_together_or_not_at_all)
 }
 END_TEST
 
+/* Every way of naming one file twice, and an output that is an input,
+ * is refused before anything is written (exit 1), the files untouched. */
+START_TEST(an_output_that_is_another_output_or_an_input_is_refused)
+{
+    char args[2048], scene[600];
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    snprintf(args, sizeof args, "cp '%s' '%s/tiny.copy'; mkdir '%s/sub'; cp "
+             "tests/data/scene/tri.obj '%s/tri.obj'", scene, dir, dir, dir);
+    ck_assert_int_eq(system(args), 0);
+    /* pairs of an option and a name in the scratch directory */
+    const char *bad[][4] = {
+        { "-o", "same.png", NULL, NULL },           /* the PNG beside it */
+        { "-o", "x.exr", "--png", "x.exr" },
+        { "-o", "x.exr", "--png", "sub/../x.exr" },
+        { "-o", "x.exr", "--variance", "./x.exr" },
+        { "-o", "tiny.scn", NULL, NULL },           /* the scene itself */
+        { "-o", "a.exr", "--png", "sub/../tiny.scn" },
+        { "-o", "a.exr", "--variance", "tri.obj" }, /* its mesh */
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        int n = snprintf(args, sizeof args, "render '%s' -q", scene);
+        for (int k = 0; k < 4 && bad[i][k]; k += 2)
+            n += snprintf(args + n, sizeof args - (size_t)n, " %s '%s/%s'",
+                          bad[i][k], dir, bad[i][k + 1]);
+        if (i == 6) { /* from now on the scene reads tri.obj */
+            FILE *f = fopen(scene, "a");
+            ck_assert_ptr_nonnull(f);
+            fprintf(f, "mesh file tri.obj material grey\n");
+            fclose(f);
+        }
+        ck_assert_msg(cmdtest_run(out, sizeof out, args) == 1, "%s: %s",
+                      args, out);
+        ck_assert_msg(strstr(out, "is the same file as"), "%s", out);
+    }
+    /* the scene's own output lines naming one file */
+    FILE *f = fopen(scene, "a");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "output exr %s/same.exr png %s/same.exr\n", dir, dir);
+    fclose(f);
+    snprintf(args, sizeof args, "render '%s' -q", scene);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "is the same file as"), "%s", out);
+    /* nothing was written, nothing changed */
+    const char *never[] = { "same.png", "same.exr", "x.exr", "a.exr",
+                            "a.png" };
+    for (int i = 0; i < 5; i++) {
+        char path[700];
+        snprintf(path, sizeof path, "%s/%s", dir, never[i]);
+        ck_assert_msg(access(path, F_OK) != 0, "%s was written", path);
+    }
+    snprintf(args, sizeof args, "cmp -s '%s/tri.obj' tests/data/scene/tri.obj"
+             " && head -n 6 '%s' | cmp -s - '%s/tiny.copy'", dir, scene, dir);
+    ck_assert_int_eq(system(args), 0);
+}
+END_TEST
+
 START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 {
     /* A render long enough to be stopped: many passes of many samples. */
@@ -253,6 +310,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, bad_input_gives_a_message_and_an_exit_code);
     tcase_add_test(tc, usage_errors_name_the_real_problem);
     tcase_add_test(tc, outputs_are_replaced_together_or_not_at_all);
+    tcase_add_test(tc, an_output_that_is_another_output_or_an_input_is_refused);
     tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
     suite_add_tcase(s, tc);
     return s;
