@@ -1,8 +1,10 @@
 /*
- * render.c - `svet render`: read a scene file, render it progressively in
- * passes (ch. 5), and write the linear image (EXR) and a tone-mapped one
- * (PNG, ch. 6) side by side. SIGINT or SIGTERM ends the render after the
- * current pass and writes what it has; a second one ends it at once.
+ * cmd_render.c - `svet render`: read a scene file, render it progressively
+ * in passes (ch. 5), and write the linear image (EXR) and a tone-mapped one
+ * (PNG, ch. 6) side by side. SIGINT or SIGTERM abandons the current pass
+ * within a tile's work and writes the last whole one (the image of that
+ * many samples); a second signal ends the program at once.
+ * Tests: tests/cmd/test_cmd_render.c
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -62,7 +64,17 @@ void cmd_render_help(FILE *f)
 "\n"
 "exit codes: 0 done; 1 bad command line; 2 the scene or a file it names is\n"
 "missing or malformed; 3 an output could not be written; 4 interrupted\n"
-"(SIGINT/SIGTERM), the samples rendered so far were written.\n");
+"(SIGINT/SIGTERM): the pass under way is abandoned and the outputs hold\n"
+"the passes completed, the same image as a render asked for that many\n"
+"samples (nothing is written when the first pass had not ended).\n"
+"\n"
+"Outputs are written in full to temporary files beside them\n"
+"(NAME.tmp-HOST-PID-N) and then renamed over the old ones together, so a\n"
+"failed or interrupted write keeps the previous EXR, PNG and variance as\n"
+"a matching set; a read-only file (mode 444) is never replaced, and an\n"
+"output that is the same file as another output or an input (the scene,\n"
+"a mesh) is refused. A killed render's temporary files are removed by the\n"
+"next write of the same output on the same host.\n");
 }
 
 typedef struct {
@@ -322,12 +334,21 @@ int cmd_render(int argc, char **argv)
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
                       !o.quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
+    long written = 0; /* the samples of the outputs on disk */
     for (long k = 1; k <= npass; k++) {
         long end = (long)((double)total * (double)k / (double)npass);
         pr.pass = k;
         pr.spp0 = r.spp_done;
         pr.spp1 = end;
-        render_pass(&r, end, scene.render.threads, on_tile, &pr);
+        /* a signal abandons the pass at the next tile: what is written
+         * is then the last whole pass, the image of r.spp_done samples */
+        bool abandoned;
+        if (render_pass_until(&r, end, scene.render.threads, on_tile, &pr,
+                              &stop_requested, &abandoned, &err) != SVET_OK) {
+            fprintf(stderr, "\nsvet render: %s\n", err.msg);
+            rc = SVET_EXIT_OUTPUT;
+            goto done;
+        }
         if (stop_requested) {
             interrupted = true;
             break;
@@ -335,17 +356,28 @@ int cmd_render(int argc, char **argv)
         if (scene.render.time_limit > 0 &&
             cmd_now() - pr.t0 >= scene.render.time_limit)
             break;
-        if (scene.render.checkpoint && k < npass &&
-            write_outputs(&r, &scene, &out, &err) != SVET_OK) {
-            fprintf(stderr, "\nsvet render: %s\n", err.msg);
-            rc = SVET_EXIT_OUTPUT;
-            goto done;
+        if (scene.render.checkpoint && k < npass) {
+            if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+                fprintf(stderr, "\nsvet render: %s\n", err.msg);
+                rc = SVET_EXIT_OUTPUT;
+                goto done;
+            }
+            written = r.spp_done;
         }
     }
     double secs = cmd_now() - pr.t0;
     if (pr.tty)
         fputc('\n', stderr);
-    if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+    if (r.spp_done == 0) {
+        /* stopped in the first pass: an image of no samples would only
+         * replace a good earlier one */
+        fprintf(stderr, "svet render: %s: interrupted before the first pass "
+                        "ended: nothing written\n", scene_path);
+        rc = SVET_EXIT_INTERRUPTED;
+        goto done;
+    }
+    if (r.spp_done != written &&
+        write_outputs(&r, &scene, &out, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s\n", err.msg);
         rc = SVET_EXIT_OUTPUT;
         goto done;

@@ -6,6 +6,7 @@
  */
 #include "testutil.h"
 #include "cmdtest.h"
+#include "imgtest.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
 
@@ -300,6 +301,112 @@ START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 }
 END_TEST
 
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* SIGINT during a pass: the pass is abandoned, not finished, and the
+ * outputs hold the last whole pass, the same bits as a render asked for
+ * that many samples. Work is counted, not timed: 8 passes of 512 samples
+ * on 16 tiles, the signal sent as soon as the first pass's checkpoint is
+ * on disk; a render that finished its second pass writes 1024 samples.
+ * The time to exit is only compared, loosely, with the first pass's. */
+START_TEST(sigint_abandons_the_pass_and_writes_the_last_whole_one)
+{
+    char exr[600], scene[600], log[600];
+    snprintf(exr, sizeof exr, "%s/int.exr", dir);
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    snprintf(log, sizeof log, "%s/int.log", dir);
+    double t0 = now();
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        if (!freopen(log, "w", stderr))
+            _exit(126);
+        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
+              "4096", "--passes", "8", "--threads", "1", "--set",
+              "resolution=64x64", "--checkpoint", (char *)NULL);
+        _exit(127);
+    }
+    struct timespec tick = { 0, 5000000 };
+    for (int i = 0; i < 60000 && access(exr, F_OK) != 0; i++)
+        nanosleep(&tick, NULL);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+    double t1 = now();
+    kill(pid, SIGINT);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    double t2 = now();
+    ck_assert(WIFEXITED(status));
+    ck_assert_int_eq(WEXITSTATUS(status), 4);
+    /* the summary names the samples written: the first pass's */
+    FILE *f = fopen(log, "r");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(out, 1, sizeof out - 1, f);
+    out[n] = '\0';
+    fclose(f);
+    ck_assert_msg(strstr(out, ", 512 spp in") && strstr(out, "(interrupted)"),
+                  "%s", out);
+    /* well within a pass (1/16 of one at most, and the exit) */
+    ck_assert_msg(t2 - t1 < 0.5 * (t1 - t0), "%.3f s to stop after a first "
+                  "pass of %.3f s", t2 - t1, t1 - t0);
+    char fresh[600], args[1400];
+    snprintf(fresh, sizeof fresh, "%s/fresh.exr", dir);
+    snprintf(args, sizeof args, "render '%s' -o '%s' --spp 512 --set "
+             "resolution=64x64 -q", scene, fresh);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    ck_assert(same_file(exr, fresh));
+}
+END_TEST
+
+/* Stopped before the first pass ends: nothing is written over the old
+ * output (an image of no samples is no result). */
+START_TEST(sigint_in_the_first_pass_keeps_the_old_output)
+{
+    char exr[600], scene[600];
+    snprintf(exr, sizeof exr, "%s/first.exr", dir);
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    imgtest_write_bytes(exr, "old", 3);
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        if (!freopen("/dev/null", "w", stderr))
+            _exit(126);
+        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
+              "100000", "--passes", "1", "--threads", "1", "--set",
+              "resolution=64x64", (char *)NULL);
+        _exit(127);
+    }
+    /* nothing is on disk yet to say the pass is under way: wait until the
+     * process catches SIGINT (Linux's /proc/PID/status, SigCgt bit 1),
+     * which it starts to do just before the first pass */
+    struct timespec tick = { 0, 5000000 };
+    char status_path[64], line[256];
+    snprintf(status_path, sizeof status_path, "/proc/%ld/status", (long)pid);
+    bool catching = false;
+    for (int i = 0; i < 60000 && !catching; i++) {
+        nanosleep(&tick, NULL);
+        FILE *f = fopen(status_path, "r");
+        while (f && fgets(line, sizeof line, f))
+            if (!strncmp(line, "SigCgt:", 7))
+                catching = (strtoull(line + 7, NULL, 16) >> (SIGINT - 1)) & 1;
+        if (f)
+            fclose(f);
+    }
+    ck_assert(catching);
+    kill(pid, SIGINT);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    ck_assert(WIFEXITED(status));
+    ck_assert_int_eq(WEXITSTATUS(status), 4);
+    ck_assert(imgtest_file_is(exr, "old", 3));
+    ck_assert_int_eq(imgtest_count_temps(exr), 0);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet render");
@@ -312,6 +419,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, outputs_are_replaced_together_or_not_at_all);
     tcase_add_test(tc, an_output_that_is_another_output_or_an_input_is_refused);
     tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
+    tcase_add_test(tc, sigint_abandons_the_pass_and_writes_the_last_whole_one);
+    tcase_add_test(tc, sigint_in_the_first_pass_keeps_the_old_output);
     suite_add_tcase(s, tc);
     return s;
 }
