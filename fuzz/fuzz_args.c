@@ -3,7 +3,9 @@
  * subcommand (cmd/): the input is split at NUL bytes into arguments, the
  * first naming the subcommand (render, diff, converge); its
  * cmd_*_parse() must give CMD_RUN or an exit code, never a crash, a leak
- * or undefined behaviour. Nothing is rendered or read: parsing only.
+ * or undefined behaviour. A command line that parses then has its output
+ * names checked against its inputs (cmd_check_outputs, which looks the
+ * names up with stat). Nothing is rendered, read or written.
  * `make fuzz-args`; fuzz/README.md has the runs.
  */
 #include <stddef.h>
@@ -34,13 +36,37 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     argv[argc] = NULL;
     if (!strcmp(argv[0], "render")) {
         cmd_render_args_t a;
-        cmd_render_parse(argc, argv, &a);
+        if (cmd_render_parse(argc, argv, &a) == CMD_RUN) {
+            /* the PNG's default name, as svet render makes it */
+            char *png = a.exr && !a.png ? cmd_replace_ext(a.exr, ".png")
+                                        : NULL;
+            const cmd_file_t outs[] = { { a.exr, "exr" },
+                                        { a.png ? a.png : png, "png" },
+                                        { a.var, "variance" } };
+            const cmd_file_t ins[] = { { a.scene, "scene" } };
+            cmd_check_outputs("render", outs, 3, ins, 1);
+            free(png);
+        }
     } else if (!strcmp(argv[0], "diff")) {
         cmd_diff_args_t a;
-        cmd_diff_parse(argc, argv, &a);
+        if (cmd_diff_parse(argc, argv, &a) == CMD_RUN) {
+            const cmd_file_t outs[] = { { a.err_path, "error image" } };
+            const cmd_file_t ins[] = { { a.paths[0], "A" },
+                                       { a.paths[1], "B" } };
+            cmd_check_outputs("diff", outs, 1, ins, 2);
+        }
     } else if (!strcmp(argv[0], "converge")) {
         cmd_converge_args_t a;
-        cmd_converge_parse(argc, argv, &a);
+        if (cmd_converge_parse(argc, argv, &a) == CMD_RUN) {
+            const cmd_file_t outs[] = { { a.pvalue, "p-values" },
+                                        { a.out_dir, "directory" } };
+            const cmd_file_t ins[] = { { a.ztest_img, "image" },
+                                       { a.ztest_var, "variance" },
+                                       { a.ref, "reference" },
+                                       { a.ref_var, "its variance" },
+                                       { a.script, "script" } };
+            cmd_check_outputs("converge", outs, 2, ins, 5);
+        }
     }
     free(text);
     return 0;
