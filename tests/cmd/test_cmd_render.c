@@ -176,7 +176,7 @@ END_TEST
  * disk still belongs together. A read-only output is kept, exit 3. */
 START_TEST(outputs_are_replaced_together_or_not_at_all)
 {
-    char args[1024], exr[600], png[600], notdir[600];
+    char args[4096], exr[600], png[600], notdir[600];
     snprintf(exr, sizeof exr, "%s/pair.exr", dir);
     snprintf(png, sizeof png, "%s/pair.png", dir);
     snprintf(notdir, sizeof notdir, "%s/plain-file", dir);

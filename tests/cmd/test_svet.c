@@ -192,7 +192,7 @@ END_TEST
  * before anything is read or written; the input stays as it was. */
 START_TEST(an_output_that_is_an_input_is_refused)
 {
-    char a[1024], b[1024], args[4096];
+    char a[1024], b[1024], args[8192];
     snprintf(a, sizeof a, "%s", imgtest_path("in-a.exr"));
     snprintf(b, sizeof b, "%s", imgtest_path("in-b.pfm"));
     make_pair(a, b, 0.25f);
