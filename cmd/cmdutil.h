@@ -16,23 +16,6 @@
 #define CMD_PRINTF(f, a) __attribute__((format(printf, f, a)))
 #else
 #define CMD_PRINTF(f, a)
-/* A file a command reads or writes, and what it is to the user ("the
- * EXR output", "the scene file"), for the messages. */
-typedef struct {
-    const char *path;
-    const char *what;
-} cmd_file_t;
-
-/* Refuse outputs that would overwrite each other or an input: each
- * output is compared with every other output, every input in `in`, and
- * every file the last cmd_scene_load() read besides the scene file (its
- * meshes), by file identity (fileio_same_file: the same file under any
- * name, or the same name in the same directory when it does not exist
- * yet). NULL paths are skipped. Returns SVET_EXIT_OK, or after printing
- * which two collide SVET_EXIT_USAGE; nothing has been written then. */
-int cmd_check_outputs(const char *cmd, const cmd_file_t *out, int nout,
-                      const cmd_file_t *in, int nin);
-
 #endif
 
 /* Seconds on the monotonic clock, from an arbitrary origin. This function

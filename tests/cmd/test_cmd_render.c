@@ -11,6 +11,7 @@
 #include "io/pngio.h"
 
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -264,22 +265,39 @@ START_TEST(an_output_that_is_another_output_or_an_input_is_refused)
 }
 END_TEST
 
+/* Start `svet render ARGS...` (NULL-terminated) in the background, its
+ * stderr to log (NULL: /dev/null); returns its pid. */
+static pid_t start_render(const char *log, ...)
+{
+    const char *argv[32] = { "svet", "render" };
+    int n = 2;
+    va_list ap;
+    va_start(ap, log);
+    for (const char *a; n < 31 && (a = va_arg(ap, const char *)) != NULL;)
+        argv[n++] = a;
+    va_end(ap);
+    argv[n] = NULL;
+    const char *svet = cmdtest_svet();
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        if (!freopen(log ? log : "/dev/null", "w", stderr))
+            _exit(126);
+        execv(svet, (char *const *)argv);
+        _exit(127);
+    }
+    return pid;
+}
+
 START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 {
     /* A render long enough to be stopped: many passes of many samples. */
     char exr[600], scene[600];
     snprintf(exr, sizeof exr, "%s/stopped.exr", dir);
     snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
-    pid_t pid = fork();
-    ck_assert(pid >= 0);
-    if (pid == 0) {
-        if (!freopen("/dev/null", "w", stderr))
-            _exit(126);
-        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
-              "200000", "--passes", "100000", "--threads", "1",
-              "--checkpoint", (char *)NULL);
-        _exit(127);
-    }
+    pid_t pid = start_render(NULL, scene, "-o", exr, "--spp", "200000",
+                             "--passes", "100000", "--threads", "1",
+                             "--checkpoint", (char *)NULL);
     /* The first checkpoint proves the render is under way (its signal
      * handlers are installed before the first pass); then ask it to stop.
      * Polled, not timed: a slow machine only waits longer. */
@@ -321,16 +339,9 @@ START_TEST(sigint_abandons_the_pass_and_writes_the_last_whole_one)
     snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
     snprintf(log, sizeof log, "%s/int.log", dir);
     double t0 = now();
-    pid_t pid = fork();
-    ck_assert(pid >= 0);
-    if (pid == 0) {
-        if (!freopen(log, "w", stderr))
-            _exit(126);
-        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
-              "4096", "--passes", "8", "--threads", "1", "--set",
-              "resolution=64x64", "--checkpoint", (char *)NULL);
-        _exit(127);
-    }
+    pid_t pid = start_render(log, scene, "-o", exr, "--spp", "4096",
+                             "--passes", "8", "--threads", "1", "--set",
+                             "resolution=64x64", "--checkpoint", (char *)NULL);
     struct timespec tick = { 0, 5000000 };
     for (int i = 0; i < 60000 && access(exr, F_OK) != 0; i++)
         nanosleep(&tick, NULL);
@@ -370,16 +381,9 @@ START_TEST(sigint_in_the_first_pass_keeps_the_old_output)
     snprintf(exr, sizeof exr, "%s/first.exr", dir);
     snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
     imgtest_write_bytes(exr, "old", 3);
-    pid_t pid = fork();
-    ck_assert(pid >= 0);
-    if (pid == 0) {
-        if (!freopen("/dev/null", "w", stderr))
-            _exit(126);
-        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
-              "100000", "--passes", "1", "--threads", "1", "--set",
-              "resolution=64x64", (char *)NULL);
-        _exit(127);
-    }
+    pid_t pid = start_render(NULL, scene, "-o", exr, "--spp", "100000",
+                             "--passes", "1", "--threads", "1", "--set",
+                             "resolution=64x64", (char *)NULL);
     /* nothing is on disk yet to say the pass is under way: wait until the
      * process catches SIGINT (Linux's /proc/PID/status, SigCgt bit 1),
      * which it starts to do just before the first pass */
