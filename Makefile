@@ -312,6 +312,19 @@ $(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
 	    $(call src_of,$(fuzz_$*_MODULES) $(call fast_of,$(fuzz_$*_MODULES))) \
 	    $(fuzz_$*_LIBS) -lm -o $@
 
+# fuzz_args: the argument parsing of cmd/ (every cmd/*.c but main's), with
+# the library and its image libraries beside it; -close_fd_mask=3 keeps
+# the usage messages out of the fuzzer's output (its reports still show).
+fuzz_args_MODULES := $(MODULES)
+fuzz_args_SRCS := $(filter-out $(SVET_MAIN),$(CMD_SRCS))
+fuzz_args_ARGS := -dict=fuzz/args.dict -close_fd_mask=3
+$(FUZZ_BUILD)/fuzz_args: fuzz/fuzz_args.c $(SRCS) $(HDRS) $(CMD_SRCS) \
+                         $(wildcard cmd/*.h)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) -Icmd $(PKG_CFLAGS) $< \
+	    $(call src_of,$(fuzz_args_MODULES)) $(fuzz_args_SRCS) \
+	    $(PKG_LIBS) -lm -o $@
+
 fuzz-%: $(FUZZ_BUILD)/fuzz_%
 	@mkdir -p fuzz/findings/$*/corpus
 	$< -max_total_time=$(FUZZ_TIME) -timeout=5 $(fuzz_$*_ARGS) \

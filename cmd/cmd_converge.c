@@ -28,7 +28,7 @@
 
 extern char **environ;
 
-#define MAX_POINTS 64
+#define MAX_POINTS CMD_CONVERGE_MAX_POINTS
 #define DEFAULT_SCRIPT "tools/plot-converge.gp"
 
 void cmd_converge_help(FILE *f)
@@ -265,7 +265,7 @@ static void fmt_time(char *out, size_t n, double t, converge_how h)
         snprintf(out, n, "%s%.3g s", how_mark(h), t);
 }
 
-static int report(int nfiles, char **files, converge_metric m, double T,
+static int report(int nfiles, const char *const *files, converge_metric m, double T,
                   double E)
 {
     typedef struct {
@@ -410,6 +410,14 @@ static int ztest_files(const char *img_path, const char *var_path,
         rc = SVET_EXIT_INPUT;
         goto done;
     }
+    const cmd_file_t outs[] = { { pvalue_path, "the p-value image" } };
+    const cmd_file_t ins[] = { { img_path, "the image" },
+                               { var_path, "its variance" },
+                               { ref_path, "the reference" },
+                               { ref_var_path, "the reference's variance" } };
+    rc = cmd_check_outputs("converge", outs, 1, ins, 4);
+    if (rc != SVET_EXIT_OK)
+        goto done;
     if (exrio_read_with(img_path, &img, lim, &err) != SVET_OK ||
         exrio_read_with(var_path, &var, lim, &err) != SVET_OK ||
         exrio_read_with(ref_path, &ref, lim, &err) != SVET_OK ||
@@ -571,21 +579,18 @@ static const char *integrator_name(scene_integrator i)
     return "?";
 }
 
-int cmd_converge(int argc, char **argv)
+static const char *const valued[] = {
+    "--ref", "--ref-var", "--out", "--label", "--plot-script", "--spp-list",
+    "--time-list", "--time", "--error", "--ztest", "--var", "--pvalue",
+    "--spp", "--ref-spp", "--metric", "--max-pixels", NULL };
+
+int cmd_converge_parse(int argc, char **argv, cmd_converge_args_t *o)
 {
-    const char *scene_path = NULL, *ref_path = NULL, *ref_var_path = NULL,
-               *out_dir = "out/converge", *label = NULL,
-               *script = DEFAULT_SCRIPT;
-    char *files[256];
-    int nfiles = 0, nlist = 0;
-    double list[MAX_POINTS], T = 0, E = 0, zspp = 0, ref_spp = 0;
-    const char *ztest_img = NULL, *ztest_var = NULL, *pvalue_path = NULL,
-               *max_pixels = NULL;
-    converge_metric metric = CONVERGE_REL;
-    bool time_mode = false, have_list = false, no_plot = false,
-         quiet = false, report_mode = false;
-    cmd_scene_opts_t so;
-    cmd_scene_opts_init(&so);
+    memset(o, 0, sizeof *o);
+    o->out_dir = "out/converge";
+    o->script = DEFAULT_SCRIPT;
+    o->metric = CONVERGE_REL;
+    cmd_scene_opts_init(&o->so);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -595,116 +600,137 @@ int cmd_converge(int argc, char **argv)
             cmd_converge_help(stdout);
             return SVET_EXIT_OK;
         } else if (!strcmp(a, "--no-plot")) {
-            no_plot = true, takes = false;
+            o->no_plot = true, takes = false;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            quiet = true, takes = false;
+            o->quiet = true, takes = false;
         } else if (!strcmp(a, "--report")) {
-            report_mode = true, takes = false;
+            o->report = true, takes = false;
         } else if (a[0] == '-' && !v) {
-            return cmd_missing_value("converge", a);
+            return cmd_missing_value("converge", a, valued);
         } else if (!strcmp(a, "--ref")) {
-            ref_path = v;
+            if (!(o->ref = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--ref-var")) {
-            ref_var_path = v;
+            if (!(o->ref_var = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--out")) {
-            out_dir = v;
+            if (!(o->out_dir = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--label")) {
             if (!label_ok(v)) {
                 fprintf(stderr, "svet converge: --label '%s': use letters, "
                                 "digits and . _ = + - only\n", v);
                 return SVET_EXIT_USAGE;
             }
-            label = v;
+            o->label = v;
         } else if (!strcmp(a, "--plot-script")) {
-            script = v;
+            if (!(o->script = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--spp-list") || !strcmp(a, "--time-list")) {
-            time_mode = !strcmp(a, "--time-list");
-            if (have_list) {
+            o->time_mode = !strcmp(a, "--time-list");
+            if (o->have_list) {
                 fprintf(stderr, "svet converge: give one of --spp-list and "
                                 "--time-list, once\n");
                 return SVET_EXIT_USAGE;
             }
-            if (!parse_list(v, list, &nlist, !time_mode) ||
-                (!time_mode && list[nlist - 1] > (double)SCENE_MAX_SPP)) {
+            if (!parse_list(v, o->list, &o->nlist, !o->time_mode) ||
+                (!o->time_mode &&
+                 o->list[o->nlist - 1] > (double)SCENE_MAX_SPP)) {
                 fprintf(stderr, "svet converge: %s '%s': expected at most %d "
                                 "increasing positive %s, separated by "
                                 "commas\n", a, v, MAX_POINTS,
-                        time_mode ? "numbers" : "whole numbers");
+                        o->time_mode ? "numbers" : "whole numbers");
                 return SVET_EXIT_USAGE;
             }
-            have_list = true;
+            o->have_list = true;
         } else if (!strcmp(a, "--time") || !strcmp(a, "--error")) {
             double x;
             if (!cmd_parse_double(v, &x) || !(x > 0))
                 return cmd_bad_value("converge", a, v);
-            *(!strcmp(a, "--time") ? &T : &E) = x;
+            *(!strcmp(a, "--time") ? &o->T : &o->E) = x;
         } else if (!strcmp(a, "--ztest")) {
-            ztest_img = v;
+            if (!(o->ztest_img = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--var")) {
-            ztest_var = v;
+            if (!(o->ztest_var = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--pvalue")) {
-            pvalue_path = v;
+            if (!(o->pvalue = cmd_file_name("converge", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--spp") || !strcmp(a, "--ref-spp")) {
             double x;
             if (!cmd_parse_double(v, &x) || !(x > 0) || x > 1e12)
                 return cmd_bad_value("converge", a, v);
-            *(!strcmp(a, "--spp") ? &zspp : &ref_spp) = x;
+            *(!strcmp(a, "--spp") ? &o->zspp : &o->ref_spp) = x;
         } else if (!strcmp(a, "--max-pixels")) {
-            max_pixels = v;
+            o->max_pixels = v;
         } else if (!strcmp(a, "--metric")) {
             if (!strcmp(v, "rel"))
-                metric = CONVERGE_REL;
+                o->metric = CONVERGE_REL;
             else if (!strcmp(v, "abs"))
-                metric = CONVERGE_ABS;
+                o->metric = CONVERGE_ABS;
             else
                 return cmd_bad_value("converge", a, v);
         } else if (a[0] == '-') {
-            int k = cmd_scene_option("converge", a, v, &so);
+            int k = cmd_scene_option("converge", a, v, &o->so);
             if (k == CMD_OPT_BAD)
                 return SVET_EXIT_USAGE;
             if (k == CMD_OPT_NONE)
                 return cmd_unknown_option("converge", a);
         } else {
             takes = false;
-            if (nfiles == 256) {
-                fprintf(stderr, "svet converge: at most 256 files\n");
+            if (o->nfiles == CMD_CONVERGE_MAX_FILES) {
+                fprintf(stderr, "svet converge: at most %d files\n",
+                        CMD_CONVERGE_MAX_FILES);
                 return SVET_EXIT_USAGE;
             }
-            files[nfiles++] = argv[i];
+            o->files[o->nfiles++] = argv[i];
         }
         if (takes)
             i++;
     }
-    image_read_limits_t lim;
-    if (cmd_read_limits("converge", max_pixels, &lim) != SVET_EXIT_OK)
-        return SVET_EXIT_USAGE;
-    if (ztest_img) {
-        if (!ref_path || !(zspp > 0) || nfiles) {
+    if (o->ztest_img) {
+        if (!o->ref || !(o->zspp > 0) || o->nfiles) {
             fprintf(stderr, "svet converge: --ztest IMAGE.exr needs --spp N "
                             "and --ref REF.exr, and no other files\n");
             return SVET_EXIT_USAGE;
         }
-        return ztest_files(ztest_img, ztest_var, zspp, ref_path,
-                           ref_var_path, ref_spp, pvalue_path, &lim);
-    }
-    if (report_mode) {
-        if (nfiles == 0) {
+    } else if (o->report) {
+        if (o->nfiles == 0) {
             fprintf(stderr, "svet converge: --report needs CSV files\n");
             return SVET_EXIT_USAGE;
         }
-        return report(nfiles, files, metric, T, E);
-    }
-    if (nfiles != 1) {
+    } else if (o->nfiles != 1) {
         fprintf(stderr, "svet converge: %s (svet converge --help)\n",
-                nfiles ? "one scene at a time (--report reads CSV files)"
-                       : "no scene file");
+                o->nfiles ? "one scene at a time (--report reads CSV files)"
+                          : "no scene file");
         return SVET_EXIT_USAGE;
-    }
-    scene_path = files[0];
-    if (!ref_path) {
+    } else if (!o->ref) {
         fprintf(stderr, "svet converge: --ref REF.exr is required\n");
         return SVET_EXIT_USAGE;
     }
+    return CMD_RUN;
+}
+
+int cmd_converge(int argc, char **argv)
+{
+    cmd_converge_args_t o;
+    int rc = cmd_converge_parse(argc, argv, &o);
+    if (rc != CMD_RUN)
+        return rc;
+    image_read_limits_t lim;
+    if (cmd_read_limits("converge", o.max_pixels, &lim) != SVET_EXIT_OK)
+        return SVET_EXIT_USAGE;
+    if (o.ztest_img)
+        return ztest_files(o.ztest_img, o.ztest_var, o.zspp, o.ref,
+                           o.ref_var, o.ref_spp, o.pvalue, &lim);
+    if (o.report)
+        return report(o.nfiles, o.files, o.metric, o.T, o.E);
+    const char *scene_path = o.files[0], *ref_path = o.ref,
+               *ref_var_path = o.ref_var, *out_dir = o.out_dir;
+    const bool quiet = o.quiet;
+    double *list = o.list;
+    int nlist = o.nlist;
 
     svet_error err;
     svet_error_clear(&err);
@@ -719,18 +745,47 @@ int cmd_converge(int argc, char **argv)
     converge_point_t pts[MAX_POINTS];
     char method[256];
 
-    int rc = cmd_scene_load("converge", &scene, scene_path, &so);
+    rc = cmd_scene_load("converge", &scene, scene_path, &o.so);
+    if (rc != SVET_EXIT_OK)
+        goto done;
+    if (!ref_var_path) {
+        var_default = cmd_replace_ext(ref_path, "-var.exr");
+        if (var_default && file_exists(var_default))
+            ref_var_path = var_default;
+    }
+    stem = scene_stem(scene_path);
+    if (!stem) {
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    if (o.label)
+        snprintf(method, sizeof method, "%s", o.label);
+    else
+        make_label(method, sizeof method, stem, o.so.sets, o.so.nsets);
+    size_t dn = strlen(out_dir) + strlen(method) + 8;
+    csv = malloc(dn);
+    png = malloc(dn);
+    comment = malloc(8192);
+    if (!csv || !png || !comment) {
+        fprintf(stderr, "svet converge: out of memory\n");
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    snprintf(csv, dn, "%s/%s.csv", out_dir, method);
+    snprintf(png, dn, "%s/%s.png", out_dir, method);
+    const cmd_file_t outs[] = { { csv, "the CSV output" },
+                                { o.no_plot ? NULL : png, "the plot" } };
+    const cmd_file_t ins[] = { { scene_path, "the scene file" },
+                               { ref_path, "the reference" },
+                               { ref_var_path, "the reference's variance" },
+                               { o.script, "the gnuplot script" } };
+    rc = cmd_check_outputs("converge", outs, 2, ins, o.no_plot ? 3 : 4);
     if (rc != SVET_EXIT_OK)
         goto done;
     if (exrio_read_with(ref_path, &ref, &lim, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s\n", err.msg);
         rc = SVET_EXIT_INPUT;
         goto done;
-    }
-    if (!ref_var_path) {
-        var_default = cmd_replace_ext(ref_path, "-var.exr");
-        if (var_default && file_exists(var_default))
-            ref_var_path = var_default;
     }
     if (ref_var_path) {
         if (exrio_read_with(ref_var_path, &ref_var, &lim, &err) != SVET_OK) {
@@ -757,30 +812,10 @@ int cmd_converge(int argc, char **argv)
         cam->width = ref.width;
         cam->height = ref.height;
     }
-    if (!have_list) {
+    if (!o.have_list) {
         for (long s = 1; s <= scene.render.spp && nlist < MAX_POINTS; s *= 2)
             list[nlist++] = (double)s;
     }
-    stem = scene_stem(scene_path);
-    if (!stem) {
-        rc = SVET_EXIT_OUTPUT;
-        goto done;
-    }
-    if (label)
-        snprintf(method, sizeof method, "%s", label);
-    else
-        make_label(method, sizeof method, stem, so.sets, so.nsets);
-    size_t dn = strlen(out_dir) + strlen(method) + 8;
-    csv = malloc(dn);
-    png = malloc(dn);
-    comment = malloc(8192);
-    if (!csv || !png || !comment) {
-        fprintf(stderr, "svet converge: out of memory\n");
-        rc = SVET_EXIT_OUTPUT;
-        goto done;
-    }
-    snprintf(csv, dn, "%s/%s.csv", out_dir, method);
-    snprintf(png, dn, "%s/%s.png", out_dir, method);
     make_dirs(out_dir);
 
     double t0 = cmd_now();
@@ -806,20 +841,20 @@ int cmd_converge(int argc, char **argv)
         "ref_variance; efficiency = 1/(variance x seconds); PSNR peak %g",
         scene_path, ref_path, ref_var_path ? " --ref-var " : "",
         ref_var_path ? ref_var_path : "",
-        time_mode ? "time budgets" : "sample counts", method,
+        o.time_mode ? "time budgets" : "sample counts", method,
         (unsigned long long)scene.render.seed, cam->width, cam->height,
         integrator_name(scene.render.integrator),
         scene.render.max_depth, scene.render.roulette ? "on" : "off",
         REAL_NAME, __VERSION__, r.accel_choice, scene.render.threads,
         CONVERGE_PSNR_PEAK);
-    for (int i = 0; i < so.nsets && len > 0 && len < 8000; i++)
+    for (int i = 0; i < o.so.nsets && len > 0 && len < 8000; i++)
         len += snprintf(comment + len, 8192 - (size_t)len, "%s--set %s",
-                        i ? " " : "\nsettings: ", so.sets[i]);
+                        i ? " " : "\nsettings: ", o.so.sets[i]);
 
     if (!quiet)
         fprintf(stderr, "svet converge: %s (%s) against %s\n", scene_path,
                 method, ref_path);
-    svet_status st = time_mode
+    svet_status st = o.time_mode
         ? run_times(&u, list, nlist, csv, method, comment, &err)
         : run_spps(&u, list, nlist, csv, method, comment, &err);
     if (st != SVET_OK) {
@@ -842,8 +877,8 @@ int cmd_converge(int argc, char **argv)
     if (biased)
         printf("%s: estimated relative bias %.4g (the floor of the relative "
                "RMSE)\n", method, bias);
-    if (!no_plot)
-        plot(script, csv, png, method, quiet);
+    if (!o.no_plot)
+        plot(o.script, csv, png, method, quiet);
 done:
     if (r_live)
         render_free(&r);

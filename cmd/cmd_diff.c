@@ -58,6 +58,8 @@ void cmd_diff_help(FILE *f)
 }
 
 enum { M_MSE, M_RMSE, M_RELMSE, M_MAE, M_PSNR, M_MAX, M_COUNT };
+_Static_assert(M_COUNT == sizeof ((cmd_diff_args_t *)0)->metrics /
+                              sizeof(int), "cmd.h holds every metric");
 static const char *const metric_names[M_COUNT] = { "mse",  "rmse", "relmse",
                                                    "mae",  "psnr", "max" };
 
@@ -118,15 +120,19 @@ static int read_input(const char *path, image_t *img, imageio_format_t *f,
     return SVET_EXIT_OK;
 }
 
-int cmd_diff(int argc, char **argv)
+static const char *const valued[] = { "--metric", "--error-image",
+                                      "--error", "--peak", "--eps",
+                                      "--fail-above", "--max-pixels", NULL };
+
+int cmd_diff_parse(int argc, char **argv, cmd_diff_args_t *o)
 {
-    const char *paths[2] = { NULL, NULL }, *err_path = NULL,
-               *max_pixels = NULL;
-    int metrics[M_COUNT] = { M_MSE, M_RMSE, M_RELMSE, M_MAE, M_PSNR, M_MAX };
-    int nmetrics = M_COUNT, npaths = 0;
-    imgcompare_kind_t kind = IMGCOMPARE_ABS;
-    double peak = 0, eps = IMGCOMPARE_EPS, fail_above = 0;
-    bool have_peak = false, have_fail = false;
+    memset(o, 0, sizeof *o);
+    for (int k = 0; k < M_COUNT; k++)
+        o->metrics[k] = k; /* every metric, in the order of metric_names */
+    o->nmetrics = M_COUNT;
+    o->kind = IMGCOMPARE_ABS;
+    o->eps = IMGCOMPARE_EPS;
+    int npaths = 0;
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -141,14 +147,14 @@ int cmd_diff(int argc, char **argv)
                                 "diff --help)\n", a);
                 return SVET_EXIT_USAGE;
             }
-            paths[npaths++] = a;
+            o->paths[npaths++] = a;
             continue;
         }
         if (!v)
-            return cmd_missing_value("diff", a);
+            return cmd_missing_value("diff", a, valued);
         i++;
         if (!strcmp(a, "--metric")) {
-            if (!parse_metrics(v, metrics, &nmetrics))
+            if (!parse_metrics(v, o->metrics, &o->nmetrics))
                 return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--error-image")) {
             imageio_format_t f = imageio_format_from_name(v);
@@ -157,40 +163,40 @@ int cmd_diff(int argc, char **argv)
                                 "name it .exr or .pfm, not '%s'\n", v);
                 return SVET_EXIT_USAGE;
             }
-            err_path = v;
+            o->err_path = v;
         } else if (!strcmp(a, "--error")) {
             if (!strcmp(v, "abs"))
-                kind = IMGCOMPARE_ABS;
+                o->kind = IMGCOMPARE_ABS;
             else if (!strcmp(v, "rel"))
-                kind = IMGCOMPARE_REL;
+                o->kind = IMGCOMPARE_REL;
             else if (!strcmp(v, "squared"))
-                kind = IMGCOMPARE_SQUARED;
+                o->kind = IMGCOMPARE_SQUARED;
             else {
                 fprintf(stderr, "svet diff: --error %s: abs, rel or "
                                 "squared\n", v);
                 return SVET_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--peak")) {
-            if (!cmd_parse_double(v, &peak) || peak <= 0) {
+            if (!cmd_parse_double(v, &o->peak) || o->peak <= 0) {
                 fprintf(stderr, "svet diff: --peak %s: a positive number\n",
                         v);
                 return SVET_EXIT_USAGE;
             }
-            have_peak = true;
+            o->have_peak = true;
         } else if (!strcmp(a, "--eps")) {
-            if (!cmd_parse_double(v, &eps) || eps <= 0) {
+            if (!cmd_parse_double(v, &o->eps) || o->eps <= 0) {
                 fprintf(stderr, "svet diff: --eps %s: a positive number\n",
                         v);
                 return SVET_EXIT_USAGE;
             }
         } else if (!strcmp(a, "--max-pixels")) {
-            max_pixels = v;
+            o->max_pixels = v;
         } else if (!strcmp(a, "--fail-above")) {
-            if (!cmd_parse_double(v, &fail_above)) {
+            if (!cmd_parse_double(v, &o->fail_above)) {
                 fprintf(stderr, "svet diff: --fail-above %s: a number\n", v);
                 return SVET_EXIT_USAGE;
             }
-            have_fail = true;
+            o->have_fail = true;
         } else {
             return cmd_unknown_option("diff", a);
         }
@@ -200,9 +206,27 @@ int cmd_diff(int argc, char **argv)
                         "(svet diff --help)\n");
         return SVET_EXIT_USAGE;
     }
+    return CMD_RUN;
+}
+
+int cmd_diff(int argc, char **argv)
+{
+    cmd_diff_args_t o;
+    int rc = cmd_diff_parse(argc, argv, &o);
+    if (rc != CMD_RUN)
+        return rc;
+    const char *const *paths = o.paths, *err_path = o.err_path;
+    const int *metrics = o.metrics, nmetrics = o.nmetrics;
+    double peak = o.peak;
+    const cmd_file_t outs[] = { { err_path, "the error image" } };
+    const cmd_file_t ins[] = { { paths[0], "the image A" },
+                               { paths[1], "the reference B" } };
+    rc = cmd_check_outputs("diff", outs, 1, ins, 2);
+    if (rc != SVET_EXIT_OK)
+        return rc;
 
     image_read_limits_t lim;
-    int rc = cmd_read_limits("diff", max_pixels, &lim);
+    rc = cmd_read_limits("diff", o.max_pixels, &lim);
     if (rc != SVET_EXIT_OK)
         return rc;
     image_t img[2] = { { 0 }, { 0 } };
@@ -224,9 +248,9 @@ int cmd_diff(int argc, char **argv)
     svet_error err;
     svet_error_clear(&err);
     if (rc == SVET_EXIT_OK) {
-        if (!have_peak && display[0] && display[1])
+        if (!o.have_peak && display[0] && display[1])
             peak = 1;
-        if (imgcompare(&img[0], &img[1], peak, eps, &m, &err) != SVET_OK) {
+        if (imgcompare(&img[0], &img[1], peak, o.eps, &m, &err) != SVET_OK) {
             fprintf(stderr, "svet diff: %s\n", err.msg);
             rc = SVET_EXIT_INPUT;
         }
@@ -254,7 +278,8 @@ int cmd_diff(int argc, char **argv)
     }
     if (rc == SVET_EXIT_OK && err_path) {
         image_t e;
-        if (imgcompare_error_image(&img[0], &img[1], kind, eps, &e, &err) !=
+        if (imgcompare_error_image(&img[0], &img[1], o.kind, o.eps, &e,
+                                   &err) !=
                 SVET_OK ||
             imageio_write(err_path, &e, &err) != SVET_OK) {
             fprintf(stderr, "svet diff: %s\n", err.msg);
@@ -262,12 +287,13 @@ int cmd_diff(int argc, char **argv)
         }
         image_free(&e);
     }
-    if (rc == SVET_EXIT_OK && have_fail) {
+    if (rc == SVET_EXIT_OK && o.have_fail) {
         double v = metric_value(&m, metrics[0]);
-        bool bad = metrics[0] == M_PSNR ? v < fail_above : v > fail_above;
+        bool bad = metrics[0] == M_PSNR ? v < o.fail_above
+                                         : v > o.fail_above;
         if (bad) {
             fprintf(stderr, "svet diff: %s %.9g is beyond --fail-above %g\n",
-                    metric_names[metrics[0]], v, fail_above);
+                    metric_names[metrics[0]], v, o.fail_above);
             rc = SVET_EXIT_DIFFERENT;
         }
     }

@@ -1,8 +1,10 @@
 /*
- * render.c - `svet render`: read a scene file, render it progressively in
- * passes (ch. 5), and write the linear image (EXR) and a tone-mapped one
- * (PNG, ch. 6) side by side. SIGINT or SIGTERM ends the render after the
- * current pass and writes what it has; a second one ends it at once.
+ * cmd_render.c - `svet render`: read a scene file, render it progressively
+ * in passes (ch. 5), and write the linear image (EXR) and a tone-mapped one
+ * (PNG, ch. 6) side by side. SIGINT or SIGTERM abandons the current pass
+ * within a tile's work and writes the last whole one (the image of that
+ * many samples); a second signal ends the program at once.
+ * Tests: tests/cmd/test_cmd_render.c
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -62,7 +64,17 @@ void cmd_render_help(FILE *f)
 "\n"
 "exit codes: 0 done; 1 bad command line; 2 the scene or a file it names is\n"
 "missing or malformed; 3 an output could not be written; 4 interrupted\n"
-"(SIGINT/SIGTERM), the samples rendered so far were written.\n");
+"(SIGINT/SIGTERM): the pass under way is abandoned and the outputs hold\n"
+"the passes completed, the same image as a render asked for that many\n"
+"samples (nothing is written when the first pass had not ended).\n"
+"\n"
+"Outputs are written in full to temporary files beside them\n"
+"(NAME.tmp-HOST-PID-N) and then renamed over the old ones together, so a\n"
+"failed or interrupted write keeps the previous EXR, PNG and variance as\n"
+"a matching set; a read-only file (mode 444) is never replaced, and an\n"
+"output that is the same file as another output or an input (the scene,\n"
+"a mesh) is refused. A killed render's temporary files are removed by the\n"
+"next write of the same output on the same host.\n");
 }
 
 typedef struct {
@@ -127,8 +139,9 @@ typedef struct {
 } outputs_t;
 
 /* Write the EXR, the PNG and (if asked) the variance image of what r holds
- * so far. Each file goes through a temporary file and a rename (fileio.h),
- * so an interrupted write leaves the previous checkpoint intact. */
+ * so far, as one set of outputs (fileio.h): each is written in full to a
+ * temporary file before any replaces its target, so an interrupted or
+ * failed write leaves the previous checkpoint's files, all of them. */
 static svet_status write_outputs(const render_t *r, const scene_t *s,
                                  const outputs_t *o, svet_error *err)
 {
@@ -137,9 +150,14 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
     svet_status st = render_image(r, &img, err);
     if (st != SVET_OK)
         return st;
+    fileio_set_t set;
+    fileio_set_init(&set);
+    fileio_t *f;
     ensure_dir(o->exr);
-    st = exrio_write(o->exr, &img, o->half ? EXRIO_HALF : EXRIO_FLOAT,
-                     EXRIO_ZIP, err);
+    st = fileio_set_begin(&set, o->exr, &f, err);
+    if (st == SVET_OK)
+        st = exrio_write_to(f, &img, o->half ? EXRIO_HALF : EXRIO_FLOAT,
+                            EXRIO_ZIP, err);
     if (st == SVET_OK) {
         tonemap_params_t tp;
         const scene_tonemap_t *t = &s->render.tonemap;
@@ -153,32 +171,42 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
         st = tonemap_apply(&img, &ldr, &tp, NULL, err);
         if (st == SVET_OK) {
             ensure_dir(o->png);
-            st = pngio_write(o->png, &ldr, 8, err);
+            st = fileio_set_begin(&set, o->png, &f, err);
         }
+        if (st == SVET_OK)
+            st = pngio_write_to(f, &ldr, 8, err);
     }
     if (st == SVET_OK && o->var) {
         image_t var;
         st = render_variance(r, &var, err);
         if (st == SVET_OK) {
             ensure_dir(o->var);
-            st = exrio_write(o->var, &var, EXRIO_FLOAT, EXRIO_ZIP, err);
+            st = fileio_set_begin(&set, o->var, &f, err);
+            if (st == SVET_OK)
+                st = exrio_write_to(f, &var, EXRIO_FLOAT, EXRIO_ZIP, err);
             image_free(&var);
         }
     }
+    if (st == SVET_OK)
+        st = fileio_set_commit(&set, err);
+    else
+        fileio_set_abort(&set);
     image_free(&ldr);
     image_free(&img);
     return st;
 }
 
-int cmd_render(int argc, char **argv)
+/* The options that take a value, for cmd_missing_value(). */
+static const char *const valued[] = { "-o", "--output", "--png",
+                                      "--variance", "--spp", "--passes",
+                                      "--time-limit", NULL };
+
+int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
 {
-    const char *scene_path = NULL, *opt_exr = NULL, *opt_png = NULL,
-               *opt_var = NULL;
-    long spp = -1, passes = -1;
-    double time_limit = -1;
-    bool checkpoint = false, quiet = false, half = false;
-    cmd_scene_opts_t so;
-    cmd_scene_opts_init(&so);
+    memset(o, 0, sizeof *o);
+    o->spp = o->passes = -1;
+    o->time_limit = -1;
+    cmd_scene_opts_init(&o->so);
 
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -188,65 +216,79 @@ int cmd_render(int argc, char **argv)
             cmd_render_help(stdout);
             return SVET_EXIT_OK;
         } else if (!strcmp(a, "--checkpoint")) {
-            checkpoint = true, takes = false;
+            o->checkpoint = true, takes = false;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            quiet = true, takes = false;
+            o->quiet = true, takes = false;
         } else if (!strcmp(a, "--half")) {
-            half = true, takes = false;
+            o->half = true, takes = false;
         } else if (a[0] == '-' && !v) {
-            return cmd_missing_value("render", a);
+            return cmd_missing_value("render", a, valued);
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            opt_exr = v;
+            if (!(o->exr = cmd_file_name("render", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--png")) {
-            opt_png = v;
+            if (!(o->png = cmd_file_name("render", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--variance")) {
-            opt_var = v;
+            if (!(o->var = cmd_file_name("render", a, v)))
+                return SVET_EXIT_USAGE;
         } else if (!strcmp(a, "--spp")) {
-            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &spp))
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->spp))
                 return cmd_bad_value("render", a, v);
         } else if (!strcmp(a, "--passes")) {
-            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &passes))
+            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->passes))
                 return cmd_bad_value("render", a, v);
         } else if (!strcmp(a, "--time-limit")) {
-            if (!cmd_parse_double(v, &time_limit) || time_limit < 0 ||
-                time_limit > 1e9)
+            if (!cmd_parse_double(v, &o->time_limit) || o->time_limit < 0 ||
+                o->time_limit > 1e9)
                 return cmd_bad_value("render", a, v);
         } else if (a[0] == '-') {
-            int k = cmd_scene_option("render", a, v, &so);
+            int k = cmd_scene_option("render", a, v, &o->so);
             if (k == CMD_OPT_BAD)
                 return SVET_EXIT_USAGE;
             if (k == CMD_OPT_NONE)
                 return cmd_unknown_option("render", a);
         } else {
-            if (scene_path)
+            if (o->scene)
                 return cmd_error("render", SVET_EXIT_USAGE, "one scene at a "
-                                 "time ('%s' and '%s')", scene_path, a);
-            scene_path = a;
+                                 "time ('%s' and '%s')", o->scene, a);
+            o->scene = a;
             takes = false;
         }
         if (takes)
             i++;
     }
-    if (!scene_path)
+    if (!o->scene)
         return cmd_error("render", SVET_EXIT_USAGE,
                          "no scene file (svet render --help)");
+    return CMD_RUN;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    cmd_render_args_t o;
+    int rc = cmd_render_parse(argc, argv, &o);
+    if (rc != CMD_RUN)
+        return rc;
+    const char *scene_path = o.scene, *opt_exr = o.exr, *opt_png = o.png,
+               *opt_var = o.var;
 
     svet_error err;
     svet_error_clear(&err);
     scene_t scene;
-    int rc = cmd_scene_load("render", &scene, scene_path, &so);
+    rc = cmd_scene_load("render", &scene, scene_path, &o.so);
     if (rc != SVET_EXIT_OK) {
         scene_free(&scene);
         return rc;
     }
-    if (spp > 0)
-        scene.render.spp = spp;
-    if (time_limit >= 0)
-        scene.render.time_limit = time_limit;
-    if (checkpoint)
+    if (o.spp > 0)
+        scene.render.spp = o.spp;
+    if (o.time_limit >= 0)
+        scene.render.time_limit = o.time_limit;
+    if (o.checkpoint)
         scene.render.checkpoint = true;
-    if (passes > 0)
-        scene.render.passes = (int)passes;
+    if (o.passes > 0)
+        scene.render.passes = (int)o.passes;
 
     char *exr = opt_exr ? strdup(opt_exr) : default_exr(&scene, scene_path);
     char *png = opt_png ? strdup(opt_png)
@@ -260,6 +302,13 @@ int cmd_render(int argc, char **argv)
         rc = SVET_EXIT_OUTPUT;
         goto done;
     }
+    const cmd_file_t outs[] = { { exr, "the EXR output" },
+                                { png, "the PNG output" },
+                                { opt_var, "the variance output" } };
+    const cmd_file_t ins[] = { { scene_path, "the scene file" } };
+    rc = cmd_check_outputs("render", outs, 3, ins, 1);
+    if (rc != SVET_EXIT_OK)
+        goto done;
     if (scene_validate(&scene, &err) != SVET_OK ||
         render_init(&r, &scene, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);
@@ -281,16 +330,25 @@ int cmd_render(int argc, char **argv)
                                          : (total < 16 ? total : 16);
     if (npass > total)
         npass = total;
-    outputs_t out = { exr, png, opt_var, half };
+    outputs_t out = { exr, png, opt_var, o.half };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
-                      !quiet && isatty(STDERR_FILENO) };
+                      !o.quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
+    long written = 0; /* the samples of the outputs on disk */
     for (long k = 1; k <= npass; k++) {
         long end = (long)((double)total * (double)k / (double)npass);
         pr.pass = k;
         pr.spp0 = r.spp_done;
         pr.spp1 = end;
-        render_pass(&r, end, scene.render.threads, on_tile, &pr);
+        /* a signal abandons the pass at the next tile: what is written
+         * is then the last whole pass, the image of r.spp_done samples */
+        bool abandoned;
+        if (render_pass_until(&r, end, scene.render.threads, on_tile, &pr,
+                              &stop_requested, &abandoned, &err) != SVET_OK) {
+            fprintf(stderr, "\nsvet render: %s\n", err.msg);
+            rc = SVET_EXIT_OUTPUT;
+            goto done;
+        }
         if (stop_requested) {
             interrupted = true;
             break;
@@ -298,23 +356,34 @@ int cmd_render(int argc, char **argv)
         if (scene.render.time_limit > 0 &&
             cmd_now() - pr.t0 >= scene.render.time_limit)
             break;
-        if (scene.render.checkpoint && k < npass &&
-            write_outputs(&r, &scene, &out, &err) != SVET_OK) {
-            fprintf(stderr, "\nsvet render: %s\n", err.msg);
-            rc = SVET_EXIT_OUTPUT;
-            goto done;
+        if (scene.render.checkpoint && k < npass) {
+            if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+                fprintf(stderr, "\nsvet render: %s\n", err.msg);
+                rc = SVET_EXIT_OUTPUT;
+                goto done;
+            }
+            written = r.spp_done;
         }
     }
     double secs = cmd_now() - pr.t0;
     if (pr.tty)
         fputc('\n', stderr);
-    if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+    if (r.spp_done == 0) {
+        /* stopped in the first pass: an image of no samples would only
+         * replace a good earlier one */
+        fprintf(stderr, "svet render: %s: interrupted before the first pass "
+                        "ended: nothing written\n", scene_path);
+        rc = SVET_EXIT_INTERRUPTED;
+        goto done;
+    }
+    if (r.spp_done != written &&
+        write_outputs(&r, &scene, &out, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s\n", err.msg);
         rc = SVET_EXIT_OUTPUT;
         goto done;
     }
     uint64_t nonfinite = image_accum_nonfinite(&r.acc);
-    if (!quiet) {
+    if (!o.quiet) {
         double samples = (double)r.spp_done * (double)scene.camera.width *
                          (double)scene.camera.height;
         fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s: %.3g "

@@ -15,6 +15,7 @@
 #include <time.h>
 
 #include "cmd.h"
+#include "io/fileio.h"
 #include "render/allparts.h"
 #include "render/scenefile.h"
 
@@ -79,8 +80,14 @@ int cmd_error(const char *cmd, int rc, const char *fmt, ...)
     return rc;
 }
 
-int cmd_missing_value(const char *cmd, const char *opt)
+int cmd_missing_value(const char *cmd, const char *opt,
+                      const char *const *valued)
 {
+    bool known = cmd_is_scene_option(opt);
+    for (int i = 0; valued[i] && !known; i++)
+        known = !strcmp(opt, valued[i]);
+    if (!known)
+        return cmd_unknown_option(cmd, opt);
     return cmd_error(cmd, SVET_EXIT_USAGE, "%s needs a value (svet %s --help)",
                      opt, cmd);
 }
@@ -95,6 +102,15 @@ int cmd_bad_value(const char *cmd, const char *opt, const char *value)
 {
     return cmd_error(cmd, SVET_EXIT_USAGE, "bad value '%s' for %s", value,
                      opt);
+}
+
+const char *cmd_file_name(const char *cmd, const char *opt,
+                          const char *value)
+{
+    if (*value)
+        return value;
+    cmd_error(cmd, SVET_EXIT_USAGE, "%s '': a file name cannot be empty", opt);
+    return NULL;
 }
 
 char *cmd_replace_ext(const char *path, const char *ext)
@@ -115,6 +131,12 @@ void cmd_scene_opts_init(cmd_scene_opts_t *o)
 {
     memset(o, 0, sizeof *o);
     o->threads = -1;
+}
+
+bool cmd_is_scene_option(const char *opt)
+{
+    return !strcmp(opt, "--threads") || !strcmp(opt, "--seed") ||
+           !strcmp(opt, "--set");
 }
 
 int cmd_scene_option(const char *cmd, const char *opt, const char *value,
@@ -144,13 +166,40 @@ int cmd_scene_option(const char *cmd, const char *opt, const char *value,
     return CMD_OPT_TAKEN;
 }
 
+/* The mesh files the scene file names, recorded as the loader is called
+ * (the loader has no context pointer, hence file scope). */
+#define MAX_SCENE_INPUTS 256
+static char *scene_inputs[MAX_SCENE_INPUTS];
+static int nscene_inputs;
+
+static svet_status record_mesh(const char *path, const xform_t *x,
+                               scene_mesh_part_t **parts, int *nparts,
+                               svet_error *err)
+{
+    if (nscene_inputs < MAX_SCENE_INPUTS) {
+        char *p = strdup(path);
+        if (!p)
+            return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory",
+                                  path);
+        scene_inputs[nscene_inputs++] = p;
+    }
+    return scene_features_all()->mesh(path, x, parts, nparts, err);
+}
+
 int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
                    const cmd_scene_opts_t *o)
 {
+    /* every part, with the mesh loader wrapped to note its files; static:
+     * the scene keeps the pointer */
+    static scene_features_t features;
+    features = *scene_features_all();
+    features.mesh = record_mesh;
+    while (nscene_inputs > 0)
+        free(scene_inputs[--nscene_inputs]);
     svet_error err;
     svet_error_clear(&err);
     scene_init(s);
-    if (scenefile_read_with(s, path, scene_features_all(), &err) != SVET_OK)
+    if (scenefile_read_with(s, path, &features, &err) != SVET_OK)
         return cmd_error(cmd, SVET_EXIT_INPUT, "%s", err.msg);
     for (int i = 0; i < o->nsets; i++)
         if (scenefile_override(s, o->sets[i], &err) != SVET_OK)
@@ -159,5 +208,29 @@ int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
         s->render.threads = (int)o->threads;
     if (o->seed_set)
         s->render.seed = o->seed;
+    return SVET_EXIT_OK;
+}
+
+int cmd_check_outputs(const char *cmd, const cmd_file_t *out, int nout,
+                      const cmd_file_t *in, int nin)
+{
+    for (int i = 0; i < nout; i++) {
+        if (!out[i].path)
+            continue;
+        for (int j = 0; j < i + nin + nscene_inputs; j++) {
+            /* the outputs before this one, the inputs, the meshes */
+            cmd_file_t b = j < i         ? out[j]
+                         : j < i + nin   ? in[j - i]
+                                         : (cmd_file_t){
+                                               scene_inputs[j - i - nin],
+                                               "a mesh file of the scene" };
+            if (b.path && fileio_same_file(out[i].path, b.path))
+                return cmd_error(cmd, SVET_EXIT_USAGE,
+                                 "%s '%s' is the same file as %s '%s': "
+                                 "refusing to overwrite it (nothing was "
+                                 "written)", out[i].what, out[i].path,
+                                 b.what, b.path);
+        }
+    }
     return SVET_EXIT_OK;
 }

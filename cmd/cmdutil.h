@@ -42,9 +42,12 @@ bool cmd_parse_double(const char *s, double *out);
 int cmd_error(const char *cmd, int rc, const char *fmt, ...) CMD_PRINTF(3, 4);
 
 /* The usage errors every subcommand reports alike: an option at the end
- * of the line without its value, an option it does not know, a value out
- * of range. Each prints one line and returns SVET_EXIT_USAGE. */
-int cmd_missing_value(const char *cmd, const char *opt);
+ * of the line without its value (or, when opt is neither in the command's
+ * NULL-terminated list `valued` nor a scene option, an unknown option),
+ * an option it does not know, a value out of range. Each prints one line
+ * and returns SVET_EXIT_USAGE. */
+int cmd_missing_value(const char *cmd, const char *opt,
+                      const char *const *valued);
 int cmd_unknown_option(const char *cmd, const char *opt);
 int cmd_bad_value(const char *cmd, const char *opt, const char *value);
 
@@ -55,6 +58,10 @@ int cmd_bad_value(const char *cmd, const char *opt, const char *value);
  * SVET_EXIT_USAGE after printing why the value was refused. */
 int cmd_read_limits(const char *cmd, const char *max_pixels,
                     image_read_limits_t *lim);
+/* value as the file name given to opt: value itself, or NULL after
+ * printing that a file name cannot be empty. */
+const char *cmd_file_name(const char *cmd, const char *opt,
+                          const char *value);
 
 /* path with its extension (the last '.' after the last '/', if any)
  * replaced by ext: ("a/b.exr", ".png") -> "a/b.png", ("a/b", "-var.exr")
@@ -76,6 +83,9 @@ typedef struct {
 /* No options given. This function can't fail. */
 void cmd_scene_opts_init(cmd_scene_opts_t *o);
 
+/* Whether opt is one of the scene options below. */
+bool cmd_is_scene_option(const char *opt);
+
 /* If opt is --threads, --seed or --set, take its value (not NULL) into o.
  * Returns CMD_OPT_NONE when opt is another option, CMD_OPT_TAKEN when
  * taken, or CMD_OPT_BAD after printing why the value was refused. */
@@ -90,5 +100,22 @@ int cmd_scene_option(const char *cmd, const char *opt, const char *value,
  * may then still hold a scene: scene_free it either way. */
 int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
                    const cmd_scene_opts_t *o);
+
+/* A file a command reads or writes, and what it is to the user ("the
+ * EXR output", "the scene file"), for the messages. */
+typedef struct {
+    const char *path;
+    const char *what;
+} cmd_file_t;
+
+/* Refuse outputs that would overwrite each other or an input: each
+ * output is compared with every other output, every input in `in`, and
+ * every file the last cmd_scene_load() read besides the scene file (its
+ * meshes), by file identity (fileio_same_file: the same file under any
+ * name, or the same name in the same directory when it does not exist
+ * yet). NULL paths are skipped. Returns SVET_EXIT_OK, or after printing
+ * which two collide SVET_EXIT_USAGE; nothing has been written then. */
+int cmd_check_outputs(const char *cmd, const cmd_file_t *out, int nout,
+                      const cmd_file_t *in, int nin);
 
 #endif

@@ -41,21 +41,26 @@ static void usage(FILE *f)
     fprintf(f, "\n"
                "exit codes (every command):\n"
                "  0  success\n"
-               "  1  bad command line (usage error)\n"
+               "  1  bad command line (usage error), or an output that is "
+               "the same file as\n"
+               "     another output or an input\n"
                "  2  an input file is missing, unreadable or malformed, or "
                "the inputs do not fit\n"
                "     together (e.g. images of different sizes)\n"
-               "  3  an output file could not be written (an earlier file of "
-               "that name is kept)\n"
-               "  4  svet render: interrupted (SIGINT/SIGTERM); what was "
-               "rendered was written\n"
+               "  3  an output file could not be written, or is read-only "
+               "(the earlier files\n"
+               "     of that name are kept, all of them)\n"
+               "  4  svet render: interrupted (SIGINT/SIGTERM); the last "
+               "completed pass was\n"
+               "     written\n"
                "  5  svet diff --fail-above: the images differ by more than "
                "the threshold;\n"
                "     svet converge --ztest: the image fails the Z-test "
                "against the reference\n"
                "\n"
                "svet help COMMAND, or svet COMMAND --help, describes one "
-               "command.\n");
+               "command; docs/output.md\n"
+               "says how output files are written.\n");
 }
 
 static const subcommand_t *find(const char *name)

@@ -9,6 +9,7 @@
 #define SVET_EXRIO_H
 
 #include "core/error.h"
+#include "io/fileio.h"
 #include "io/image.h"
 
 typedef enum {
@@ -31,6 +32,13 @@ typedef enum {
 svet_status exrio_write(const char *path, const image_t *img,
                         exrio_pixel_t pixel, exrio_compression_t compression,
                         svet_error *err);
+
+/* The same into out, begun by fileio_begin() or fileio_set_begin(), which
+ * the caller then commits or aborts (messages name out->path). Fails as
+ * exrio_write() does. */
+svet_status exrio_write_to(fileio_t *out, const image_t *img,
+                           exrio_pixel_t pixel,
+                           exrio_compression_t compression, svet_error *err);
 
 /* Read the first part of an EXR file into img (allocated here): its data
  * window becomes the image (the display window and the window's offset are

@@ -9,6 +9,7 @@
 #define SVET_PNGIO_H
 
 #include "core/error.h"
+#include "io/fileio.h"
 #include "io/image.h"
 
 /* Write img as a PNG: RGB for 3 channels, RGBA (straight alpha) for 4,
@@ -19,6 +20,12 @@
  * (the path and libpng's or the system's reason), SVET_ERR_NOMEM. */
 svet_status pngio_write(const char *path, const image_t *img, int bits,
                         svet_error *err);
+
+/* The same into out, begun by fileio_begin() or fileio_set_begin(), which
+ * the caller then commits or aborts (messages name out->path). Fails as
+ * pngio_write() does. */
+svet_status pngio_write_to(fileio_t *out, const image_t *img, int bits,
+                           svet_error *err);
 
 /* Read any PNG (grey, grey+alpha, palette, RGB, RGBA; 1 to 16 bits;
  * interlaced or not) into img, allocated here: 3 channels, or 4 if the

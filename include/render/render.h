@@ -13,6 +13,9 @@
 #ifndef SVET_RENDER_H
 #define SVET_RENDER_H
 
+#include <signal.h>
+#include <stdbool.h>
+
 #include "render/camera.h"
 #include "io/image.h"
 #include "render/integrator.h"
@@ -66,6 +69,18 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err);
  * function can't fail. */
 void render_pass(render_t *r, long spp_end, int threads,
                  render_progress_fn progress, void *ctx);
+
+/* render_pass(), given up as soon as *stop is non-zero (a signal handler
+ * sets it; read between tiles, so within one tile's samples of it): the
+ * tiles not yet begun are skipped, and if any was, the pass is undone, r
+ * holding exactly what it held before the call (sums, counts, spp_done,
+ * statistics), so that its image is still the one of spp_done samples,
+ * bit for bit. *abandoned says which. Fails with SVET_ERR_NOMEM (r
+ * unchanged) when the copy of the sums kept meanwhile cannot be made. */
+svet_status render_pass_until(render_t *r, long spp_end, int threads,
+                              render_progress_fn progress, void *ctx,
+                              const volatile sig_atomic_t *stop,
+                              bool *abandoned, svet_error *err);
 
 /* The mean image (linear radiance). */
 svet_status render_image(const render_t *r, image_t *out, svet_error *err);

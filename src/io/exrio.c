@@ -227,15 +227,12 @@ static exr_result_t write_parts(exr_context_t ctx, const image_t *img,
     return rv;
 }
 
-svet_status exrio_write(const char *path, const image_t *img,
-                        exrio_pixel_t pixel, exrio_compression_t compression,
-                        svet_error *err)
+svet_status exrio_write_to(fileio_t *out, const image_t *img,
+                           exrio_pixel_t pixel,
+                           exrio_compression_t compression, svet_error *err)
 {
-    fileio_t out;
-    svet_status st = fileio_begin(&out, path, err);
-    if (st != SVET_OK)
-        return st;
-    stream_t s = { .fd = fileno(out.f) };
+    const char *path = out->path;
+    stream_t s = { .fd = fileno(out->f) };
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = on_error;
     init.user_data = &s;
@@ -257,11 +254,24 @@ svet_status exrio_write(const char *path, const image_t *img,
         }
     }
     active_stream = outer;
-    if (rv != EXR_ERR_SUCCESS) {
-        fileio_abort(&out);
+    if (rv != EXR_ERR_SUCCESS)
         return fail(err, rv == EXR_ERR_OUT_OF_MEMORY ? SVET_ERR_NOMEM
                                                      : SVET_ERR_IO,
                     path, &s, doing, rv);
+    return SVET_OK;
+}
+
+svet_status exrio_write(const char *path, const image_t *img,
+                        exrio_pixel_t pixel, exrio_compression_t compression,
+                        svet_error *err)
+{
+    fileio_t out;
+    svet_status st = fileio_begin(&out, path, err);
+    if (st == SVET_OK)
+        st = exrio_write_to(&out, img, pixel, compression, err);
+    if (st != SVET_OK) {
+        fileio_abort(&out);
+        return st;
     }
     return fileio_commit(&out, err);
 }

@@ -78,9 +78,10 @@ static int write_rows(png_structp png, png_infop info, FILE *f,
     return 0;
 }
 
-svet_status pngio_write(const char *path, const image_t *img, int bits,
-                        svet_error *err)
+svet_status pngio_write_to(fileio_t *out, const image_t *img, int bits,
+                           svet_error *err)
 {
+    const char *path = out->path;
     svet_error local;
     if (!err) /* the callbacks write the message somewhere */
         err = &local;
@@ -99,19 +100,26 @@ svet_status pngio_write(const char *path, const image_t *img, int bits,
         return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory",
                               path);
     }
-    fileio_t out;
-    svet_status st = fileio_begin(&out, path, err);
-    if (st == SVET_OK) {
-        if (write_rows(png, info, out.f, img, bits, row) == 0) {
-            st = fileio_commit(&out, err);
-        } else {
-            fileio_abort(&out);
-            st = err->status = SVET_ERR_IO; /* on_error wrote the message */
-        }
-    }
+    svet_status st = SVET_OK;
+    if (write_rows(png, info, out->f, img, bits, row) != 0)
+        st = err->status = SVET_ERR_IO; /* on_error wrote the message */
     png_destroy_write_struct(&png, &info);
     free(row);
     return st;
+}
+
+svet_status pngio_write(const char *path, const image_t *img, int bits,
+                        svet_error *err)
+{
+    fileio_t out;
+    svet_status st = fileio_begin(&out, path, err);
+    if (st == SVET_OK)
+        st = pngio_write_to(&out, img, bits, err);
+    if (st != SVET_OK) {
+        fileio_abort(&out);
+        return st;
+    }
+    return fileio_commit(&out, err);
 }
 
 /* --- reading --------------------------------------------------------------- */

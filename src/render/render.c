@@ -1,5 +1,6 @@
 /*
- * render.c - tiles, passes and threads around the integrator (ch. 5), and
+ * render.c - tiles, passes and threads around the integrator (ch. 5), a
+ * pass abandoned and undone when asked (render_pass_until: Ctrl-C), and
  * the camera rays of 8 x 8 pixels given to the tracer at once where it
  * takes packets (the grids of ch. 7: chapters/ch07/README.md).
  * Tests: tests/render/test_render.c
@@ -186,24 +187,32 @@ static void pixels_in_packets(render_t *r, int x0, int y0, int x1, int y1,
         }
 }
 
-void render_pass(render_t *r, long spp_end, int threads,
-                 render_progress_fn progress, void *ctx)
+/* Samples [spp_done, spp_end) of every tile, skipping the tiles not yet
+ * begun once *stop (when not NULL) is non-zero; returns how many were
+ * skipped. The statistics and spp_done move on only for a whole pass. */
+static long pass(render_t *r, long spp_end, int threads,
+                 render_progress_fn progress, void *ctx,
+                 const volatile sig_atomic_t *stop)
 {
     const int W = r->camera.width, H = r->camera.height;
     const int tx = (W + RENDER_TILE - 1) / RENDER_TILE;
     const int ty = (H + RENDER_TILE - 1) / RENDER_TILE;
     const long ntiles = (long)tx * ty;
     const long s0 = r->spp_done;
-    long done = 0;
+    long done = 0, skipped = 0;
     uint64_t rays = 0, paths = 0;
 #ifdef _OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt) \
-    reduction(+ : rays, paths)
+    reduction(+ : rays, paths, skipped)
 #else
     (void)threads;
 #endif
     for (long t = 0; t < ntiles; t++) {
+        if (stop && *stop) {
+            skipped++; /* an OpenMP loop cannot break: pass over the rest */
+            continue;
+        }
         integrator_stats_t st = { 0, 0 };
         int x0 = (int)(t % tx) * RENDER_TILE, y0 = (int)(t / tx) * RENDER_TILE;
         int x1 = x0 + RENDER_TILE < W ? x0 + RENDER_TILE : W;
@@ -224,9 +233,56 @@ void render_pass(render_t *r, long spp_end, int threads,
             }
         }
     }
-    r->stats.rays += rays;
-    r->stats.paths += paths;
-    r->spp_done = spp_end > s0 ? spp_end : s0;
+    if (skipped == 0) {
+        r->stats.rays += rays;
+        r->stats.paths += paths;
+        r->spp_done = spp_end > s0 ? spp_end : s0;
+    }
+    return skipped;
+}
+
+void render_pass(render_t *r, long spp_end, int threads,
+                 render_progress_fn progress, void *ctx)
+{
+    pass(r, spp_end, threads, progress, ctx, NULL);
+}
+
+svet_status render_pass_until(render_t *r, long spp_end, int threads,
+                              render_progress_fn progress, void *ctx,
+                              const volatile sig_atomic_t *stop,
+                              bool *abandoned, svet_error *err)
+{
+    /* The sums as they are, to put back if the pass is cut short: a
+     * sample added cannot be taken out again exactly in floating point. */
+    const size_t n = (size_t)r->camera.width * (size_t)r->camera.height;
+    double *sum = malloc(3 * n * sizeof *sum), *sum2 = malloc(3 * n *
+                                                              sizeof *sum2);
+    uint64_t *count = malloc(n * sizeof *count),
+             *nonfinite = malloc(n * sizeof *nonfinite);
+    *abandoned = false;
+    if (!sum || !sum2 || !count || !nonfinite) {
+        free(sum);
+        free(sum2);
+        free(count);
+        free(nonfinite);
+        return svet_error_set(err, SVET_ERR_NOMEM, "render: out of memory");
+    }
+    memcpy(sum, r->acc.sum, 3 * n * sizeof *sum);
+    memcpy(sum2, r->sum2, 3 * n * sizeof *sum2);
+    memcpy(count, r->acc.count, n * sizeof *count);
+    memcpy(nonfinite, r->acc.nonfinite, n * sizeof *nonfinite);
+    if (pass(r, spp_end, threads, progress, ctx, stop) > 0) {
+        memcpy(r->acc.sum, sum, 3 * n * sizeof *sum);
+        memcpy(r->sum2, sum2, 3 * n * sizeof *sum2);
+        memcpy(r->acc.count, count, n * sizeof *count);
+        memcpy(r->acc.nonfinite, nonfinite, n * sizeof *nonfinite);
+        *abandoned = true;
+    }
+    free(sum);
+    free(sum2);
+    free(count);
+    free(nonfinite);
+    return SVET_OK;
 }
 
 svet_status render_image(const render_t *r, image_t *out, svet_error *err)

@@ -6,10 +6,12 @@
  */
 #include "testutil.h"
 #include "cmdtest.h"
+#include "imgtest.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
 
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -138,22 +140,165 @@ START_TEST(bad_input_gives_a_message_and_an_exit_code)
 }
 END_TEST
 
+/* An unknown option at the end of the line is unknown, not short of a
+ * value; an empty file name is refused before anything is written. */
+START_TEST(usage_errors_name_the_real_problem)
+{
+    char args[1024];
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --frobnicate", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "unknown option '--frobnicate'"), "%s", out);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --spp", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "--spp needs a value"), "%s", out);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' --seed", dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "--seed needs a value"), "%s", out);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, "diff a b --frobnicate"),
+                     1);
+    ck_assert_msg(strstr(out, "unknown option '--frobnicate'"), "%s", out);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out,
+                                 "converge a --ref r.exr --frobnicate"), 1);
+    ck_assert_msg(strstr(out, "unknown option '--frobnicate'"), "%s", out);
+    const char *empty[] = { "-o", "--png", "--variance" };
+    for (int i = 0; i < 3; i++) {
+        snprintf(args, sizeof args, "render '%s/tiny.scn' %s ''", dir,
+                 empty[i]);
+        ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+        ck_assert_msg(strstr(out, "a file name cannot be empty"), "%s", out);
+    }
+    ck_assert_int_eq(cmdtest_run(out, sizeof out,
+                                 "converge a --ref '' --no-plot"), 1);
+    ck_assert_msg(strstr(out, "a file name cannot be empty"), "%s", out);
+}
+END_TEST
+
+/* The outputs of a render replace the old ones together: a PNG that
+ * cannot be written leaves the old EXR (and PNG) in place, so the pair on
+ * disk still belongs together. A read-only output is kept, exit 3. */
+START_TEST(outputs_are_replaced_together_or_not_at_all)
+{
+    char args[4096], exr[600], png[600], notdir[600];
+    snprintf(exr, sizeof exr, "%s/pair.exr", dir);
+    snprintf(png, sizeof png, "%s/pair.png", dir);
+    snprintf(notdir, sizeof notdir, "%s/plain-file", dir);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' -q", dir, exr);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    char old_exr[600];
+    snprintf(old_exr, sizeof old_exr, "%s/old.exr", dir);
+    snprintf(args, sizeof args, "cp '%s' '%s'; : > '%s'", exr, old_exr,
+             notdir);
+    ck_assert_int_eq(system(args), 0);
+    /* another seed, and a PNG under a plain file: ENOTDIR */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --png "
+             "'%s/a.png' --seed 9 -q", dir, exr, notdir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    ck_assert_msg(strstr(out, "plain-file/a.png"), "%s", out);
+    ck_assert_msg(same_file(exr, old_exr), "the EXR was replaced alone");
+    /* the variance image likewise */
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --variance "
+             "'%s/v.exr' --seed 9 -q", dir, exr, notdir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    ck_assert_msg(same_file(exr, old_exr), "the EXR was replaced alone");
+    /* mode 444: refused, untouched */
+    ck_assert_int_eq(chmod(exr, 0444), 0);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s' --seed 9 -q",
+             dir, exr);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 3);
+    ck_assert_msg(strstr(out, "read-only"), "%s", out);
+    ck_assert(same_file(exr, old_exr));
+}
+END_TEST
+
+/* Every way of naming one file twice, and an output that is an input,
+ * is refused before anything is written (exit 1), the files untouched. */
+START_TEST(an_output_that_is_another_output_or_an_input_is_refused)
+{
+    char args[2048], scene[600];
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    snprintf(args, sizeof args, "cp '%s' '%s/tiny.copy'; mkdir '%s/sub'; cp "
+             "tests/data/scene/tri.obj '%s/tri.obj'", scene, dir, dir, dir);
+    ck_assert_int_eq(system(args), 0);
+    /* pairs of an option and a name in the scratch directory */
+    const char *bad[][4] = {
+        { "-o", "same.png", NULL, NULL },           /* the PNG beside it */
+        { "-o", "x.exr", "--png", "x.exr" },
+        { "-o", "x.exr", "--png", "sub/../x.exr" },
+        { "-o", "x.exr", "--variance", "./x.exr" },
+        { "-o", "tiny.scn", NULL, NULL },           /* the scene itself */
+        { "-o", "a.exr", "--png", "sub/../tiny.scn" },
+        { "-o", "a.exr", "--variance", "tri.obj" }, /* its mesh */
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        int n = snprintf(args, sizeof args, "render '%s' -q", scene);
+        for (int k = 0; k < 4 && bad[i][k]; k += 2)
+            n += snprintf(args + n, sizeof args - (size_t)n, " %s '%s/%s'",
+                          bad[i][k], dir, bad[i][k + 1]);
+        if (i == 6) { /* from now on the scene reads tri.obj */
+            FILE *f = fopen(scene, "a");
+            ck_assert_ptr_nonnull(f);
+            fprintf(f, "mesh file tri.obj material grey\n");
+            fclose(f);
+        }
+        ck_assert_msg(cmdtest_run(out, sizeof out, args) == 1, "%s: %s",
+                      args, out);
+        ck_assert_msg(strstr(out, "is the same file as"), "%s", out);
+    }
+    /* the scene's own output lines naming one file */
+    FILE *f = fopen(scene, "a");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "output exr %s/same.exr png %s/same.exr\n", dir, dir);
+    fclose(f);
+    snprintf(args, sizeof args, "render '%s' -q", scene);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "is the same file as"), "%s", out);
+    /* nothing was written, nothing changed */
+    const char *never[] = { "same.png", "same.exr", "x.exr", "a.exr",
+                            "a.png" };
+    for (int i = 0; i < 5; i++) {
+        char path[700];
+        snprintf(path, sizeof path, "%s/%s", dir, never[i]);
+        ck_assert_msg(access(path, F_OK) != 0, "%s was written", path);
+    }
+    snprintf(args, sizeof args, "cmp -s '%s/tri.obj' tests/data/scene/tri.obj"
+             " && head -n 6 '%s' | cmp -s - '%s/tiny.copy'", dir, scene, dir);
+    ck_assert_int_eq(system(args), 0);
+}
+END_TEST
+
+/* Start `svet render ARGS...` (NULL-terminated) in the background, its
+ * stderr to log (NULL: /dev/null); returns its pid. */
+static pid_t start_render(const char *log, ...)
+{
+    const char *argv[32] = { "svet", "render" };
+    int n = 2;
+    va_list ap;
+    va_start(ap, log);
+    for (const char *a; n < 31 && (a = va_arg(ap, const char *)) != NULL;)
+        argv[n++] = a;
+    va_end(ap);
+    argv[n] = NULL;
+    const char *svet = cmdtest_svet();
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        if (!freopen(log ? log : "/dev/null", "w", stderr))
+            _exit(126);
+        execv(svet, (char *const *)argv);
+        _exit(127);
+    }
+    return pid;
+}
+
 START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 {
     /* A render long enough to be stopped: many passes of many samples. */
     char exr[600], scene[600];
     snprintf(exr, sizeof exr, "%s/stopped.exr", dir);
     snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
-    pid_t pid = fork();
-    ck_assert(pid >= 0);
-    if (pid == 0) {
-        if (!freopen("/dev/null", "w", stderr))
-            _exit(126);
-        execl(cmdtest_svet(), "svet", "render", scene, "-o", exr, "--spp",
-              "200000", "--passes", "100000", "--threads", "1",
-              "--checkpoint", (char *)NULL);
-        _exit(127);
-    }
+    pid_t pid = start_render(NULL, scene, "-o", exr, "--spp", "200000",
+                             "--passes", "100000", "--threads", "1",
+                             "--checkpoint", (char *)NULL);
     /* The first checkpoint proves the render is under way (its signal
      * handlers are installed before the first pass); then ask it to stop.
      * Polled, not timed: a slow machine only waits longer. */
@@ -175,6 +320,98 @@ START_TEST(sigterm_finishes_the_pass_and_writes_the_image)
 }
 END_TEST
 
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* SIGINT during a pass: the pass is abandoned, not finished, and the
+ * outputs hold the last whole pass, the same bits as a render asked for
+ * that many samples. Work is counted, not timed: 8 passes of 512 samples
+ * on 16 tiles, the signal sent as soon as the first pass's checkpoint is
+ * on disk; a render that finished its second pass writes 1024 samples.
+ * The time to exit is only compared, loosely, with the first pass's. */
+START_TEST(sigint_abandons_the_pass_and_writes_the_last_whole_one)
+{
+    char exr[600], scene[600], log[600];
+    snprintf(exr, sizeof exr, "%s/int.exr", dir);
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    snprintf(log, sizeof log, "%s/int.log", dir);
+    double t0 = now();
+    pid_t pid = start_render(log, scene, "-o", exr, "--spp", "4096",
+                             "--passes", "8", "--threads", "1", "--set",
+                             "resolution=64x64", "--checkpoint", (char *)NULL);
+    struct timespec tick = { 0, 5000000 };
+    for (int i = 0; i < 60000 && access(exr, F_OK) != 0; i++)
+        nanosleep(&tick, NULL);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+    double t1 = now();
+    kill(pid, SIGINT);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    double t2 = now();
+    ck_assert(WIFEXITED(status));
+    ck_assert_int_eq(WEXITSTATUS(status), 4);
+    /* the summary names the samples written: the first pass's */
+    FILE *f = fopen(log, "r");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(out, 1, sizeof out - 1, f);
+    out[n] = '\0';
+    fclose(f);
+    ck_assert_msg(strstr(out, ", 512 spp in") && strstr(out, "(interrupted)"),
+                  "%s", out);
+    /* well within a pass (1/16 of one at most, and the exit) */
+    ck_assert_msg(t2 - t1 < 0.5 * (t1 - t0), "%.3f s to stop after a first "
+                  "pass of %.3f s", t2 - t1, t1 - t0);
+    char fresh[600], args[1400];
+    snprintf(fresh, sizeof fresh, "%s/fresh.exr", dir);
+    snprintf(args, sizeof args, "render '%s' -o '%s' --spp 512 --set "
+             "resolution=64x64 -q", scene, fresh);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    ck_assert(same_file(exr, fresh));
+}
+END_TEST
+
+/* Stopped before the first pass ends: nothing is written over the old
+ * output (an image of no samples is no result). */
+START_TEST(sigint_in_the_first_pass_keeps_the_old_output)
+{
+    char exr[600], scene[600];
+    snprintf(exr, sizeof exr, "%s/first.exr", dir);
+    snprintf(scene, sizeof scene, "%s/tiny.scn", dir);
+    imgtest_write_bytes(exr, "old", 3);
+    pid_t pid = start_render(NULL, scene, "-o", exr, "--spp", "100000",
+                             "--passes", "1", "--threads", "1", "--set",
+                             "resolution=64x64", (char *)NULL);
+    /* nothing is on disk yet to say the pass is under way: wait until the
+     * process catches SIGINT (Linux's /proc/PID/status, SigCgt bit 1),
+     * which it starts to do just before the first pass */
+    struct timespec tick = { 0, 5000000 };
+    char status_path[64], line[256];
+    snprintf(status_path, sizeof status_path, "/proc/%ld/status", (long)pid);
+    bool catching = false;
+    for (int i = 0; i < 60000 && !catching; i++) {
+        nanosleep(&tick, NULL);
+        FILE *f = fopen(status_path, "r");
+        while (f && fgets(line, sizeof line, f))
+            if (!strncmp(line, "SigCgt:", 7))
+                catching = (strtoull(line + 7, NULL, 16) >> (SIGINT - 1)) & 1;
+        if (f)
+            fclose(f);
+    }
+    ck_assert(catching);
+    kill(pid, SIGINT);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    ck_assert(WIFEXITED(status));
+    ck_assert_int_eq(WEXITSTATUS(status), 4);
+    ck_assert(imgtest_file_is(exr, "old", 3));
+    ck_assert_int_eq(imgtest_count_temps(exr), 0);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet render");
@@ -183,7 +420,12 @@ Suite *test_suite(void)
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, render_writes_an_exr_and_a_png_beside_it);
     tcase_add_test(tc, bad_input_gives_a_message_and_an_exit_code);
+    tcase_add_test(tc, usage_errors_name_the_real_problem);
+    tcase_add_test(tc, outputs_are_replaced_together_or_not_at_all);
+    tcase_add_test(tc, an_output_that_is_another_output_or_an_input_is_refused);
     tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
+    tcase_add_test(tc, sigint_abandons_the_pass_and_writes_the_last_whole_one);
+    tcase_add_test(tc, sigint_in_the_first_pass_keeps_the_old_output);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -296,6 +296,58 @@ START_TEST(a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs)
 }
 END_TEST
 
+/* An output that is an input, under any name, is refused with exit 1
+ * before anything is read or written; the input stays as it was. */
+START_TEST(an_output_that_is_an_input_is_refused)
+{
+    char a[1024], b[1024], args[8192];
+    snprintf(a, sizeof a, "%s", imgtest_path("in-a.exr"));
+    snprintf(b, sizeof b, "%s", imgtest_path("in-b.pfm"));
+    make_pair(a, b, 0.25f);
+    image_t before;
+    svet_error err;
+    ck_assert_int_eq(exrio_read(a, &before, &err), SVET_OK);
+    /* svet diff --error-image A: A itself, then through a symbolic link */
+    snprintf(args, sizeof args, "diff '%s' '%s' --error-image '%s'", a, b, a);
+    ck_assert_int_eq(run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "is the same file as the image A"), "%s", out);
+    char sym[1100];
+    snprintf(sym, sizeof sym, "%s.link.exr", a);
+    ck_assert_int_eq(symlink(a, sym), 0);
+    snprintf(args, sizeof args, "diff '%s' '%s' --error-image '%s'", b, a,
+             sym);
+    ck_assert_int_eq(run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "is the same file as the reference B"), "%s",
+                  out);
+    /* svet converge --ztest --pvalue REF */
+    snprintf(args, sizeof args, "converge --ztest '%s' --var '%s' --spp 4 "
+             "--ref '%s' --ref-var '%s' --pvalue '%s'", a, a, a, a, sym);
+    ck_assert_int_eq(run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "is the same file as"), "%s", out);
+    /* svet converge: the CSV it would write is the reference */
+    char dir[1024], ref[1100];
+    snprintf(dir, sizeof dir, "%s", imgtest_path("conv"));
+    ck_assert_int_eq(mkdir(dir, 0777), 0);
+    snprintf(ref, sizeof ref, "%s/m.csv", dir);
+    ck_assert_int_eq(exrio_write(ref, &before, EXRIO_FLOAT, EXRIO_ZIP, &err),
+                     SVET_OK);
+    snprintf(args, sizeof args, "converge tests/data/scene/mesh.scn --ref "
+             "'%s' --out '%s' --label m --no-plot -q", ref, dir);
+    ck_assert_int_eq(run(out, sizeof out, args), 1);
+    ck_assert_msg(strstr(out, "the CSV output") &&
+                  strstr(out, "is the same file as the reference"), "%s",
+                  out);
+    image_t after;
+    ck_assert_int_eq(exrio_read(ref, &after, &err), SVET_OK);
+    image_free(&after);
+    ck_assert_int_eq(exrio_read(a, &after, &err), SVET_OK);
+    for (size_t i = 0; i < 24 * 16 * 3; i++)
+        ck_assert(after.px[i] == before.px[i]);
+    image_free(&after);
+    image_free(&before);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -309,6 +361,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, images_beyond_the_pixel_limit_are_refused);
     tcase_add_test(tc, inputs_that_are_not_regular_files_are_refused_at_once);
     tcase_add_test(tc, a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs);
+    tcase_add_test(tc, an_output_that_is_an_input_is_refused);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -16,6 +16,7 @@
 #include "render/render.h"
 #include "geometry/sphere.h"
 
+#include <signal.h>
 #include <string.h>
 
 static void small_scene(scene_t *s)
@@ -332,6 +333,63 @@ START_TEST(rmse_falls_as_one_over_sqrt_spp)
 }
 END_TEST
 
+/* Stands for a signal handler: asks to stop once `after` tiles are done. */
+static volatile sig_atomic_t stop_flag;
+static long stop_after;
+
+static void stop_after_tiles(void *ctx, long done, long total)
+{
+    (void)ctx;
+    (void)total;
+    if (done >= stop_after)
+        stop_flag = 1;
+}
+
+/* A pass stopped after some of its tiles is undone: the render is the one
+ * of the passes before it, bit for bit, and goes on from there to the
+ * same image as one never stopped. */
+START_TEST(an_abandoned_pass_leaves_the_render_as_it_was)
+{
+    scene_t s;
+    small_scene(&s);
+    render_t a, b;
+    bool abandoned;
+    ck_assert_int_eq(render_init(&a, &s, NULL), SVET_OK);
+    ck_assert_int_eq(render_init(&b, &s, NULL), SVET_OK);
+    render_pass(&a, 4, 1, NULL, NULL);
+    stop_flag = 0;
+    ck_assert_int_eq(render_pass_until(&b, 4, 1, NULL, NULL, &stop_flag,
+                                       &abandoned, NULL), SVET_OK);
+    ck_assert(!abandoned);
+    same_render(&a, &b, "a pass not stopped");
+    /* stopped after the first of the 4 tiles of 24 x 20 pixels, on one
+     * thread and on two (another tile may be under way: it is undone too) */
+    for (int threads = 1; threads <= 2; threads++) {
+        stop_flag = 0;
+        stop_after = 1;
+        ck_assert_int_eq(render_pass_until(&b, 9, threads, stop_after_tiles,
+                                           NULL, &stop_flag, &abandoned,
+                                           NULL), SVET_OK);
+        ck_assert(abandoned);
+        ck_assert_int_eq(b.spp_done, 4);
+        same_render(&a, &b, "an abandoned pass");
+    }
+    /* a stop asked before the pass: nothing is done */
+    ck_assert_int_eq(render_pass_until(&b, 9, 1, NULL, NULL, &stop_flag,
+                                       &abandoned, NULL), SVET_OK);
+    ck_assert(abandoned);
+    same_render(&a, &b, "a pass stopped before it began");
+    stop_flag = 0;
+    ck_assert_int_eq(render_pass_until(&b, 9, 2, NULL, NULL, &stop_flag,
+                                       &abandoned, NULL), SVET_OK);
+    render_pass(&a, 9, 1, NULL, NULL);
+    same_render(&a, &b, "after an abandoned pass");
+    render_free(&a);
+    render_free(&b);
+    scene_free(&s);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("render (" REAL_NAME ")");
@@ -344,6 +402,7 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    without_grids_auto_renders_with_brute_force_the_same_image);
     tcase_add_test(tc, packets_of_camera_rays_render_the_same_image);
+    tcase_add_test(tc, an_abandoned_pass_leaves_the_render_as_it_was);
     suite_add_tcase(s, tc);
     return s;
 }
