@@ -17,6 +17,7 @@
 #include <sys/stat.h>
 
 #include "accel/accel.h"
+#include "core/text.h"
 #include "geometry/box.h"
 #include "colour/colour.h"
 #include "geometry/cone.h"
@@ -1797,7 +1798,9 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
     c.dir = dir;
     c.err = err;
     svet_status st = SVET_OK;
-    const char *p = text, *end = text + len;
+    /* A byte-order mark is no statement (text.h); the first line's columns
+     * count from the byte after it, as an editor shows them. */
+    const char *p = text + text_bom_length(text, len), *end = text + len;
     if (len > (size_t)SCENEFILE_MAX_BYTES) {
         c.line = 1;
         st = fail(&c, 1, SVET_ERR_RANGE,

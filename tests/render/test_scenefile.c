@@ -210,6 +210,27 @@ START_TEST(comments_blank_lines_tabs_and_crlf_are_accepted)
 }
 END_TEST
 
+START_TEST(a_byte_order_mark_at_the_start_is_skipped)
+{
+    /* Without the skip the first keyword read "???camera" */
+    scene_t s;
+    parse_ok(&s, "\xEF\xBB\xBF" "camera width 8\n" M
+                 "sphere centre 0 0 0 radius 1 material m\n");
+    ck_assert_int_eq(s.camera.width, 8);
+    ck_assert_int_eq(s.nobjects, 1);
+    scene_free(&s);
+    /* the first line's columns count from the byte after it */
+    parse_err("\xEF\xBB\xBF" "camera width 0\n", SVET_ERR_RANGE,
+              "t.scn:1:14: 'width' = 0 is out of range: expected 1 to 16384");
+    /* anywhere else it is no blank */
+    parse_err(M "\xEF\xBB\xBF" "sphere centre 0 0 0 radius 1 material m\n",
+              SVET_ERR_PARSE, "t.scn:2:1: unknown keyword '???sphere': "
+              "expected one of camera, render, output, tonemap, material, "
+              "light, environment, sphere, plane, disk, parallelogram, "
+              "triangle, box, cylinder, cone, mesh");
+}
+END_TEST
+
 START_TEST(numbers_in_every_decimal_form_are_read)
 {
     static const struct {
@@ -1215,6 +1236,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, render_keys_parse_to_their_values);
     tcase_add_test(tc, output_and_tonemap_parse_to_their_values);
     tcase_add_test(tc, comments_blank_lines_tabs_and_crlf_are_accepted);
+    tcase_add_test(tc, a_byte_order_mark_at_the_start_is_skipped);
     tcase_add_test(tc, numbers_in_every_decimal_form_are_read);
     tcase_add_test(tc, every_material_component_parses_with_its_parameters);
     tcase_add_test(tc, every_shape_parses_with_its_material_and_name);
