@@ -68,6 +68,7 @@ void cmd_converge_help(FILE *f)
 "                        options, e.g. cbox-maxdepth=1)\n"
 "  --set KEY=VALUE       a scene setting (maxdepth, integrator, roulette,\n"
 "                        accel, ...: scenefile_override), repeatable\n"
+"  --strict              refuse a scene that reading warns about (exit 2)\n"
 "  --threads N           render threads (0 = every core)\n"
 "  --seed N              seed of the random numbers (use one other than the\n"
 "                        reference's, so that the errors are independent)\n"
@@ -590,6 +591,8 @@ int cmd_converge(int argc, char **argv)
             no_plot = true, takes = false;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
             quiet = true, takes = false;
+        } else if (!strcmp(a, "--strict")) {
+            so.strict = true, takes = false;
         } else if (!strcmp(a, "--report")) {
             report_mode = true, takes = false;
         } else if (a[0] == '-' && !v) {

@@ -6,6 +6,8 @@
  */
 #include "render/scene.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "materials/material.h"
@@ -71,6 +73,17 @@ void scene_free(scene_t *s)
     free(s->render.output_png);
     free(s->path);
     scene_init(s);
+}
+
+void scene_warn(scene_warnings_t *w, const char *fmt, ...)
+{
+    if (w->n >= 0 && w->n < SCENE_MAX_WARNINGS) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(w->msg[w->n], sizeof w->msg[0], fmt, ap);
+        va_end(ap);
+    }
+    w->n++;
 }
 
 void scene_mesh_parts_free(scene_mesh_part_t *parts, int n)

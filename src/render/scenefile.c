@@ -1654,6 +1654,31 @@ static svet_status add_mesh_parts(ctx_t *c, scene_mesh_part_t *parts,
     return SVET_OK;
 }
 
+/* The mesh file's warnings w (each with its own file:line:col) into the
+ * scene's, after the scene's file:line:col of the file name (col); with
+ * `strict` the first is an error instead. */
+static svet_status mesh_warnings(ctx_t *c, int col,
+                                 const scene_warnings_t *w, bool strict)
+{
+    long kept = w->n < SCENE_MAX_WARNINGS ? w->n : SCENE_MAX_WARNINGS;
+    if (strict && w->n > 0) {
+        /* "x.obj:3:1: warning: what" is told as "x.obj:3:1: what" */
+        char msg[SVET_ERROR_LEN];
+        snprintf(msg, sizeof msg, "%s", w->msg[0]);
+        char *tag = strstr(msg, ": warning: ");
+        if (tag)
+            memmove(tag + 2, tag + 11, strlen(tag + 11) + 1);
+        return fail(c, col, SVET_ERR_PARSE,
+                    "%s ('strict': the mesh file must have nothing to "
+                    "skip)", msg);
+    }
+    scene_warnings_t *sw = &c->scene->warnings;
+    for (long i = 0; i < kept; i++)
+        scene_warn(sw, "%s:%d:%d: %s", c->name, c->line, col, w->msg[i]);
+    sw->n += w->n - kept;
+    return SVET_OK;
+}
+
 static svet_status st_mesh(ctx_t *c)
 {
     if (!c->features || !c->features->mesh)
@@ -1702,11 +1727,15 @@ static svet_status st_mesh(ctx_t *c)
         scene_mesh_part_t *parts = NULL;
         int nparts = 0;
         svet_error e;
+        scene_warnings_t w;
+        w.n = 0;
         st = c->features->mesh(path, c->nxf > 0 ? &x : NULL, &parts,
-                               &nparts, &e);
+                               &nparts, &w, &e);
         if (st) /* the loader's own file:line:col follows the scene's */
             st = fail(c, col, st, "%s", e.msg);
         else
+            st = mesh_warnings(c, col, &w, v[MESH_STRICT].on);
+        if (!st)
             st = add_mesh_parts(c, parts, nparts, dflt, v, common);
         scene_mesh_parts_free(parts, nparts);
     }

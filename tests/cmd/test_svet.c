@@ -1,6 +1,7 @@
 /*
  * test_svet.c - the svet command itself (cmd/svet.c, cmd/cmd_diff.c): help,
- * exit codes and `svet diff` on files made here. The command is the one
+ * exit codes, `svet diff` on files made here, and what `svet render` says
+ * about a scene (its warnings, --strict). The command is the one
  * built beside this suite: <build>/svet for <build>/tests/test_svet, so
  * `make test` (which builds it first) tests the matching REAL.
  */
@@ -187,6 +188,72 @@ START_TEST(diff_refuses_bad_inputs_with_exit_code_2)
 }
 END_TEST
 
+/* --- what svet render says about the scene ---------------------------- */
+
+/* Write text to the file name in the scratch directory; its path in
+ * path. */
+static void write_text(char *path, size_t cap, const char *name,
+                       const char *text)
+{
+    snprintf(path, cap, "%s", imgtest_path(name));
+    imgtest_write_bytes(path, text, strlen(text));
+}
+
+/* A small lit scene with a mesh of mesh_name, as scene_name. */
+static void scene_with_mesh(char *path, size_t cap, const char *scene_name,
+                            const char *mesh_name)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
+             "render spp 1\n"
+             "material m lambert rho 0.5\n"
+             "mesh file %s material m\n"
+             "light point position 0 0 2 intensity 1\n", mesh_name);
+    write_text(path, cap, scene_name, text);
+}
+
+START_TEST(render_prints_the_mesh_warnings_and_strict_refuses_them)
+{
+    char obj[1024], scn[1024], exr[1024], args[4096];
+    /* two unknown statements, then ten more: eight shown, then a count */
+    char text[1024] = "v 0 0 0\nvv 1 1 1\nv 1 0 0\nv 0 1 0\nff 2 4 3\n"
+                      "f 1 2 3\n";
+    for (int i = 0; i < 10; i++)
+        strcat(text, "xx\n");
+    write_text(obj, sizeof obj, "warn.obj", text);
+    scene_with_mesh(scn, sizeof scn, "warn.scn", "warn.obj");
+    snprintf(exr, sizeof exr, "%s", imgtest_path("warn.exr"));
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    char want[2048];
+    snprintf(want, sizeof want, "svet render: %s:4:11: %s:2:1: warning: "
+             "unknown statement 'vv' skipped\n", scn, obj);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    snprintf(want, sizeof want, "%s:5:1: warning: unknown statement 'ff' "
+             "skipped", obj);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    snprintf(want, sizeof want, "svet render: %s: 4 more warnings\n", scn);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+    /* --strict: the same warnings, then exit 2 and no image */
+    unlink(exr);
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q --strict", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    snprintf(want, sizeof want, "svet render: %s: 12 warnings, and --strict "
+             "makes warnings errors", scn);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_ne(access(exr, F_OK), 0);
+    /* a clean mesh: nothing said, strict or not */
+    write_text(obj, sizeof obj, "clean.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+               "f 1 2 3\n");
+    scene_with_mesh(scn, sizeof scn, "clean.scn", "clean.obj");
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q --strict", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    ck_assert_str_eq(out, "");
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -197,6 +264,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
+    tcase_add_test(tc, render_prints_the_mesh_warnings_and_strict_refuses_them);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -646,6 +646,35 @@ START_TEST(mesh_errors_name_both_files)
 }
 END_TEST
 
+START_TEST(mesh_warnings_reach_the_scene_and_strict_refuses_them)
+{
+    scene_t s;
+    parse_ok(&s, M "mesh file warn.obj material m\n");
+    ck_assert_int_eq(s.nobjects, 1);
+    /* after the scene's file:line:col, the OBJ file's; all 11 counted */
+    ck_assert_int_eq(s.warnings.n, 11);
+    ck_assert_str_eq(s.warnings.msg[0],
+                     "t.scn:2:11: tests/data/scene/warn.obj:4:1: warning: "
+                     "unknown statement 'vv' skipped");
+    ck_assert_str_eq(s.warnings.msg[2],
+                     "t.scn:2:11: tests/data/scene/warn.obj:9:1: warning: "
+                     "'l' skipped: lines and points have no surface");
+    scene_free(&s);
+    ck_assert_int_eq(s.warnings.n, 0);
+    /* 'strict' makes the first an error */
+    parse_err(M "mesh file warn.obj material m strict\n", SVET_ERR_PARSE,
+              "t.scn:2:11: tests/data/scene/warn.obj:4:1: unknown statement "
+              "'vv' skipped ('strict': the mesh file must have nothing to "
+              "skip)");
+    /* a clean file warns about nothing, strict or not */
+    parse_ok(&s, "material red lambert rho 0.5\n"
+                 "material blue lambert rho 0.5\n"
+                 "mesh file tri.obj strict\n");
+    ck_assert_int_eq(s.warnings.n, 0);
+    scene_free(&s);
+}
+END_TEST
+
 /* --- errors -------------------------------------------------------------- */
 
 #ifdef SVET_DOUBLE
@@ -1251,6 +1280,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_mesh_without_usemtl_is_one_object_and_may_emit);
     tcase_add_test(tc, mesh_transforms_move_vertices_and_keep_normals_out);
     tcase_add_test(tc, mesh_errors_name_both_files);
+    tcase_add_test(tc, mesh_warnings_reach_the_scene_and_strict_refuses_them);
     tcase_add_test(tc,
                    every_error_names_file_line_column_and_what_was_expected);
     tcase_add_test(tc, a_nul_byte_is_an_error_not_the_end);
