@@ -115,6 +115,7 @@ typedef struct {
     int nxf;
     int camera_line;       /* last camera statement, for scene_validate */
     int environment_line;
+    int nstatements;       /* statements read */
 } ctx_t;
 
 
@@ -1805,6 +1806,33 @@ static svet_status statement(ctx_t *c)
     return unknown(c, t, "keyword", names, NSTATEMENTS);
 }
 
+/* --- what only the whole scene can tell ---------------------------------- */
+
+/* Does anything give light: a point light, an emitting object or the
+ * environment, of a radiance other than black? */
+static bool anything_emits(const scene_t *s)
+{
+    for (int i = 0; i < s->npoint_lights; i++)
+        if (!rad_is_black(s->point_lights[i].intensity))
+            return true;
+    for (int i = 0; i < s->nemitters; i++)
+        if (!rad_is_black(s->emitters[i]->radiance))
+            return true;
+    return s->has_environment && !rad_is_black(s->environment);
+}
+
+/* The warnings about the scene as a whole (scene.h's scene_warnings_t):
+ * nothing emits light (the image is black, except by ambient
+ * occlusion, which needs none). */
+static void whole_scene_warnings(ctx_t *c)
+{
+    scene_t *s = c->scene;
+    if (s->render.integrator != SCENE_INTEGRATOR_AO && !anything_emits(s))
+        scene_warn(&s->warnings, "%s: warning: nothing emits light (no "
+                   "'light', 'emit' or 'environment' above black): the "
+                   "image will be black", c->name);
+}
+
 static void ctx_free(ctx_t *c)
 {
     free(c->tok);
@@ -1841,10 +1869,18 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
         const char *eol = nl ? nl : end;
         c.line++;
         st = lex(&c, p, eol);
-        if (!st && c.ntok > 0)
+        if (!st && c.ntok > 0) {
             st = statement(&c);
+            c.nstatements++;
+        }
         p = nl ? nl + 1 : end;
     }
+    /* An empty file is more likely a wrong name or a failed copy than a
+     * scene of nothing. */
+    if (!st && c.nstatements == 0)
+        st = svet_error_set(err, SVET_ERR_PARSE, "%s: no statements (the "
+                            "file is empty or only comments): a scene needs "
+                            "at least an object", c.name);
     if (!st) {
         svet_error e;
         if (scene_validate(s, &e)) {
@@ -1855,6 +1891,8 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
                                       e.msg);
         }
     }
+    if (!st)
+        whole_scene_warnings(&c);
     if (!st && name) {
         size_t n = strlen(name);
         s->path = malloc(n + 1);

@@ -254,6 +254,30 @@ START_TEST(render_prints_the_mesh_warnings_and_strict_refuses_them)
 }
 END_TEST
 
+START_TEST(render_refuses_an_empty_scene_and_warns_of_a_dark_one)
+{
+    char scn[1024], exr[1024], args[4096], want[2048];
+    snprintf(exr, sizeof exr, "%s", imgtest_path("dark.exr"));
+    write_text(scn, sizeof scn, "empty.scn", "# nothing here\n\n");
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    snprintf(want, sizeof want, "svet render: %s: no statements", scn);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_ne(access(exr, F_OK), 0);
+    /* no light: rendered (black), with the warning */
+    write_text(scn, sizeof scn, "dark.scn",
+               "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
+               "render spp 1\nmaterial m lambert rho 0.5\n"
+               "sphere centre 0 0 0 radius 1 material m\n");
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    snprintf(want, sizeof want, "svet render: %s: warning: nothing emits "
+             "light", scn);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -265,6 +289,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
     tcase_add_test(tc, render_prints_the_mesh_warnings_and_strict_refuses_them);
+    tcase_add_test(tc, render_refuses_an_empty_scene_and_warns_of_a_dark_one);
     suite_add_tcase(s, tc);
     return s;
 }

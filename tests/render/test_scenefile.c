@@ -231,6 +231,53 @@ START_TEST(a_byte_order_mark_at_the_start_is_skipped)
 }
 END_TEST
 
+START_TEST(a_file_without_statements_is_an_error)
+{
+    static const char *const empty[] = { "", "\n\n", "# only a comment\n",
+                                         "  \t\r\n# two\n\n",
+                                         "\xEF\xBB\xBF\n" };
+    for (size_t i = 0; i < sizeof empty / sizeof *empty; i++)
+        parse_err(empty[i], SVET_ERR_PARSE,
+                  "t.scn: no statements (the file is empty or only "
+                  "comments): a scene needs at least an object");
+}
+END_TEST
+
+START_TEST(a_scene_without_light_parses_with_a_warning)
+{
+    static const char *const dark =
+        "t.scn: warning: nothing emits light (no 'light', 'emit' or "
+        "'environment' above black): the image will be black";
+    scene_t s;
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m\n");
+    ck_assert_int_eq(s.nobjects, 1);
+    ck_assert_int_eq(s.warnings.n, 1);
+    ck_assert_str_eq(s.warnings.msg[0], dark);
+    scene_free(&s);
+    /* black emitters give no light either */
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m emit 0\n"
+                   "light point position 0 2 0 intensity 0\n"
+                   "environment radiance 0\n");
+    ck_assert_int_eq(s.warnings.n, 1);
+    ck_assert_str_eq(s.warnings.msg[0], dark);
+    scene_free(&s);
+    /* each kind of light is enough; ambient occlusion needs none */
+    static const char *const lit[] = {
+        M "sphere centre 0 0 0 radius 1 material m emit 0 0 1\n",
+        M "sphere centre 0 0 0 radius 1 material m\n"
+          "light point position 0 2 0 intensity 1\n",
+        M "sphere centre 0 0 0 radius 1 material m\n"
+          "environment radiance 0.5\n",
+        M "sphere centre 0 0 0 radius 1 material m\nrender integrator ao\n",
+    };
+    for (size_t i = 0; i < sizeof lit / sizeof *lit; i++) {
+        parse_ok(&s, lit[i]);
+        ck_assert_msg(s.warnings.n == 0, "%s: %s", lit[i], s.warnings.msg[0]);
+        scene_free(&s);
+    }
+}
+END_TEST
+
 START_TEST(numbers_in_every_decimal_form_are_read)
 {
     static const struct {
@@ -649,7 +696,8 @@ END_TEST
 START_TEST(mesh_warnings_reach_the_scene_and_strict_refuses_them)
 {
     scene_t s;
-    parse_ok(&s, M "mesh file warn.obj material m\n");
+    parse_ok(&s, M "mesh file warn.obj material m\n"
+                   "light point position 0 0 1 intensity 1\n");
     ck_assert_int_eq(s.nobjects, 1);
     /* after the scene's file:line:col, the OBJ file's; all 11 counted */
     ck_assert_int_eq(s.warnings.n, 11);
@@ -669,7 +717,8 @@ START_TEST(mesh_warnings_reach_the_scene_and_strict_refuses_them)
     /* a clean file warns about nothing, strict or not */
     parse_ok(&s, "material red lambert rho 0.5\n"
                  "material blue lambert rho 0.5\n"
-                 "mesh file tri.obj strict\n");
+                 "mesh file tri.obj strict\n"
+                 "light point position 0 0 1 intensity 1\n");
     ck_assert_int_eq(s.warnings.n, 0);
     scene_free(&s);
 }
@@ -1266,6 +1315,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, output_and_tonemap_parse_to_their_values);
     tcase_add_test(tc, comments_blank_lines_tabs_and_crlf_are_accepted);
     tcase_add_test(tc, a_byte_order_mark_at_the_start_is_skipped);
+    tcase_add_test(tc, a_file_without_statements_is_an_error);
+    tcase_add_test(tc, a_scene_without_light_parses_with_a_warning);
     tcase_add_test(tc, numbers_in_every_decimal_form_are_read);
     tcase_add_test(tc, every_material_component_parses_with_its_parameters);
     tcase_add_test(tc, every_shape_parses_with_its_material_and_name);
