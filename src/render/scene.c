@@ -348,7 +348,11 @@ svet_status scene_validate(const scene_t *s, svet_error *err)
     const scene_camera_t *c = &s->camera;
     VECTOR3 view, side;
     vec_sub(view, c->target, c->position);
-    if (!(vec_length(view) > 0) || !vec_is_finite(view))
+    if (!vec_is_finite(view) || !isfinite(vec_length(view)))
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "camera target - position overflows %s: "
+                              "bring them closer", REAL_NAME);
+    if (!(vec_length(view) > 0))
         return svet_error_set(err, SVET_ERR_RANGE,
                               "camera target must differ from its position");
     vec_normalize(view, view);

@@ -732,6 +732,13 @@ END_TEST
 #define BIG "1e+30" /* as long as the double one: same columns */
 #endif
 
+/* A coordinate of which twice overflows real. */
+#ifdef SVET_DOUBLE
+#define HUGE_COORD "1e308"
+#else
+#define HUGE_COORD "3e38"
+#endif
+
 /* Every kind of error, with its exact message and status. */
 static const struct {
     const char *text;
@@ -947,6 +954,9 @@ static const struct {
       "t.scn:1:1: camera target must differ from its position" },
     { "camera target 0 5 0\n\n", SVET_ERR_RANGE,
       "t.scn:1:1: camera up must not be along the view direction" },
+    { "camera position -" HUGE_COORD " 0 0 target " HUGE_COORD " 0 0\n",
+      SVET_ERR_RANGE, "t.scn:1:1: camera target - position overflows "
+      REAL_NAME ": bring them closer" },
     /* later chapters */
     { "texture checker\n", SVET_ERR_UNSUPPORTED,
       "t.scn:1:1: 'texture' is not supported yet: ch. 10 (textures)" },
