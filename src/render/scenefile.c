@@ -17,6 +17,7 @@
 #include <sys/stat.h>
 
 #include "accel/accel.h"
+#include "core/bbox.h"
 #include "core/text.h"
 #include "geometry/box.h"
 #include "colour/colour.h"
@@ -30,6 +31,8 @@
 #include "geometry/sphere.h"
 #include "geometry/triangle.h"
 #include "geometry/xform.h"
+
+#define PI_D 3.14159265358979323846
 
 /* The largest number of transforms on one line. */
 #define MAX_XFORMS 64
@@ -116,6 +119,11 @@ typedef struct {
     int camera_line;       /* last camera statement, for scene_validate */
     int environment_line;
     int nstatements;       /* statements read */
+    int environment_col;   /* its 'radiance' */
+    double power;          /* the lights' powers so far, W (check_light) */
+    bbox_t bounds;         /* of the objects of finite size so far */
+    double smallest;       /* the smallest such object's diagonal, */
+    int smallest_line;     /* and its line (0: none yet) */
 } ctx_t;
 
 
@@ -1038,6 +1046,45 @@ static svet_status st_tonemap(ctx_t *c)
 
 /* --- lights -------------------------------------------------------------- */
 
+/* The brightest radiance (W/(m^2 sr)) or intensity (W/sr) a light may
+ * have, per channel: sqrt(FLT_MAX), about 1.8e19, in both builds. The
+ * images are floats whatever real is (image.h), the variance image holds
+ * squares of samples (render_variance), and the estimator multiplies a
+ * light's L by ratios f cos / p that exceed 1 (next-event estimation near
+ * a large emitter), so a light leaves that much headroom below FLT_MAX:
+ * `emit 3e38` gave non-finite samples. */
+static double max_emission(void)
+{
+    return sqrt((double)FLT_MAX);
+}
+
+/* Refuse the light colour L (named `what` in messages; given at col) when
+ * a channel is brighter than max_emission(), or when its power, the
+ * luminance of L times scale (pi A per emitting side, 4 pi, pi^2 r^2:
+ * lightset_build's weights for choosing a light, light.c), overflows real
+ * alone or added to the lights' powers before it. */
+static svet_status check_light(ctx_t *c, int col, const char *what,
+                               RADIANCE L, double scale)
+{
+    double top = fmax(fmax((double)L.r, (double)L.g), (double)L.b);
+    if (top > max_emission())
+        return fail(c, col, SVET_ERR_RANGE,
+                    "%s %.3g is brighter than svet renders: at most %.3g per "
+                    "channel (a sample's square must fit in a float image)",
+                    what, top, max_emission());
+    double phi = fmax(0.0, (double)rad_luminance(L)) * scale;
+    if (!(scale <= (double)REAL_MAX) || !(phi <= (double)REAL_MAX))
+        return fail(c, col, SVET_ERR_RANGE,
+                    "the light's power, %.3g W, is more than %s holds", phi,
+                    REAL_NAME);
+    if (!(c->power + phi <= (double)REAL_MAX))
+        return fail(c, col, SVET_ERR_RANGE,
+                    "the lights' powers add up to %.3g W, more than %s holds",
+                    c->power + phi, REAL_NAME);
+    c->power += phi;
+    return SVET_OK;
+}
+
 static const char *const light_kinds[] = { "point", NULL };
 
 enum { L_POSITION, L_INTENSITY, L_POWER, L_CANDELA, L_LUMENS, L_COLOUR,
@@ -1104,6 +1151,12 @@ static svet_status st_light(ctx_t *c)
     if (!rad_is_finite(I))
         return fail(c, c->stmt_col, SVET_ERR_RANGE,
                     "the light's intensity overflows %s", REAL_NAME);
+    /* Phi = 4 pi I (light.c) */
+    int key = v[L_INTENSITY].set ? L_INTENSITY : v[L_POWER].set ? L_POWER
+              : v[L_CANDELA].set ? L_CANDELA : L_LUMENS;
+    st = check_light(c, v[key].col, "the intensity", I, 4 * PI_D);
+    if (st)
+        return st;
     svet_error e;
     st = scene_add_point_light(c->scene, v[L_POSITION].v, I, &e);
     if (st)
@@ -1128,10 +1181,13 @@ static svet_status st_environment(ctx_t *c)
                     "the environment is already defined on line %d",
                     c->environment_line);
     c->environment_line = c->line;
+    c->environment_col = v[E_RADIANCE].col;
     c->scene->has_environment = true;
     c->scene->environment = rad_make(v[E_RADIANCE].v[0], v[E_RADIANCE].v[1],
                                      v[E_RADIANCE].v[2]);
-    return SVET_OK;
+    /* its power needs the scene's size: whole_scene() checks it */
+    return check_light(c, v[E_RADIANCE].col, "the radiance",
+                       c->scene->environment, 0);
 }
 
 /* --- materials ----------------------------------------------------------- */
@@ -1470,6 +1526,37 @@ static svet_status find_material(ctx_t *c, const val_t *v,
                 "above this one", show_tok(&v->word, show, sizeof show));
 }
 
+/* The length of the diagonal of b, in double (the float difference of
+ * the corners may overflow). */
+static double diagonal(const bbox_t *b)
+{
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)b->max[k] - (double)b->min[k];
+        d2 += d * d;
+    }
+    return sqrt(d2);
+}
+
+/* Keep obj's size for whole_scene()'s check of the range real resolves:
+ * its bounds join the scene's, and the smallest object is remembered
+ * with its line. Objects of infinite area (a plane, whose bounds span
+ * the reals) are left out. */
+static void note_size(ctx_t *c, const COBJECT *obj)
+{
+    bbox_t b;
+    obj->ops->bounds(obj, -1, &b);
+    if (!isfinite(obj->ops->area(obj)) || bbox_is_empty(&b) ||
+        !vec_is_finite(b.min) || !vec_is_finite(b.max))
+        return;
+    bbox_union(&c->bounds, &b);
+    double d = diagonal(&b);
+    if (!c->smallest_line || d < c->smallest) {
+        c->smallest = d;
+        c->smallest_line = c->line;
+    }
+}
+
 /* Add obj with material m to the scene, and its emission if the statement
  * gives one. obj is the scene's (or freed) afterwards. */
 static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
@@ -1479,9 +1566,18 @@ static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
     svet_status st = scene_add_object(c->scene, obj, m, &e);
     if (st)
         return fail(c, c->stmt_col, st, "%s", e.msg);
+    note_size(c, obj);
     if (common[K_EMIT].set) {
-        st = scene_set_emission(c->scene, obj, colour_of(&common[K_EMIT]),
-                                common[K_TWOSIDED].on, &e);
+        /* Phi = pi A L per emitting side (light.c) */
+        RADIANCE L = colour_of(&common[K_EMIT]);
+        double scale = (common[K_TWOSIDED].on ? 2 : 1) * PI_D *
+                       (double)obj->ops->area(obj);
+        st = check_light(c, common[K_EMIT].col, "the radiance 'emit'", L,
+                         scale);
+        if (st)
+            return st;
+        st = scene_set_emission(c->scene, obj, L, common[K_TWOSIDED].on,
+                                &e);
         if (st)
             return fail(c, common[K_EMIT].col, st, "%s", e.msg);
     }
@@ -1821,16 +1917,81 @@ static bool anything_emits(const scene_t *s)
     return s->has_environment && !rad_is_black(s->environment);
 }
 
-/* The warnings about the scene as a whole (scene.h's scene_warnings_t):
- * nothing emits light (the image is black, except by ambient
- * occlusion, which needs none). */
-static void whole_scene_warnings(ctx_t *c)
+/* The lengths the build's real resolves. The flat shapes' intersection
+ * tests (parallelogram, triangle and mesh, app. D; Woop et al. 2013 for
+ * the triangle) multiply three lengths: the unnormalised normal e1 x e2,
+ * a product of two edges, dotted with a distance. While that product is
+ * a normal number (REAL_MIN to REAL_MAX) the offsets of ray.c, which
+ * scale with the hit points' error bounds, hold at any scale; beyond it
+ * the product overflows (hits are lost: the image goes black) or loses
+ * digits to underflow. So lengths L with L^3 in [REAL_MIN, REAL_MAX] are
+ * resolved: cbrt(FLT_MIN) ~ 2.3e-13 to cbrt(FLT_MAX) ~ 7e12 in float,
+ * 2.8e-103 to 5.6e102 in double. */
+static double shortest_length(void)
+{
+    return cbrt((double)REAL_MIN);
+}
+
+static double longest_length(void)
+{
+    return cbrt((double)REAL_MAX);
+}
+
+#ifdef SVET_DOUBLE
+#define OTHER_BUILD ""
+#else
+#define OTHER_BUILD "; render it with the double build (make REAL=double)"
+#endif
+
+/* The scene's extent and smallest object against the range real
+ * resolves; a warning for each that falls outside it. The extent is the
+ * diagonal of the box of the finite objects, the camera and the point
+ * lights: every distance a ray travels lies within it. */
+static void precision_warnings(ctx_t *c)
 {
     scene_t *s = c->scene;
+    bbox_t all = c->bounds;
+    bbox_add_point(&all, s->camera.position);
+    for (int i = 0; i < s->npoint_lights; i++)
+        bbox_add_point(&all, s->point_lights[i].position);
+    double extent = diagonal(&all);
+    if (extent > longest_length())
+        scene_warn(&s->warnings, "%s: warning: the scene spans %.3g, more "
+                   "than %s resolves (lengths up to %.3g: the flat shapes' "
+                   "intersection multiplies three lengths)" OTHER_BUILD,
+                   c->name, extent, REAL_NAME, longest_length());
+    if (c->smallest_line && c->smallest < shortest_length())
+        scene_warn(&s->warnings, "%s:%d:1: warning: the object is %.3g "
+                   "across, less than %s resolves (lengths down to %.3g: "
+                   "the flat shapes' intersection multiplies three "
+                   "lengths)" OTHER_BUILD, c->name, c->smallest_line,
+                   c->smallest, REAL_NAME, shortest_length());
+}
+
+/* What only the whole scene can tell: the environment's power, which
+ * depends on the scene's size (pi^2 r^2 L, r the radius of the sphere
+ * around the objects, light.c), is refused when it overflows; then the
+ * warnings (scene.h's scene_warnings_t): nothing emits light (the image
+ * is black, except by ambient occlusion, which needs none), and sizes
+ * beyond what real resolves. */
+static svet_status whole_scene(ctx_t *c)
+{
+    scene_t *s = c->scene;
+    if (s->has_environment) {
+        double r = bbox_is_empty(&c->bounds) ? 1
+                                             : 0.5 * diagonal(&c->bounds);
+        c->line = c->environment_line;
+        svet_status st = check_light(c, c->environment_col, "the radiance",
+                                     s->environment, PI_D * PI_D * r * r);
+        if (st)
+            return st;
+    }
     if (s->render.integrator != SCENE_INTEGRATOR_AO && !anything_emits(s))
         scene_warn(&s->warnings, "%s: warning: nothing emits light (no "
                    "'light', 'emit' or 'environment' above black): the "
                    "image will be black", c->name);
+    precision_warnings(c);
+    return SVET_OK;
 }
 
 static void ctx_free(ctx_t *c)
@@ -1851,6 +2012,7 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
     memset(&c, 0, sizeof c);
     c.scene = s;
     c.features = features;
+    bbox_empty(&c.bounds);
     c.name = name ? name : "<string>";
     c.dir = dir;
     c.err = err;
@@ -1892,7 +2054,7 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
         }
     }
     if (!st)
-        whole_scene_warnings(&c);
+        st = whole_scene(&c);
     if (!st && name) {
         size_t n = strlen(name);
         s->path = malloc(n + 1);

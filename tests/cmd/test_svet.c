@@ -254,7 +254,7 @@ START_TEST(render_prints_the_mesh_warnings_and_strict_refuses_them)
 }
 END_TEST
 
-START_TEST(render_refuses_an_empty_scene_and_warns_of_a_dark_one)
+START_TEST(render_refuses_empty_and_too_bright_scenes_and_warns_of_dark)
 {
     char scn[1024], exr[1024], args[4096], want[2048];
     snprintf(exr, sizeof exr, "%s", imgtest_path("dark.exr"));
@@ -275,6 +275,18 @@ START_TEST(render_refuses_an_empty_scene_and_warns_of_a_dark_one)
              "light", scn);
     ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
     ck_assert_int_eq(access(exr, F_OK), 0);
+    /* a light whose products overflow is refused where it is written,
+     * and the image of the dark scene stays */
+    write_text(scn, sizeof scn, "bright.scn",
+               "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
+               "render spp 1\nmaterial m lambert rho 0.5\n"
+               "sphere centre 0 0 0 radius 1 material m emit 3e38\n");
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    snprintf(want, sizeof want, "svet render: %s:4:41: the radiance 'emit' "
+             "3e+38 is brighter than svet renders", scn);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_eq(access(exr, F_OK), 0);
 }
 END_TEST
 
@@ -288,8 +300,10 @@ Suite *test_suite(void)
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
     tcase_add_test(tc, diff_refuses_bad_inputs_with_exit_code_2);
-    tcase_add_test(tc, render_prints_the_mesh_warnings_and_strict_refuses_them);
-    tcase_add_test(tc, render_refuses_an_empty_scene_and_warns_of_a_dark_one);
+    tcase_add_test(
+        tc, render_prints_the_mesh_warnings_and_strict_refuses_them);
+    tcase_add_test(
+        tc, render_refuses_empty_and_too_bright_scenes_and_warns_of_dark);
     suite_add_tcase(s, tc);
     return s;
 }

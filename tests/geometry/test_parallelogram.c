@@ -939,7 +939,8 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays);
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
-    tcase_add_test(tc, perpendicular_edges_are_not_called_parallel_at_any_scale);
+    tcase_add_test(
+        tc, perpendicular_edges_are_not_called_parallel_at_any_scale);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);
     tcase_add_test(tc, parallelogram_sampled_points_are_hit_at_any_scale);

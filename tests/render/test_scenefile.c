@@ -20,6 +20,7 @@
 #include "colour/colour.h"
 #include "materials/material.h"
 #include "mesh/mesh.h"
+#include "render/render.h"
 #include "render/scenefile.h"
 
 #define DATA "tests/data/scene"
@@ -724,6 +725,201 @@ START_TEST(mesh_warnings_reach_the_scene_and_strict_refuses_them)
 }
 END_TEST
 
+START_TEST(lights_whose_products_overflow_are_refused)
+{
+    /* emit 3e38 rendered with non-finite samples dropped and exit 0 */
+    static const char *const bright =
+        " is brighter than svet renders: at most 1.84e+19 per channel (a "
+        "sample's square must fit in a float image)";
+    char msg[512];
+    snprintf(msg, sizeof msg, "t.scn:2:41: the radiance 'emit' 3e+38%s",
+             bright);
+    parse_err(M "sphere centre 0 0 0 radius 1 material m emit 3e38\n",
+              SVET_ERR_RANGE, msg);
+    snprintf(msg, sizeof msg, "t.scn:1:28: the intensity 1e+20%s", bright);
+    parse_err("light point position 0 0 0 intensity 1 1e20 1\n",
+              SVET_ERR_RANGE, msg);
+    /* power 1e21 W is an intensity of 1e21 / (4 pi) = 7.96e19 W/sr */
+    snprintf(msg, sizeof msg, "t.scn:1:28: the intensity 7.96e+19%s", bright);
+    parse_err("light point position 0 0 0 power 1e21\n", SVET_ERR_RANGE, msg);
+    snprintf(msg, sizeof msg, "t.scn:1:13: the radiance 1e+20%s", bright);
+    parse_err("environment radiance 1e20\n", SVET_ERR_RANGE, msg);
+    /* as bright as may be: fine */
+    scene_t s;
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m emit 1.8e19\n"
+                   "light point position 0 2 0 intensity 1.8e19\n"
+                   "environment radiance 1.8e19\n");
+    ck_assert_int_eq(s.nemitters, 1);
+    scene_free(&s);
+#ifndef SVET_DOUBLE
+    /* a light's power, pi A L per side, beyond float: a sphere of radius
+     * 1e18 has A = 1.26e37 */
+    parse_err(M "sphere centre 0 0 0 radius 1e18 material m emit 1000\n",
+              SVET_ERR_RANGE, "t.scn:2:44: the light's power, 3.95e+40 W, "
+              "is more than float holds");
+    /* each fits, their sum does not */
+    parse_err(M "sphere centre 0 0 0 radius 1e18 material m emit 5\n"
+                "sphere centre 0 0 0 radius 1e18 material m emit 5\n",
+              SVET_ERR_RANGE, "t.scn:3:44: the lights' powers add up to "
+              "3.95e+38 W, more than float holds");
+    /* the environment's, pi^2 r^2 L, with r around every object: told on
+     * its own line, though the sphere comes after it */
+    parse_err(M "environment radiance 1e4\n"
+                "sphere centre 0 0 0 radius 1e17 material m\n",
+              SVET_ERR_RANGE, "t.scn:2:13: the light's power, 2.96e+39 W, "
+              "is more than float holds");
+#else
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1e18 material m emit 1000\n"
+                   "environment radiance 1e4\n");
+    scene_free(&s);
+#endif
+}
+END_TEST
+
+/* --- sizes beyond what real resolves ------------------------------------ */
+
+/* scenes/cbox.scn scaled by s about the origin, camera included, at 32 x 32
+ * pixels and 4 spp: "scale s" after each object's own transforms. The
+ * text is malloc'ed. */
+static char *scaled_cbox(double s)
+{
+    FILE *f = fopen("scenes/cbox.scn", "r");
+    ck_assert_ptr_nonnull(f);
+    size_t cap = 1 << 16, n = 0;
+    char *text = malloc(cap), line[512];
+    ck_assert_ptr_nonnull(text);
+    while (fgets(line, sizeof line, f)) {
+        char *m = strstr(line, "material ");
+        char out[640];
+        if (strncmp(line, "camera position", 15) == 0)
+            snprintf(out, sizeof out, "camera position 0 0 %.9g target 0 0 "
+                     "0 up 0 1 0 width 32 height 32\n", 3.9 * s);
+        else if (strncmp(line, "render spp", 10) == 0)
+            snprintf(out, sizeof out, "render spp 4 maxdepth 7\n");
+        else if (m && (strncmp(line, "parallelogram", 13) == 0 ||
+                       strncmp(line, "box", 3) == 0))
+            snprintf(out, sizeof out, "%.*sscale %.9g %s", (int)(m - line),
+                     line, s, m);
+        else
+            snprintf(out, sizeof out, "%s", line);
+        size_t k = strlen(out);
+        ck_assert(n + k + 1 < cap);
+        memcpy(text + n, out, k + 1);
+        n += k;
+    }
+    fclose(f);
+    return text;
+}
+
+/* The largest difference of the render of text from ref (NULL: keep
+ * this render in ref instead), 1 thread; warnings in *nwarnings. */
+static double render_difference(const char *text, image_t *ref,
+                                long *nwarnings)
+{
+    scene_t s;
+    parse_ok(&s, text);
+    *nwarnings = s.warnings.n;
+    render_t r;
+    svet_error err;
+    ck_assert_msg(render_init(&r, &s, &err) == SVET_OK, "%s", err.msg);
+    render_pass(&r, s.render.spp, 1, NULL, NULL);
+    image_t img;
+    ck_assert_int_eq(render_image(&r, &img, &err), SVET_OK);
+    render_free(&r);
+    scene_free(&s);
+    double worst = 0;
+    if (ref->px) {
+        size_t n = (size_t)img.width * (size_t)img.height * 3;
+        for (size_t i = 0; i < n; i++) {
+            double d = fabs((double)img.px[i] - (double)ref->px[i]);
+            if (!(d <= worst)) /* a NaN counts as infinitely wrong */
+                worst = isnan(d) ? (double)INFINITY : d;
+        }
+        image_free(&img);
+    } else {
+        *ref = img;
+    }
+    return worst;
+}
+
+START_TEST(scaled_cornell_boxes_warn_where_float_renders_them_wrong)
+{
+    /* The box scaled by s renders as the unscaled one (to rounding, a
+     * largest difference near 1e-5) while s^3 times its sizes stays in
+     * real's normal range; beyond, float's hits are lost (at 5e12) or
+     * lose digits (at 1e-14), by 0.02 to 0.6. The warning must come
+     * exactly where the image is wrong, at these scales. */
+    static const double scales[] = { 1e-30, 1e-14, 1e-12, 1e12, 5e12, 1e30 };
+    image_t ref = { 0 };
+    long nw;
+    char *text = scaled_cbox(1);
+    render_difference(text, &ref, &nw);
+    free(text);
+    ck_assert_int_eq(nw, 0);
+    for (size_t i = 0; i < sizeof scales / sizeof *scales; i++) {
+#ifndef SVET_DOUBLE
+        if (scales[i] < 1e-20 || scales[i] > 1e20)
+            continue; /* float refuses their areas outright */
+#endif
+        text = scaled_cbox(scales[i]);
+        double d = render_difference(text, &ref, &nw);
+        free(text);
+        bool wrong = !(d < 1e-3);
+        ck_assert_msg(wrong == (nw > 0) && (wrong || d < 1e-4),
+                      "scale %g: largest difference %g, %ld warnings",
+                      scales[i], d, nw);
+#ifdef SVET_DOUBLE
+        ck_assert_msg(!wrong, "scale %g: %g", scales[i], d);
+#else
+        ck_assert_msg(wrong == (scales[i] < 1e-13 || scales[i] > 2e12),
+                      "scale %g: %g", scales[i], d);
+#endif
+    }
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(precision_warnings_name_the_extent_and_the_smallest_object)
+{
+    scene_t s;
+    char *text = scaled_cbox(5e12);
+    parse_ok(&s, text);
+    free(text);
+#ifdef SVET_DOUBLE
+    ck_assert_int_eq(s.warnings.n, 0);
+#else
+    ck_assert_int_eq(s.warnings.n, 1);
+    ck_assert_str_eq(s.warnings.msg[0],
+                     "t.scn: warning: the scene spans 2.83e+13, more than "
+                     "float resolves (lengths up to 6.98e+12: the flat "
+                     "shapes' intersection multiplies three lengths); render "
+                     "it with the double build (make REAL=double)");
+#endif
+    scene_free(&s);
+    /* the smallest object is named by its line: the light, 0.6 s across */
+    text = scaled_cbox(1e-14);
+    parse_ok(&s, text);
+    free(text);
+#ifdef SVET_DOUBLE
+    ck_assert_int_eq(s.warnings.n, 0);
+#else
+    ck_assert_int_eq(s.warnings.n, 1);
+    ck_assert_str_eq(s.warnings.msg[0],
+                     "t.scn:34:1: warning: the object is 5.97e-15 across, "
+                     "less than float resolves (lengths down to 2.27e-13: "
+                     "the flat shapes' intersection multiplies three "
+                     "lengths); render it with the double build (make "
+                     "REAL=double)");
+#endif
+    scene_free(&s);
+    /* a plane has no size: far planes alone warn of nothing */
+    parse_ok(&s, M "plane point 0 -1e30 0 normal 0 1 0 material m\n"
+                   "light point position 0 1 0 intensity 1\n");
+    ck_assert_int_eq(s.warnings.n, 0);
+    scene_free(&s);
+}
+END_TEST
+
 /* --- errors -------------------------------------------------------------- */
 
 #ifdef SVET_DOUBLE
@@ -1342,6 +1538,11 @@ Suite *test_suite(void)
     tcase_add_test(tc, mesh_transforms_move_vertices_and_keep_normals_out);
     tcase_add_test(tc, mesh_errors_name_both_files);
     tcase_add_test(tc, mesh_warnings_reach_the_scene_and_strict_refuses_them);
+    tcase_add_test(tc, lights_whose_products_overflow_are_refused);
+    tcase_add_test(tc,
+                   scaled_cornell_boxes_warn_where_float_renders_them_wrong);
+    tcase_add_test(
+        tc, precision_warnings_name_the_extent_and_the_smallest_object);
     tcase_add_test(tc,
                    every_error_names_file_line_column_and_what_was_expected);
     tcase_add_test(tc, a_nul_byte_is_an_error_not_the_end);
