@@ -13,6 +13,7 @@
 #include "io/exrio.h"
 #include "colour/colour.h"
 
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -199,93 +200,96 @@ static void write_text(char *path, size_t cap, const char *name,
     imgtest_write_bytes(path, text, strlen(text));
 }
 
-/* A small lit scene with a mesh of mesh_name, as scene_name. */
-static void scene_with_mesh(char *path, size_t cap, const char *scene_name,
-                            const char *mesh_name)
+/* Write the scene `name` in the scratch directory (its path in scn): a
+ * small camera, 1 spp and material m, then objects; render it to exr
+ * (-q, and flags) and return the exit code, what was printed in out. */
+static int render_scene(char *scn, size_t cap, const char *name,
+                        const char *objects, const char *exr,
+                        const char *flags)
 {
-    char text[1024];
+    char text[1024], args[4096];
     snprintf(text, sizeof text,
              "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
-             "render spp 1\n"
-             "material m lambert rho 0.5\n"
-             "mesh file %s material m\n"
-             "light point position 0 0 2 intensity 1\n", mesh_name);
-    write_text(path, cap, scene_name, text);
+             "render spp 1\nmaterial m lambert rho 0.5\n%s", objects);
+    write_text(scn, cap, name, text);
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q %s", scn, exr, flags);
+    return run(out, sizeof out, args);
 }
+
+/* out holds the printf-style text. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static void expect_printed(const char *fmt, ...)
+{
+    char want[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(want, sizeof want, fmt, ap);
+    va_end(ap);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+}
+
+#define MESH_LIT "mesh file %s material m\n" \
+                 "light point position 0 0 2 intensity 1\n"
 
 START_TEST(render_prints_the_mesh_warnings_and_strict_refuses_them)
 {
-    char obj[1024], scn[1024], exr[1024], args[4096];
+    char obj[1024], scn[1024], exr[1024], objects[1200];
     /* two unknown statements, then ten more: eight shown, then a count */
     char text[1024] = "v 0 0 0\nvv 1 1 1\nv 1 0 0\nv 0 1 0\nff 2 4 3\n"
                       "f 1 2 3\n";
     for (int i = 0; i < 10; i++)
         strcat(text, "xx\n");
     write_text(obj, sizeof obj, "warn.obj", text);
-    scene_with_mesh(scn, sizeof scn, "warn.scn", "warn.obj");
     snprintf(exr, sizeof exr, "%s", imgtest_path("warn.exr"));
-    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
-    ck_assert_int_eq(run(out, sizeof out, args), 0);
-    char want[2048];
-    snprintf(want, sizeof want, "svet render: %s:4:11: %s:2:1: warning: "
-             "unknown statement 'vv' skipped\n", scn, obj);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
-    snprintf(want, sizeof want, "%s:5:1: warning: unknown statement 'ff' "
-             "skipped", obj);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
-    snprintf(want, sizeof want, "svet render: %s: 4 more warnings\n", scn);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    snprintf(objects, sizeof objects, MESH_LIT, "warn.obj");
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "warn.scn", objects, exr,
+                                  ""), 0);
+    expect_printed("svet render: %s:4:11: %s:2:1: warning: unknown "
+                   "statement 'vv' skipped\n", scn, obj);
+    expect_printed("%s:5:1: warning: unknown statement 'ff' skipped", obj);
+    expect_printed("svet render: %s: 4 more warnings\n", scn);
     ck_assert_int_eq(access(exr, F_OK), 0);
     /* --strict: the same warnings, then exit 2 and no image */
     unlink(exr);
-    snprintf(args, sizeof args, "render '%s' -o '%s' -q --strict", scn, exr);
-    ck_assert_int_eq(run(out, sizeof out, args), 2);
-    snprintf(want, sizeof want, "svet render: %s: 12 warnings, and --strict "
-             "makes warnings errors", scn);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "warn.scn", objects, exr,
+                                  "--strict"), 2);
+    expect_printed("svet render: %s: 12 warnings, and --strict makes "
+                   "warnings errors", scn);
     ck_assert_int_ne(access(exr, F_OK), 0);
     /* a clean mesh: nothing said, strict or not */
     write_text(obj, sizeof obj, "clean.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
                "f 1 2 3\n");
-    scene_with_mesh(scn, sizeof scn, "clean.scn", "clean.obj");
-    snprintf(args, sizeof args, "render '%s' -o '%s' -q --strict", scn, exr);
-    ck_assert_int_eq(run(out, sizeof out, args), 0);
+    snprintf(objects, sizeof objects, MESH_LIT, "clean.obj");
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "clean.scn", objects, exr,
+                                  "--strict"), 0);
     ck_assert_str_eq(out, "");
 }
 END_TEST
 
 START_TEST(render_refuses_empty_and_too_bright_scenes_and_warns_of_dark)
 {
-    char scn[1024], exr[1024], args[4096], want[2048];
+    char scn[1024], exr[1024], args[4096];
     snprintf(exr, sizeof exr, "%s", imgtest_path("dark.exr"));
     write_text(scn, sizeof scn, "empty.scn", "# nothing here\n\n");
     snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
     ck_assert_int_eq(run(out, sizeof out, args), 2);
-    snprintf(want, sizeof want, "svet render: %s: no statements", scn);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    expect_printed("svet render: %s: no statements", scn);
     ck_assert_int_ne(access(exr, F_OK), 0);
     /* no light: rendered (black), with the warning */
-    write_text(scn, sizeof scn, "dark.scn",
-               "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
-               "render spp 1\nmaterial m lambert rho 0.5\n"
-               "sphere centre 0 0 0 radius 1 material m\n");
-    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
-    ck_assert_int_eq(run(out, sizeof out, args), 0);
-    snprintf(want, sizeof want, "svet render: %s: warning: nothing emits "
-             "light", scn);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "dark.scn",
+                                  "sphere centre 0 0 0 radius 1 material m\n",
+                                  exr, ""), 0);
+    expect_printed("svet render: %s: warning: nothing emits light", scn);
     ck_assert_int_eq(access(exr, F_OK), 0);
     /* a light whose products overflow is refused where it is written,
      * and the image of the dark scene stays */
-    write_text(scn, sizeof scn, "bright.scn",
-               "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
-               "render spp 1\nmaterial m lambert rho 0.5\n"
-               "sphere centre 0 0 0 radius 1 material m emit 3e38\n");
-    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
-    ck_assert_int_eq(run(out, sizeof out, args), 2);
-    snprintf(want, sizeof want, "svet render: %s:4:41: the radiance 'emit' "
-             "3e+38 is brighter than svet renders", scn);
-    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "bright.scn",
+                                  "sphere centre 0 0 0 radius 1 material m "
+                                  "emit 3e38\n", exr, ""), 2);
+    expect_printed("svet render: %s:4:41: the radiance 'emit' 3e+38 is "
+                   "brighter than svet renders", scn);
     ck_assert_int_eq(access(exr, F_OK), 0);
 }
 END_TEST

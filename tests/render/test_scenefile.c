@@ -879,39 +879,39 @@ START_TEST(scaled_cornell_boxes_warn_where_float_renders_them_wrong)
 }
 END_TEST
 
-START_TEST(precision_warnings_name_the_extent_and_the_smallest_object)
+/* The Cornell box scaled by s parses with the one warning msg in float
+ * and none in double. */
+static void expect_precision_warning(double s, const char *msg)
 {
-    scene_t s;
-    char *text = scaled_cbox(5e12);
-    parse_ok(&s, text);
+    scene_t sc;
+    char *text = scaled_cbox(s);
+    parse_ok(&sc, text);
     free(text);
 #ifdef SVET_DOUBLE
-    ck_assert_int_eq(s.warnings.n, 0);
+    (void)msg;
+    ck_assert_int_eq(sc.warnings.n, 0);
 #else
-    ck_assert_int_eq(s.warnings.n, 1);
-    ck_assert_str_eq(s.warnings.msg[0],
+    ck_assert_int_eq(sc.warnings.n, 1);
+    ck_assert_str_eq(sc.warnings.msg[0], msg);
+#endif
+    scene_free(&sc);
+}
+
+START_TEST(precision_warnings_name_the_extent_and_the_smallest_object)
+{
+    expect_precision_warning(5e12,
                      "t.scn: warning: the scene spans 2.83e+13, more than "
                      "float resolves (lengths up to 6.98e+12: the flat "
                      "shapes' intersection multiplies three lengths); render "
                      "it with the double build (make REAL=double)");
-#endif
-    scene_free(&s);
     /* the smallest object is named by its line: the light, 0.6 s across */
-    text = scaled_cbox(1e-14);
-    parse_ok(&s, text);
-    free(text);
-#ifdef SVET_DOUBLE
-    ck_assert_int_eq(s.warnings.n, 0);
-#else
-    ck_assert_int_eq(s.warnings.n, 1);
-    ck_assert_str_eq(s.warnings.msg[0],
+    expect_precision_warning(1e-14,
                      "t.scn:34:1: warning: the object is 5.97e-15 across, "
                      "less than float resolves (lengths down to 2.27e-13: "
                      "the flat shapes' intersection multiplies three "
                      "lengths); render it with the double build (make "
                      "REAL=double)");
-#endif
-    scene_free(&s);
+    scene_t s;
     /* a plane has no size: far planes alone warn of nothing */
     parse_ok(&s, M "plane point 0 -1e30 0 normal 0 1 0 material m\n"
                    "light point position 0 1 0 intensity 1\n");
