@@ -69,6 +69,7 @@ void cmd_converge_help(FILE *f)
 "                        options, e.g. cbox-maxdepth=1)\n"
 "  --set KEY=VALUE       a scene setting (maxdepth, integrator, roulette,\n"
 "                        accel, ...: scenefile_override), repeatable\n"
+"  --strict              refuse a scene that reading warns about (exit 2)\n"
 "  --threads N           render threads (0 = every core)\n"
 "  --seed N              seed of the random numbers (use one other than the\n"
 "                        reference's, so that the errors are independent)\n"
@@ -603,6 +604,8 @@ int cmd_converge_parse(int argc, char **argv, cmd_converge_args_t *o)
             o->no_plot = true, takes = false;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
             o->quiet = true, takes = false;
+        } else if (!strcmp(a, "--strict")) {
+            o->so.strict = true, takes = false;
         } else if (!strcmp(a, "--report")) {
             o->report = true, takes = false;
         } else if (a[0] == '-' && !v) {

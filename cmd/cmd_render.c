@@ -54,6 +54,7 @@ void cmd_render_help(FILE *f)
 "      --half              write the EXR as half floats (default: float)\n"
 "      --set KEY=VALUE     any scene setting, as scenefile_override() takes:\n"
 "                          maxdepth, integrator, roulette, accel, tonemap, ...\n"
+"      --strict            refuse a scene that reading warns about (exit 2)\n"
 "  -q, --quiet             no progress and no summary\n"
 "  -h, --help              this text\n"
 "\n"
@@ -219,6 +220,8 @@ int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
             o->checkpoint = true, takes = false;
         } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
             o->quiet = true, takes = false;
+        } else if (!strcmp(a, "--strict")) {
+            o->so.strict = true, takes = false;
         } else if (!strcmp(a, "--half")) {
             o->half = true, takes = false;
         } else if (a[0] == '-' && !v) {

@@ -1,7 +1,7 @@
 /*
  * cmdutil.c - what the subcommands share: the clock, command-line numbers,
- * usage messages, file names and the scene options --threads, --seed and
- * --set (cmdutil.h). Not a subcommand itself.
+ * usage messages, file names and the scene options --threads, --seed,
+ * --set and --strict (cmdutil.h). Not a subcommand itself.
  * Tests: tests/cmd/test_cmd_render.c, tests/stats/test_converge.c, tests/cmd/test_svet.c
  */
 #define _POSIX_C_SOURCE 200809L
@@ -201,6 +201,16 @@ int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
     scene_init(s);
     if (scenefile_read_with(s, path, &features, &err) != SVET_OK)
         return cmd_error(cmd, SVET_EXIT_INPUT, "%s", err.msg);
+    const scene_warnings_t *w = &s->warnings;
+    for (long i = 0; i < w->n && i < SCENE_MAX_WARNINGS; i++)
+        cmd_error(cmd, 0, "%s", w->msg[i]);
+    if (w->n > SCENE_MAX_WARNINGS)
+        cmd_error(cmd, 0, "%s: %ld more warnings", path,
+                  w->n - SCENE_MAX_WARNINGS);
+    if (o->strict && w->n > 0)
+        return cmd_error(cmd, SVET_EXIT_INPUT, "%s: %ld warning%s, and "
+                         "--strict makes warnings errors", path, w->n,
+                         w->n == 1 ? "" : "s");
     for (int i = 0; i < o->nsets; i++)
         if (scenefile_override(s, o->sets[i], &err) != SVET_OK)
             return cmd_error(cmd, SVET_EXIT_USAGE, "%s", err.msg);

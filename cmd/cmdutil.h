@@ -78,6 +78,7 @@ typedef struct {
     unsigned long long seed;        /* --seed N */
     const char *sets[CMD_MAX_SETS]; /* --set KEY=VALUE, in order */
     int nsets;
+    bool strict;                    /* --strict: warnings are errors */
 } cmd_scene_opts_t;
 
 /* No options given. This function can't fail. */
@@ -93,11 +94,13 @@ enum { CMD_OPT_NONE, CMD_OPT_TAKEN, CMD_OPT_BAD };
 int cmd_scene_option(const char *cmd, const char *opt, const char *value,
                      cmd_scene_opts_t *o);
 
-/* Read the scene file at path into s (scene_init'ed here), apply the
- * --set overrides in order, then --threads and --seed. Returns
+/* Read the scene file at path into s (scene_init'ed here), print its
+ * warnings on stderr (the first SCENE_MAX_WARNINGS, then how many more),
+ * apply the --set overrides in order, then --threads and --seed. Returns
  * SVET_EXIT_OK, or after printing the error SVET_EXIT_INPUT (the file is
- * missing or malformed) or SVET_EXIT_USAGE (an override was refused); s
- * may then still hold a scene: scene_free it either way. */
+ * missing or malformed, or has warnings and o->strict is set) or
+ * SVET_EXIT_USAGE (an override was refused); s may then still hold a
+ * scene: scene_free it either way. */
 int cmd_scene_load(const char *cmd, scene_t *s, const char *path,
                    const cmd_scene_opts_t *o);
 

@@ -20,6 +20,7 @@
  *                        scene file and smoothing from vn
  *   l, p, and any other  skipped with a warning (lines and points have no
  *                        surface; curves and surfaces are not supported)
+ * A UTF-8 byte-order mark at the start of the file is skipped (text.h).
  * '#' starts a comment; a backslash at the end of a line joins the next
  * line to it; \n and \r\n line ends both work; numbers are decimal (C
  * locale), and NaN, infinities and values beyond the range of real are

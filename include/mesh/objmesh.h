@@ -16,11 +16,13 @@
  * default limits, moved by x (NULL: as in the file; positions by x,
  * normals by its inverse transpose, and a mirroring x reverses each
  * triangle's winding so that ng keeps pointing out of a closed mesh),
- * then one part per usemtl name that has faces (scene.h). Fails as
- * obj_read() does (its message names path:line:col), or SVET_ERR_NOMEM
- * ("path: out of memory"). */
+ * then one part per usemtl name that has faces (scene.h). obj_read()'s
+ * warnings (statements skipped, "path:line:col: warning: ...") are added
+ * to *warnings, counted in full (NULL: dropped). Fails as obj_read() does
+ * (its message names path:line:col), or SVET_ERR_NOMEM ("path: out of
+ * memory"). */
 svet_status objmesh_load(const char *path, const xform_t *x,
                          scene_mesh_part_t **parts, int *nparts,
-                         svet_error *err);
+                         scene_warnings_t *warnings, svet_error *err);
 
 #endif

@@ -159,6 +159,28 @@ typedef struct {
     struct material *material; /* material_t of material.h */
 } scene_material_t;
 
+/* --- warnings ------------------------------------------------------------ */
+
+/* Warning messages a scene keeps, at the most; the count goes on. */
+#define SCENE_MAX_WARNINGS 8
+
+/* What reading a scene found that is valid but likely not what was meant:
+ * an OBJ statement skipped, nothing that emits light, sizes beyond what
+ * the build's real resolves. Each is "file[:line:col]: warning: ...".
+ * Library code never prints: the program that read the scene shows them
+ * (the svet command on stderr, the first few and then how many more). */
+typedef struct {
+    long n;                                       /* warnings issued */
+    char msg[SCENE_MAX_WARNINGS][SVET_ERROR_LEN]; /* the first ones */
+} scene_warnings_t;
+
+/* Add a printf-style message to w (kept if fewer than SCENE_MAX_WARNINGS
+ * are, counted in any case). This function can't fail. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+void scene_warn(scene_warnings_t *w, const char *fmt, ...);
+
 /* --- the optional parts a program links (ch. 7 on) ----------------------- */
 
 /* "Model only what the scene requires" holds for programs too: the grids
@@ -183,12 +205,16 @@ typedef struct {
  * names (faces before any usemtl first); a mesh of one group is one
  * object. On success *parts (malloc'ed; *nparts > 0) and its objects and
  * names (malloc'ed) are the caller's, to free with
- * scene_mesh_parts_free(). Fails with the file's own file:line:col in
- * err: SVET_ERR_IO, SVET_ERR_PARSE, SVET_ERR_RANGE, SVET_ERR_NOMEM. */
+ * scene_mesh_parts_free(), and what the file had that was skipped is in
+ * *warnings (added with the file's own file:line:col; NULL: not kept).
+ * Fails with the file's own file:line:col in err: SVET_ERR_IO,
+ * SVET_ERR_PARSE, SVET_ERR_RANGE, SVET_ERR_NOMEM. */
 typedef svet_status (*scene_mesh_loader)(const char *path,
                                          const xform_t *x,
                                          scene_mesh_part_t **parts,
-                                         int *nparts, svet_error *err);
+                                         int *nparts,
+                                         scene_warnings_t *warnings,
+                                         svet_error *err);
 
 /* Free n parts (objects not yet handed on are NULL or freed here). NULL
  * is allowed. */
@@ -242,6 +268,8 @@ typedef struct {
 
     bool has_environment;       /* a uniform environment surrounds the scene */
     RADIANCE environment;       /* its radiance, W/(m^2 sr) (the furnace) */
+
+    scene_warnings_t warnings;  /* what the reader found worth telling */
 
     /* -- later chapters add their parts below: textures (ch. 10), media
      *    (ch. 11), sky and sun (ch. 12), smoke grids (ch. 13). The scene

@@ -30,7 +30,12 @@
  * resolution), SVET_ERR_UNSUPPORTED (a keyword of a later chapter, or a
  * part the program does not offer: "'mesh': this program was built
  * without the OBJ meshes of ch. 7 ...", "'accel grid': this program was
- * built without the grids of ch. 7 (grid.c)") or SVET_ERR_NOMEM. */
+ * built without the grids of ch. 7 (grid.c)") or SVET_ERR_NOMEM. A file
+ * without statements is SVET_ERR_PARSE; a light brighter than the images
+ * hold (scenes/README.md, "Errors and limits") is SVET_ERR_RANGE. On
+ * success s->warnings holds what was valid but likely not meant (OBJ
+ * statements skipped, nothing emits light, sizes beyond what real
+ * resolves: scenes/README.md, "Warnings"), for the caller to show. */
 svet_status scenefile_read_with(scene_t *s, const char *path,
                                 const scene_features_t *features,
                                 svet_error *err);

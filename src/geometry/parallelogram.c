@@ -187,7 +187,14 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
                        "the largest %s", REAL_NAME);
         return NULL;
     }
-    if (triangle_is_degenerate(c0, c1, c3) || !shape_unit_cross(n, e1, e2)) {
+    /* The test of (c0, c1, c3) on the edges scaled to near 1 by powers
+     * of 2 (exact, shape.h): the same answer where the edges' products
+     * are normal numbers, and no "parallel" for perpendicular edges
+     * whose products overflow (beyond sqrt(REAL_MAX)) or underflow. */
+    VECTOR3 origin = { 0, 0, 0 }, s1, s2;
+    int x1 = shape_scale_exponent(s1, e1), x2 = shape_scale_exponent(s2, e2);
+    if (triangle_is_degenerate(origin, s1, s2) ||
+        !shape_unit_cross(n, e1, e2)) {
         svet_error_set(err, SVET_ERR_RANGE, "parallelogram: degenerate, the "
                        "edges c1 - c0 = (%g, %g, %g) and c3 - c0 = (%g, %g, "
                        "%g) are parallel or zero", (double)e1[X],
@@ -197,8 +204,10 @@ static COBJECT *make(const VECTOR3 c0, const VECTOR3 c1, const VECTOR3 c2,
     }
     real area = shape_cross_length(e1, e2);
     if (!isfinite(area) || !isfinite(1 / area)) {
+        /* told in double, where it is a number */
+        double a = ldexp((double)shape_cross_length(s1, s2), x1 + x2);
         svet_error_set(err, SVET_ERR_RANGE, "parallelogram: area %g is out "
-                       "of the range of %s", (double)area, REAL_NAME);
+                       "of the range of %s", a, REAL_NAME);
         return NULL;
     }
     COBJECT *obj = shape_alloc(&parallelogram_ops, sizeof(para_shape), err);

@@ -6,6 +6,7 @@
  * Tests: tests/mesh/test_obj.c; fuzzing: fuzz/fuzz_obj.c
  */
 #include "mesh/obj.h"
+#include "core/text.h"
 #include "mesh/mesh.h"
 #include "io/fileio.h"
 
@@ -636,8 +637,11 @@ svet_status obj_parse(const char *name, const char *text, size_t len,
     parser_t P;
     memset(&P, 0, sizeof P);
     P.name = name ? name : "(obj)";
-    P.text = text;
-    P.len = text ? len : 0;
+    /* A byte-order mark is no statement: kept, it would make the first
+     * line's keyword unknown (text.h). */
+    size_t bom = text ? text_bom_length(text, len) : 0;
+    P.text = text ? text + bom : NULL;
+    P.len = text ? len - bom : 0;
     P.out = o;
     P.err = err;
     P.cur_slot = -1;

@@ -134,9 +134,21 @@ static svet_status split(const obj_t *o, COBJECT *mesh,
     return SVET_OK;
 }
 
+/* o's warnings into w: the kept ones, and the count of the rest. */
+static void hand_on_warnings(const obj_t *o, scene_warnings_t *w)
+{
+    if (!w)
+        return;
+    long kept = o->nwarnings < OBJ_MAX_WARNINGS ? o->nwarnings
+                                                : OBJ_MAX_WARNINGS;
+    for (long i = 0; i < kept; i++)
+        scene_warn(w, "%s", o->warnings[i]);
+    w->n += o->nwarnings - kept;
+}
+
 svet_status objmesh_load(const char *path, const xform_t *x,
                          scene_mesh_part_t **parts, int *nparts,
-                         svet_error *err)
+                         scene_warnings_t *warnings, svet_error *err)
 {
     *parts = NULL;
     *nparts = 0;
@@ -144,6 +156,7 @@ svet_status objmesh_load(const char *path, const xform_t *x,
     svet_status st = obj_read(path, NULL, &o, err);
     if (st)
         return st;
+    hand_on_warnings(&o, warnings);
     COBJECT *mesh = o.mesh;
     o.mesh = NULL;
     if (x) {

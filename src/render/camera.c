@@ -21,6 +21,10 @@ svet_status camera_init(camera_t *c, const VECTOR3 eye, const VECTOR3 target,
                               "is not positive", width, height);
     VECTOR3 back;
     vec_sub(back, eye, target);
+    if (!vec_is_finite(back) || !isfinite(vec_length(back)))
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "camera: position - target overflows %s",
+                              REAL_NAME);
     if (vec_normalize(c->w, back) == 0)
         return svet_error_set(err, SVET_ERR_RANGE,
                               "camera: position and target coincide");

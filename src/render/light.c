@@ -32,13 +32,18 @@ svet_status lightset_build(lightset_t *ls, const scene_t *s, svet_error *err)
         lightset_free(ls);
         return svet_error_set(err, SVET_ERR_NOMEM, "lights: out of memory");
     }
-    /* The scene's bounding sphere, for the environment's power. */
+    /* The scene's bounding sphere, for the environment's power. An
+     * object of infinite area (a plane, whose bounds span the reals) is
+     * left out: with it the power would overflow, and the environment
+     * would take every light sample from the other lights. */
     bbox_t all;
     bbox_empty(&all);
     for (int i = 0; i < s->nobjects; i++) {
+        const COBJECT *o = s->objects[i];
         bbox_t b;
-        s->objects[i]->ops->bounds(s->objects[i], -1, &b);
-        if (!bbox_is_empty(&b) && vec_is_finite(b.min) && vec_is_finite(b.max))
+        o->ops->bounds(o, -1, &b);
+        if (!bbox_is_empty(&b) && vec_is_finite(b.min) &&
+            vec_is_finite(b.max) && isfinite(o->ops->area(o)))
             bbox_union(&all, &b);
     }
     if (bbox_is_empty(&all)) {

@@ -6,6 +6,8 @@
  */
 #include "render/scene.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "materials/material.h"
@@ -71,6 +73,17 @@ void scene_free(scene_t *s)
     free(s->render.output_png);
     free(s->path);
     scene_init(s);
+}
+
+void scene_warn(scene_warnings_t *w, const char *fmt, ...)
+{
+    if (w->n >= 0 && w->n < SCENE_MAX_WARNINGS) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(w->msg[w->n], sizeof w->msg[0], fmt, ap);
+        va_end(ap);
+    }
+    w->n++;
 }
 
 void scene_mesh_parts_free(scene_mesh_part_t *parts, int n)
@@ -335,7 +348,11 @@ svet_status scene_validate(const scene_t *s, svet_error *err)
     const scene_camera_t *c = &s->camera;
     VECTOR3 view, side;
     vec_sub(view, c->target, c->position);
-    if (!(vec_length(view) > 0) || !vec_is_finite(view))
+    if (!vec_is_finite(view) || !isfinite(vec_length(view)))
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "camera target - position overflows %s: "
+                              "bring them closer", REAL_NAME);
+    if (!(vec_length(view) > 0))
         return svet_error_set(err, SVET_ERR_RANGE,
                               "camera target must differ from its position");
     vec_normalize(view, view);

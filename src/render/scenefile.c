@@ -17,6 +17,8 @@
 #include <sys/stat.h>
 
 #include "accel/accel.h"
+#include "core/bbox.h"
+#include "core/text.h"
 #include "geometry/box.h"
 #include "colour/colour.h"
 #include "geometry/cone.h"
@@ -30,6 +32,8 @@
 #include "geometry/triangle.h"
 #include "geometry/xform.h"
 #include "io/fileio.h"
+
+#define PI_D 3.14159265358979323846
 
 /* The largest number of transforms on one line. */
 #define MAX_XFORMS 64
@@ -115,6 +119,12 @@ typedef struct {
     int nxf;
     int camera_line;       /* last camera statement, for scene_validate */
     int environment_line;
+    int nstatements;       /* statements read */
+    int environment_col;   /* its 'radiance' */
+    double power;          /* the lights' powers so far, W (check_light) */
+    bbox_t bounds;         /* of the objects of finite size so far */
+    double smallest;       /* the smallest such object's diagonal, */
+    int smallest_line;     /* and its line (0: none yet) */
 } ctx_t;
 
 
@@ -1037,6 +1047,45 @@ static svet_status st_tonemap(ctx_t *c)
 
 /* --- lights -------------------------------------------------------------- */
 
+/* The brightest radiance (W/(m^2 sr)) or intensity (W/sr) a light may
+ * have, per channel: sqrt(FLT_MAX), about 1.8e19, in both builds. The
+ * images are floats whatever real is (image.h), the variance image holds
+ * squares of samples (render_variance), and the estimator multiplies a
+ * light's L by ratios f cos / p that exceed 1 (next-event estimation near
+ * a large emitter), so a light leaves that much headroom below FLT_MAX:
+ * `emit 3e38` gave non-finite samples. */
+static double max_emission(void)
+{
+    return sqrt((double)FLT_MAX);
+}
+
+/* Refuse the light colour L (named `what` in messages; given at col) when
+ * a channel is brighter than max_emission(), or when its power, the
+ * luminance of L times scale (pi A per emitting side, 4 pi, pi^2 r^2:
+ * lightset_build's weights for choosing a light, light.c), overflows real
+ * alone or added to the lights' powers before it. */
+static svet_status check_light(ctx_t *c, int col, const char *what,
+                               RADIANCE L, double scale)
+{
+    double top = fmax(fmax((double)L.r, (double)L.g), (double)L.b);
+    if (top > max_emission())
+        return fail(c, col, SVET_ERR_RANGE,
+                    "%s %.3g is brighter than svet renders: at most %.3g per "
+                    "channel (a sample's square must fit in a float image)",
+                    what, top, max_emission());
+    double phi = fmax(0.0, (double)rad_luminance(L)) * scale;
+    if (!(scale <= (double)REAL_MAX) || !(phi <= (double)REAL_MAX))
+        return fail(c, col, SVET_ERR_RANGE,
+                    "the light's power, %.3g W, is more than %s holds", phi,
+                    REAL_NAME);
+    if (!(c->power + phi <= (double)REAL_MAX))
+        return fail(c, col, SVET_ERR_RANGE,
+                    "the lights' powers add up to %.3g W, more than %s holds",
+                    c->power + phi, REAL_NAME);
+    c->power += phi;
+    return SVET_OK;
+}
+
 static const char *const light_kinds[] = { "point", NULL };
 
 enum { L_POSITION, L_INTENSITY, L_POWER, L_CANDELA, L_LUMENS, L_COLOUR,
@@ -1103,6 +1152,12 @@ static svet_status st_light(ctx_t *c)
     if (!rad_is_finite(I))
         return fail(c, c->stmt_col, SVET_ERR_RANGE,
                     "the light's intensity overflows %s", REAL_NAME);
+    /* Phi = 4 pi I (light.c) */
+    int key = v[L_INTENSITY].set ? L_INTENSITY : v[L_POWER].set ? L_POWER
+              : v[L_CANDELA].set ? L_CANDELA : L_LUMENS;
+    st = check_light(c, v[key].col, "the intensity", I, 4 * PI_D);
+    if (st)
+        return st;
     svet_error e;
     st = scene_add_point_light(c->scene, v[L_POSITION].v, I, &e);
     if (st)
@@ -1127,10 +1182,13 @@ static svet_status st_environment(ctx_t *c)
                     "the environment is already defined on line %d",
                     c->environment_line);
     c->environment_line = c->line;
+    c->environment_col = v[E_RADIANCE].col;
     c->scene->has_environment = true;
     c->scene->environment = rad_make(v[E_RADIANCE].v[0], v[E_RADIANCE].v[1],
                                      v[E_RADIANCE].v[2]);
-    return SVET_OK;
+    /* its power needs the scene's size: whole_scene() checks it */
+    return check_light(c, v[E_RADIANCE].col, "the radiance",
+                       c->scene->environment, 0);
 }
 
 /* --- materials ----------------------------------------------------------- */
@@ -1469,6 +1527,37 @@ static svet_status find_material(ctx_t *c, const val_t *v,
                 "above this one", show_tok(&v->word, show, sizeof show));
 }
 
+/* The length of the diagonal of b, in double (the float difference of
+ * the corners may overflow). */
+static double diagonal(const bbox_t *b)
+{
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) {
+        double d = (double)b->max[k] - (double)b->min[k];
+        d2 += d * d;
+    }
+    return sqrt(d2);
+}
+
+/* Keep obj's size for whole_scene()'s check of the range real resolves:
+ * its bounds join the scene's, and the smallest object is remembered
+ * with its line. Objects of infinite area (a plane, whose bounds span
+ * the reals) are left out. */
+static void note_size(ctx_t *c, const COBJECT *obj)
+{
+    bbox_t b;
+    obj->ops->bounds(obj, -1, &b);
+    if (!isfinite(obj->ops->area(obj)) || bbox_is_empty(&b) ||
+        !vec_is_finite(b.min) || !vec_is_finite(b.max))
+        return;
+    bbox_union(&c->bounds, &b);
+    double d = diagonal(&b);
+    if (!c->smallest_line || d < c->smallest) {
+        c->smallest = d;
+        c->smallest_line = c->line;
+    }
+}
+
 /* Add obj with material m to the scene, and its emission if the statement
  * gives one. obj is the scene's (or freed) afterwards. */
 static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
@@ -1478,9 +1567,18 @@ static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
     svet_status st = scene_add_object(c->scene, obj, m, &e);
     if (st)
         return fail(c, c->stmt_col, st, "%s", e.msg);
+    note_size(c, obj);
     if (common[K_EMIT].set) {
-        st = scene_set_emission(c->scene, obj, colour_of(&common[K_EMIT]),
-                                common[K_TWOSIDED].on, &e);
+        /* Phi = pi A L per emitting side (light.c) */
+        RADIANCE L = colour_of(&common[K_EMIT]);
+        double scale = (common[K_TWOSIDED].on ? 2 : 1) * PI_D *
+                       (double)obj->ops->area(obj);
+        st = check_light(c, common[K_EMIT].col, "the radiance 'emit'", L,
+                         scale);
+        if (st)
+            return st;
+        st = scene_set_emission(c->scene, obj, L, common[K_TWOSIDED].on,
+                                &e);
         if (st)
             return fail(c, common[K_EMIT].col, st, "%s", e.msg);
     }
@@ -1654,6 +1752,31 @@ static svet_status add_mesh_parts(ctx_t *c, scene_mesh_part_t *parts,
     return SVET_OK;
 }
 
+/* The mesh file's warnings w (each with its own file:line:col) into the
+ * scene's, after the scene's file:line:col of the file name (col); with
+ * `strict` the first is an error instead. */
+static svet_status mesh_warnings(ctx_t *c, int col,
+                                 const scene_warnings_t *w, bool strict)
+{
+    long kept = w->n < SCENE_MAX_WARNINGS ? w->n : SCENE_MAX_WARNINGS;
+    if (strict && w->n > 0) {
+        /* "x.obj:3:1: warning: what" is told as "x.obj:3:1: what" */
+        char msg[SVET_ERROR_LEN];
+        snprintf(msg, sizeof msg, "%s", w->msg[0]);
+        char *tag = strstr(msg, ": warning: ");
+        if (tag)
+            memmove(tag + 2, tag + 11, strlen(tag + 11) + 1);
+        return fail(c, col, SVET_ERR_PARSE,
+                    "%s ('strict': the mesh file must have nothing to "
+                    "skip)", msg);
+    }
+    scene_warnings_t *sw = &c->scene->warnings;
+    for (long i = 0; i < kept; i++)
+        scene_warn(sw, "%s:%d:%d: %s", c->name, c->line, col, w->msg[i]);
+    sw->n += w->n - kept;
+    return SVET_OK;
+}
+
 static svet_status st_mesh(ctx_t *c)
 {
     if (!c->features || !c->features->mesh)
@@ -1702,11 +1825,15 @@ static svet_status st_mesh(ctx_t *c)
         scene_mesh_part_t *parts = NULL;
         int nparts = 0;
         svet_error e;
+        scene_warnings_t w;
+        w.n = 0;
         st = c->features->mesh(path, c->nxf > 0 ? &x : NULL, &parts,
-                               &nparts, &e);
+                               &nparts, &w, &e);
         if (st) /* the loader's own file:line:col follows the scene's */
             st = fail(c, col, st, "%s", e.msg);
         else
+            st = mesh_warnings(c, col, &w, v[MESH_STRICT].on);
+        if (!st)
             st = add_mesh_parts(c, parts, nparts, dflt, v, common);
         scene_mesh_parts_free(parts, nparts);
     }
@@ -1776,6 +1903,98 @@ static svet_status statement(ctx_t *c)
     return unknown(c, t, "keyword", names, NSTATEMENTS);
 }
 
+/* --- what only the whole scene can tell ---------------------------------- */
+
+/* Does anything give light: a point light, an emitting object or the
+ * environment, of a radiance other than black? */
+static bool anything_emits(const scene_t *s)
+{
+    for (int i = 0; i < s->npoint_lights; i++)
+        if (!rad_is_black(s->point_lights[i].intensity))
+            return true;
+    for (int i = 0; i < s->nemitters; i++)
+        if (!rad_is_black(s->emitters[i]->radiance))
+            return true;
+    return s->has_environment && !rad_is_black(s->environment);
+}
+
+/* The lengths the build's real resolves. The flat shapes' intersection
+ * tests (parallelogram, triangle and mesh, app. D; Woop et al. 2013 for
+ * the triangle) multiply three lengths: the unnormalised normal e1 x e2,
+ * a product of two edges, dotted with a distance. While that product is
+ * a normal number (REAL_MIN to REAL_MAX) the offsets of ray.c, which
+ * scale with the hit points' error bounds, hold at any scale; beyond it
+ * the product overflows (hits are lost: the image goes black) or loses
+ * digits to underflow. So lengths L with L^3 in [REAL_MIN, REAL_MAX] are
+ * resolved: cbrt(FLT_MIN) ~ 2.3e-13 to cbrt(FLT_MAX) ~ 7e12 in float,
+ * 2.8e-103 to 5.6e102 in double. */
+static double shortest_length(void)
+{
+    return cbrt((double)REAL_MIN);
+}
+
+static double longest_length(void)
+{
+    return cbrt((double)REAL_MAX);
+}
+
+#ifdef SVET_DOUBLE
+#define OTHER_BUILD ""
+#else
+#define OTHER_BUILD "; render it with the double build (make REAL=double)"
+#endif
+
+/* The scene's extent and smallest object against the range real
+ * resolves; a warning for each that falls outside it. The extent is the
+ * diagonal of the box of the finite objects, the camera and the point
+ * lights: every distance a ray travels lies within it. */
+static void precision_warnings(ctx_t *c)
+{
+    scene_t *s = c->scene;
+    bbox_t all = c->bounds;
+    bbox_add_point(&all, s->camera.position);
+    for (int i = 0; i < s->npoint_lights; i++)
+        bbox_add_point(&all, s->point_lights[i].position);
+    double extent = diagonal(&all);
+    if (extent > longest_length())
+        scene_warn(&s->warnings, "%s: warning: the scene spans %.3g, more "
+                   "than %s resolves (lengths up to %.3g: the flat shapes' "
+                   "intersection multiplies three lengths)" OTHER_BUILD,
+                   c->name, extent, REAL_NAME, longest_length());
+    if (c->smallest_line && c->smallest < shortest_length())
+        scene_warn(&s->warnings, "%s:%d:1: warning: the object is %.3g "
+                   "across, less than %s resolves (lengths down to %.3g: "
+                   "the flat shapes' intersection multiplies three "
+                   "lengths)" OTHER_BUILD, c->name, c->smallest_line,
+                   c->smallest, REAL_NAME, shortest_length());
+}
+
+/* What only the whole scene can tell: the environment's power, which
+ * depends on the scene's size (pi^2 r^2 L, r the radius of the sphere
+ * around the objects, light.c), is refused when it overflows; then the
+ * warnings (scene.h's scene_warnings_t): nothing emits light (the image
+ * is black, except by ambient occlusion, which needs none), and sizes
+ * beyond what real resolves. */
+static svet_status whole_scene(ctx_t *c)
+{
+    scene_t *s = c->scene;
+    if (s->has_environment) {
+        double r = bbox_is_empty(&c->bounds) ? 1
+                                             : 0.5 * diagonal(&c->bounds);
+        c->line = c->environment_line;
+        svet_status st = check_light(c, c->environment_col, "the radiance",
+                                     s->environment, PI_D * PI_D * r * r);
+        if (st)
+            return st;
+    }
+    if (s->render.integrator != SCENE_INTEGRATOR_AO && !anything_emits(s))
+        scene_warn(&s->warnings, "%s: warning: nothing emits light (no "
+                   "'light', 'emit' or 'environment' above black): the "
+                   "image will be black", c->name);
+    precision_warnings(c);
+    return SVET_OK;
+}
+
 static void ctx_free(ctx_t *c)
 {
     free(c->tok);
@@ -1794,11 +2013,14 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
     memset(&c, 0, sizeof c);
     c.scene = s;
     c.features = features;
+    bbox_empty(&c.bounds);
     c.name = name ? name : "<string>";
     c.dir = dir;
     c.err = err;
     svet_status st = SVET_OK;
-    const char *p = text, *end = text + len;
+    /* A byte-order mark is no statement (text.h); the first line's columns
+     * count from the byte after it, as an editor shows them. */
+    const char *p = text + text_bom_length(text, len), *end = text + len;
     if (len > (size_t)SCENEFILE_MAX_BYTES) {
         c.line = 1;
         st = fail(&c, 1, SVET_ERR_RANGE,
@@ -1810,10 +2032,18 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
         const char *eol = nl ? nl : end;
         c.line++;
         st = lex(&c, p, eol);
-        if (!st && c.ntok > 0)
+        if (!st && c.ntok > 0) {
             st = statement(&c);
+            c.nstatements++;
+        }
         p = nl ? nl + 1 : end;
     }
+    /* An empty file is more likely a wrong name or a failed copy than a
+     * scene of nothing. */
+    if (!st && c.nstatements == 0)
+        st = svet_error_set(err, SVET_ERR_PARSE, "%s: no statements (the "
+                            "file is empty or only comments): a scene needs "
+                            "at least an object", c.name);
     if (!st) {
         svet_error e;
         if (scene_validate(s, &e)) {
@@ -1824,6 +2054,8 @@ svet_status scenefile_parse_with(scene_t *s, const char *text, size_t len,
                                       e.msg);
         }
     }
+    if (!st)
+        st = whole_scene(&c);
     if (!st && name) {
         size_t n = strlen(name);
         s->path = malloc(n + 1);

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/text.h"
 #include "io/fileio.h"
 #include "stats/imgcompare.h"
 
@@ -300,6 +301,10 @@ svet_status converge_csv_read(const char *path, char *method,
     bool have_header = false;
     while (fgets(line, sizeof line, f)) {
         lineno++;
+        if (lineno == 1) { /* a byte-order mark is no part of the header */
+            size_t bom = text_bom_length(line, strlen(line));
+            memmove(line, line + bom, strlen(line + bom) + 1);
+        }
         if (!strchr(line, '\n') && !feof(f)) {
             st = svet_error_set(err, SVET_ERR_PARSE, "%s:%d: line longer "
                                 "than %zu bytes", path, lineno, sizeof line);

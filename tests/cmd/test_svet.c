@@ -1,10 +1,11 @@
 /*
  * test_svet.c - the svet command itself (cmd/svet.c, cmd/cmd_diff.c): help,
  * exit codes and `svet diff` on files made here; inputs beyond the pixel
- * limit, inputs that are not regular files, and a full disk. The command
- * is the one built beside this suite: <build>/svet for
- * <build>/tests/test_svet, so `make test` (which builds it first) tests
- * the matching REAL.
+ * limit, inputs that are not regular files, and a full disk; outputs that
+ * are inputs; and what `svet render` says about a scene (its warnings,
+ * --strict). The command is the one built beside this suite: <build>/svet
+ * for <build>/tests/test_svet, so `make test` (which builds it first)
+ * tests the matching REAL.
  */
 #include "testutil.h"
 #include "cmdtest.h"
@@ -348,6 +349,111 @@ START_TEST(an_output_that_is_an_input_is_refused)
 }
 END_TEST
 
+/* --- what svet render says about the scene ---------------------------- */
+
+/* Write text to the file name in the scratch directory; its path in
+ * path. */
+static void write_text(char *path, size_t cap, const char *name,
+                       const char *text)
+{
+    snprintf(path, cap, "%s", imgtest_path(name));
+    imgtest_write_bytes(path, text, strlen(text));
+}
+
+/* Write the scene `name` in the scratch directory (its path in scn): a
+ * small camera, 1 spp and material m, then objects; render it to exr
+ * (-q, and flags) and return the exit code, what was printed in out. */
+static int render_scene(char *scn, size_t cap, const char *name,
+                        const char *objects, const char *exr,
+                        const char *flags)
+{
+    char text[1024], args[4096];
+    snprintf(text, sizeof text,
+             "camera position 0 0 3 target 0 0 0 width 8 height 8\n"
+             "render spp 1\nmaterial m lambert rho 0.5\n%s", objects);
+    write_text(scn, cap, name, text);
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q %s", scn, exr, flags);
+    return run(out, sizeof out, args);
+}
+
+/* out holds the printf-style text. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static void expect_printed(const char *fmt, ...)
+{
+    char want[2048];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(want, sizeof want, fmt, ap);
+    va_end(ap);
+    ck_assert_msg(strstr(out, want), "no '%s' in:\n%s", want, out);
+}
+
+#define MESH_LIT "mesh file %s material m\n" \
+                 "light point position 0 0 2 intensity 1\n"
+
+START_TEST(render_prints_the_mesh_warnings_and_strict_refuses_them)
+{
+    char obj[1024], scn[1024], exr[1024], objects[1200];
+    /* two unknown statements, then ten more: eight shown, then a count */
+    char text[1024] = "v 0 0 0\nvv 1 1 1\nv 1 0 0\nv 0 1 0\nff 2 4 3\n"
+                      "f 1 2 3\n";
+    for (int i = 0; i < 10; i++)
+        strcat(text, "xx\n");
+    write_text(obj, sizeof obj, "warn.obj", text);
+    snprintf(exr, sizeof exr, "%s", imgtest_path("warn.exr"));
+    snprintf(objects, sizeof objects, MESH_LIT, "warn.obj");
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "warn.scn", objects, exr,
+                                  ""), 0);
+    expect_printed("svet render: %s:4:11: %s:2:1: warning: unknown "
+                   "statement 'vv' skipped\n", scn, obj);
+    expect_printed("%s:5:1: warning: unknown statement 'ff' skipped", obj);
+    expect_printed("svet render: %s: 4 more warnings\n", scn);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+    /* --strict: the same warnings, then exit 2 and no image */
+    unlink(exr);
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "warn.scn", objects, exr,
+                                  "--strict"), 2);
+    expect_printed("svet render: %s: 12 warnings, and --strict makes "
+                   "warnings errors", scn);
+    ck_assert_int_ne(access(exr, F_OK), 0);
+    /* a clean mesh: nothing said, strict or not */
+    write_text(obj, sizeof obj, "clean.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+               "f 1 2 3\n");
+    snprintf(objects, sizeof objects, MESH_LIT, "clean.obj");
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "clean.scn", objects, exr,
+                                  "--strict"), 0);
+    ck_assert_str_eq(out, "");
+}
+END_TEST
+
+START_TEST(render_refuses_empty_and_too_bright_scenes_and_warns_of_dark)
+{
+    char scn[1024], exr[1024], args[4096];
+    snprintf(exr, sizeof exr, "%s", imgtest_path("dark.exr"));
+    write_text(scn, sizeof scn, "empty.scn", "# nothing here\n\n");
+    snprintf(args, sizeof args, "render '%s' -o '%s' -q", scn, exr);
+    ck_assert_int_eq(run(out, sizeof out, args), 2);
+    expect_printed("svet render: %s: no statements", scn);
+    ck_assert_int_ne(access(exr, F_OK), 0);
+    /* no light: rendered (black), with the warning */
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "dark.scn",
+                                  "sphere centre 0 0 0 radius 1 material m\n",
+                                  exr, ""), 0);
+    expect_printed("svet render: %s: warning: nothing emits light", scn);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+    /* a light whose products overflow is refused where it is written,
+     * and the image of the dark scene stays */
+    ck_assert_int_eq(render_scene(scn, sizeof scn, "bright.scn",
+                                  "sphere centre 0 0 0 radius 1 material m "
+                                  "emit 3e38\n", exr, ""), 2);
+    expect_printed("svet render: %s:4:41: the radiance 'emit' 3e+38 is "
+                   "brighter than svet renders", scn);
+    ck_assert_int_eq(access(exr, F_OK), 0);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -362,6 +468,10 @@ Suite *test_suite(void)
     tcase_add_test(tc, inputs_that_are_not_regular_files_are_refused_at_once);
     tcase_add_test(tc, a_full_disk_fails_with_exit_3_and_keeps_the_old_outputs);
     tcase_add_test(tc, an_output_that_is_an_input_is_refused);
+    tcase_add_test(
+        tc, render_prints_the_mesh_warnings_and_strict_refuses_them);
+    tcase_add_test(
+        tc, render_refuses_empty_and_too_bright_scenes_and_warns_of_dark);
     suite_add_tcase(s, tc);
     return s;
 }

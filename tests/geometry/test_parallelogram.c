@@ -846,6 +846,49 @@ START_TEST(parallelogram_rejects_degenerate_and_non_parallelogram_input)
 }
 END_TEST
 
+START_TEST(perpendicular_edges_are_not_called_parallel_at_any_scale)
+{
+    /* At 1e19 the products of the edges overflow float: the corners'
+     * degeneracy test said "parallel or zero" of perpendicular edges. */
+    static const double scales[] = { 1e-30, 1e-19, 1e-10, 1, 1e10, 1e18,
+                                     1e19, 1e30 };
+    for (size_t i = 0; i < sizeof scales / sizeof *scales; i++) {
+        real k = (real)scales[i];
+        VECTOR3 c0 = { -k, -k, k }, c1 = { k, -k, k }, c3 = { -k, -k, -k };
+        svet_error err;
+        svet_error_clear(&err);
+        COBJECT *o = parallelogram_new(c0, c1, c3, &err);
+        ck_assert_msg(!strstr(err.msg, "parallel or zero"), "scale %g: %s",
+                      scales[i], err.msg);
+        /* the area 4 k^2 is made, or refused as out of range */
+        if (o)
+            ck_assert_rel(o->ops->area(o), 4 * (double)k * (double)k, 1e-6,
+                          0);
+        else
+            ck_assert_msg(strstr(err.msg, "out of the range of " REAL_NAME),
+                          "scale %g: %s", scales[i], err.msg);
+        cobject_free(o);
+    }
+    /* the float build refuses 1e19 by its area, told as a number */
+    svet_error err;
+    VECTOR3 c0 = { -1e19, -1e19, 1e19 }, c1 = { 1e19, -1e19, 1e19 },
+            c3 = { -1e19, -1e19, -1e19 };
+    COBJECT *o = parallelogram_new(c0, c1, c3, &err);
+#ifdef SVET_DOUBLE
+    ck_assert_ptr_nonnull(o);
+    cobject_free(o);
+#else
+    ck_assert_ptr_null(o);
+    ck_assert_str_eq(err.msg, "parallelogram: area 4e+38 is out of the "
+                              "range of float");
+#endif
+    /* edges along one line are still parallel, at any scale */
+    VECTOR3 b0 = { 0, 0, 0 }, b1 = { 2e19, 0, 0 }, b3 = { 4e19, 0, 0 };
+    ck_assert_ptr_null(parallelogram_new(b0, b1, b3, &err));
+    ck_assert_msg(strstr(err.msg, "parallel or zero"), "%s", err.msg);
+}
+END_TEST
+
 START_TEST(parallelogram_samples_are_uniform_by_area)
 {
     /* a skew parallelogram; the fraction of samples with s < 0.5 and
@@ -995,6 +1038,8 @@ Suite *test_suite(void)
                    parallelogram_batch_answers_as_its_plain_loop_on_extreme_rays);
 #endif
     tcase_add_test(tc, parallelogram_rejects_degenerate_and_non_parallelogram_input);
+    tcase_add_test(
+        tc, perpendicular_edges_are_not_called_parallel_at_any_scale);
     tcase_add_test(tc, parallelogram_samples_are_uniform_by_area);
     tcase_add_test(tc, parallelogram_spawned_rays_never_rehit_at_any_scale);
     tcase_add_test(tc, parallelogram_sampled_points_are_hit_at_any_scale);

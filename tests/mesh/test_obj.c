@@ -191,6 +191,33 @@ START_TEST(obj_warns_about_what_it_skips)
 }
 END_TEST
 
+START_TEST(obj_skips_a_byte_order_mark)
+{
+    /* Without the skip "\xEF\xBB\xBFv" was an unknown statement and the
+     * first vertex was lost: "f 1 2 3" took the wrong corners. */
+    obj_t o;
+    const mesh_t *m = parse_ok("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "v 0 0 1\nf 1 2 3\n", &o);
+    ck_assert_int_eq(o.nwarnings, 0);
+    ck_assert_int_eq(m->ntris, 1);
+    check_p(m, 0, 0, 0, 0);
+    check_p(m, 1, 1, 0, 0);
+    check_p(m, 2, 0, 1, 0);
+    obj_free(&o);
+    /* columns of the first line count from the byte after it */
+    svet_error e;
+    const char *bad1 = "\xEF\xBB\xBFv 1 2\n";
+    ck_assert_int_eq(obj_parse("t.obj", bad1, strlen(bad1), NULL, &o, &e),
+                     SVET_ERR_PARSE);
+    ck_assert_str_eq(e.msg, "t.obj:1:1: 'v' needs 3 numbers, got 2");
+    /* only at the start: later it is a byte like any other */
+    parse_ok("v 0 0 0\nv 1 0 0\nv 0 1 0\n\xEF\xBB\xBFv 0 0 1\nf 1 2 3\n",
+             &o);
+    ck_assert_int_eq(o.nwarnings, 1);
+    obj_free(&o);
+}
+END_TEST
+
 /* Each malformed input: the status and the exact message. */
 static const struct {
     const char *text;
@@ -339,6 +366,7 @@ Suite *test_suite(void)
     Suite *s = suite_create("obj");
     TCase *tc = tcase_create("obj");
     tcase_add_test(tc, obj_reads_every_face_form_exactly);
+    tcase_add_test(tc, obj_skips_a_byte_order_mark);
     tcase_add_test(tc, obj_counts_negative_indices_back_from_the_last);
     tcase_add_test(tc, obj_fans_polygons_into_triangles);
     tcase_add_test(tc, obj_records_groups_and_materials_per_triangle);

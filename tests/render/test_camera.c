@@ -103,6 +103,11 @@ START_TEST(bad_setups_are_refused_with_a_message)
                      SVET_ERR_RANGE);
     ck_assert_int_eq(camera_init(&c, nan3, at, up, 40, CAMERA_FOV_X, 8, 8, &e),
                      SVET_ERR_RANGE);
+    /* apart, but by more than a real holds: not "coincide" */
+    VECTOR3 far0 = { -REAL_MAX, 0, 0 }, far1 = { REAL_MAX, 0, 0 };
+    ck_assert_int_eq(camera_init(&c, far0, far1, up, 40, CAMERA_FOV_X, 8, 8,
+                                 &e), SVET_ERR_RANGE);
+    ck_assert_str_eq(e.msg, "camera: position - target overflows " REAL_NAME);
 }
 END_TEST
 

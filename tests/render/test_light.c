@@ -94,12 +94,51 @@ START_TEST(light_sample_carries_light_pdf_bit_for_bit)
 }
 END_TEST
 
+START_TEST(a_plane_leaves_the_environment_a_finite_share_of_light_samples)
+{
+    /* The plane's bounds span the reals: in the bounding sphere they made
+     * the environment's power pi^2 r^2 L infinite, its share of the light
+     * samples NaN, and the point light was never chosen. */
+    scene_t s;
+    scene_init(&s);
+    material_params p;
+    material_params_default(&p);
+    material_t *m;
+    ck_assert_int_eq(material_new(&p, &m, NULL), SVET_OK);
+    ck_assert_int_eq(scene_add_anon_material(&s, m, NULL), SVET_OK);
+    VECTOR3 p0 = { 0, -1, 0 }, n = { 0, 1, 0 }, c = { 0, 0, 0 };
+    ck_assert_int_eq(scene_add_object(&s, plane_new(p0, n, NULL), m, NULL),
+                     SVET_OK);
+    ck_assert_int_eq(scene_add_object(&s, sphere_new(c, 1, NULL), m, NULL),
+                     SVET_OK);
+    VECTOR3 lp = { 0, 3, 0 };
+    ck_assert_int_eq(scene_add_point_light(&s, lp, rad_grey(10), NULL),
+                     SVET_OK);
+    s.has_environment = true;
+    s.environment = rad_grey(REAL_C(0.2));
+    lightset_t ls;
+    ck_assert_int_eq(lightset_build(&ls, &s, NULL), SVET_OK);
+    ck_assert_int_eq(ls.n, 2);
+    /* the sphere's bounds alone: radius sqrt(3) */
+    ck_assert_near(ls.radius, sqrt(3.0), 1e-6);
+    for (int i = 0; i < ls.n; i++) {
+        ck_assert(isfinite(ls.lights[i].power));
+        ck_assert_msg(ls.cdf[i + 1] > ls.cdf[i], "light %d: cdf %g to %g", i,
+                      (double)ls.cdf[i], (double)ls.cdf[i + 1]);
+    }
+    lightset_free(&ls);
+    scene_free(&s);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("light (" REAL_NAME ")");
     TCase *tc = tcase_create("core");
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, light_sample_carries_light_pdf_bit_for_bit);
+    tcase_add_test(
+        tc, a_plane_leaves_the_environment_a_finite_share_of_light_samples);
     suite_add_tcase(s, tc);
     return s;
 }

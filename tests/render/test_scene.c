@@ -215,6 +215,20 @@ START_TEST(validate_rejects_a_camera_that_cannot_see)
     ck_assert_str_eq(err.msg, "camera up must be a nonzero vector");
     vec_set(s.camera.up, 1, 1, 0);
     ck_assert_int_eq(scene_validate(&s, &err), SVET_OK);
+    /* finite and different, but the difference overflows: in a component,
+     * or only in the length */
+    vec_set(s.camera.up, 0, 1, 0);
+    vec_set(s.camera.position, -REAL_MAX, 0, 0);
+    vec_set(s.camera.target, REAL_MAX, 0, 0);
+    ck_assert_int_eq(scene_validate(&s, &err), SVET_ERR_RANGE);
+    ck_assert_str_eq(err.msg, "camera target - position overflows " REAL_NAME
+                              ": bring them closer");
+    real h = REAL_C(0.75) * REAL_MAX;
+    vec_set(s.camera.position, 0, 0, 0);
+    vec_set(s.camera.target, h, 0, h);
+    ck_assert_int_eq(scene_validate(&s, &err), SVET_ERR_RANGE);
+    ck_assert_str_eq(err.msg, "camera target - position overflows " REAL_NAME
+                              ": bring them closer");
     scene_free(&s);
 }
 END_TEST

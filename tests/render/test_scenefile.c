@@ -20,6 +20,7 @@
 #include "colour/colour.h"
 #include "materials/material.h"
 #include "mesh/mesh.h"
+#include "render/render.h"
 #include "render/scenefile.h"
 
 #define DATA "tests/data/scene"
@@ -207,6 +208,74 @@ START_TEST(comments_blank_lines_tabs_and_crlf_are_accepted)
     ck_assert_int_eq(s.camera.height, 9);
     ck_assert_int_eq(s.nobjects, 1); /* the last line has no newline */
     scene_free(&s);
+}
+END_TEST
+
+START_TEST(a_byte_order_mark_at_the_start_is_skipped)
+{
+    /* Without the skip the first keyword read "???camera" */
+    scene_t s;
+    parse_ok(&s, "\xEF\xBB\xBF" "camera width 8\n" M
+                 "sphere centre 0 0 0 radius 1 material m\n");
+    ck_assert_int_eq(s.camera.width, 8);
+    ck_assert_int_eq(s.nobjects, 1);
+    scene_free(&s);
+    /* the first line's columns count from the byte after it */
+    parse_err("\xEF\xBB\xBF" "camera width 0\n", SVET_ERR_RANGE,
+              "t.scn:1:14: 'width' = 0 is out of range: expected 1 to 16384");
+    /* anywhere else it is no blank */
+    parse_err(M "\xEF\xBB\xBF" "sphere centre 0 0 0 radius 1 material m\n",
+              SVET_ERR_PARSE, "t.scn:2:1: unknown keyword '???sphere': "
+              "expected one of camera, render, output, tonemap, material, "
+              "light, environment, sphere, plane, disk, parallelogram, "
+              "triangle, box, cylinder, cone, mesh");
+}
+END_TEST
+
+START_TEST(a_file_without_statements_is_an_error)
+{
+    static const char *const empty[] = { "", "\n\n", "# only a comment\n",
+                                         "  \t\r\n# two\n\n",
+                                         "\xEF\xBB\xBF\n" };
+    for (size_t i = 0; i < sizeof empty / sizeof *empty; i++)
+        parse_err(empty[i], SVET_ERR_PARSE,
+                  "t.scn: no statements (the file is empty or only "
+                  "comments): a scene needs at least an object");
+}
+END_TEST
+
+START_TEST(a_scene_without_light_parses_with_a_warning)
+{
+    static const char *const dark =
+        "t.scn: warning: nothing emits light (no 'light', 'emit' or "
+        "'environment' above black): the image will be black";
+    scene_t s;
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m\n");
+    ck_assert_int_eq(s.nobjects, 1);
+    ck_assert_int_eq(s.warnings.n, 1);
+    ck_assert_str_eq(s.warnings.msg[0], dark);
+    scene_free(&s);
+    /* black emitters give no light either */
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m emit 0\n"
+                   "light point position 0 2 0 intensity 0\n"
+                   "environment radiance 0\n");
+    ck_assert_int_eq(s.warnings.n, 1);
+    ck_assert_str_eq(s.warnings.msg[0], dark);
+    scene_free(&s);
+    /* each kind of light is enough; ambient occlusion needs none */
+    static const char *const lit[] = {
+        M "sphere centre 0 0 0 radius 1 material m emit 0 0 1\n",
+        M "sphere centre 0 0 0 radius 1 material m\n"
+          "light point position 0 2 0 intensity 1\n",
+        M "sphere centre 0 0 0 radius 1 material m\n"
+          "environment radiance 0.5\n",
+        M "sphere centre 0 0 0 radius 1 material m\nrender integrator ao\n",
+    };
+    for (size_t i = 0; i < sizeof lit / sizeof *lit; i++) {
+        parse_ok(&s, lit[i]);
+        ck_assert_msg(s.warnings.n == 0, "%s: %s", lit[i], s.warnings.msg[0]);
+        scene_free(&s);
+    }
 }
 END_TEST
 
@@ -625,12 +694,245 @@ START_TEST(mesh_errors_name_both_files)
 }
 END_TEST
 
+START_TEST(mesh_warnings_reach_the_scene_and_strict_refuses_them)
+{
+    scene_t s;
+    parse_ok(&s, M "mesh file warn.obj material m\n"
+                   "light point position 0 0 1 intensity 1\n");
+    ck_assert_int_eq(s.nobjects, 1);
+    /* after the scene's file:line:col, the OBJ file's; all 11 counted */
+    ck_assert_int_eq(s.warnings.n, 11);
+    ck_assert_str_eq(s.warnings.msg[0],
+                     "t.scn:2:11: tests/data/scene/warn.obj:4:1: warning: "
+                     "unknown statement 'vv' skipped");
+    ck_assert_str_eq(s.warnings.msg[2],
+                     "t.scn:2:11: tests/data/scene/warn.obj:9:1: warning: "
+                     "'l' skipped: lines and points have no surface");
+    scene_free(&s);
+    ck_assert_int_eq(s.warnings.n, 0);
+    /* 'strict' makes the first an error */
+    parse_err(M "mesh file warn.obj material m strict\n", SVET_ERR_PARSE,
+              "t.scn:2:11: tests/data/scene/warn.obj:4:1: unknown statement "
+              "'vv' skipped ('strict': the mesh file must have nothing to "
+              "skip)");
+    /* a clean file warns about nothing, strict or not */
+    parse_ok(&s, "material red lambert rho 0.5\n"
+                 "material blue lambert rho 0.5\n"
+                 "mesh file tri.obj strict\n"
+                 "light point position 0 0 1 intensity 1\n");
+    ck_assert_int_eq(s.warnings.n, 0);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(lights_whose_products_overflow_are_refused)
+{
+    /* emit 3e38 rendered with non-finite samples dropped and exit 0 */
+    static const char *const bright =
+        " is brighter than svet renders: at most 1.84e+19 per channel (a "
+        "sample's square must fit in a float image)";
+    char msg[512];
+    snprintf(msg, sizeof msg, "t.scn:2:41: the radiance 'emit' 3e+38%s",
+             bright);
+    parse_err(M "sphere centre 0 0 0 radius 1 material m emit 3e38\n",
+              SVET_ERR_RANGE, msg);
+    snprintf(msg, sizeof msg, "t.scn:1:28: the intensity 1e+20%s", bright);
+    parse_err("light point position 0 0 0 intensity 1 1e20 1\n",
+              SVET_ERR_RANGE, msg);
+    /* power 1e21 W is an intensity of 1e21 / (4 pi) = 7.96e19 W/sr */
+    snprintf(msg, sizeof msg, "t.scn:1:28: the intensity 7.96e+19%s", bright);
+    parse_err("light point position 0 0 0 power 1e21\n", SVET_ERR_RANGE, msg);
+    snprintf(msg, sizeof msg, "t.scn:1:13: the radiance 1e+20%s", bright);
+    parse_err("environment radiance 1e20\n", SVET_ERR_RANGE, msg);
+    /* as bright as may be: fine */
+    scene_t s;
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m emit 1.8e19\n"
+                   "light point position 0 2 0 intensity 1.8e19\n"
+                   "environment radiance 1.8e19\n");
+    ck_assert_int_eq(s.nemitters, 1);
+    scene_free(&s);
+#ifndef SVET_DOUBLE
+    /* a light's power, pi A L per side, beyond float: a sphere of radius
+     * 1e18 has A = 1.26e37 */
+    parse_err(M "sphere centre 0 0 0 radius 1e18 material m emit 1000\n",
+              SVET_ERR_RANGE, "t.scn:2:44: the light's power, 3.95e+40 W, "
+              "is more than float holds");
+    /* each fits, their sum does not */
+    parse_err(M "sphere centre 0 0 0 radius 1e18 material m emit 5\n"
+                "sphere centre 0 0 0 radius 1e18 material m emit 5\n",
+              SVET_ERR_RANGE, "t.scn:3:44: the lights' powers add up to "
+              "3.95e+38 W, more than float holds");
+    /* the environment's, pi^2 r^2 L, with r around every object: told on
+     * its own line, though the sphere comes after it */
+    parse_err(M "environment radiance 1e4\n"
+                "sphere centre 0 0 0 radius 1e17 material m\n",
+              SVET_ERR_RANGE, "t.scn:2:13: the light's power, 2.96e+39 W, "
+              "is more than float holds");
+#else
+    parse_ok(&s, M "sphere centre 0 0 0 radius 1e18 material m emit 1000\n"
+                   "environment radiance 1e4\n");
+    scene_free(&s);
+#endif
+}
+END_TEST
+
+/* --- sizes beyond what real resolves ------------------------------------ */
+
+/* scenes/cbox.scn scaled by s about the origin, camera included, at 32 x 32
+ * pixels and 4 spp: "scale s" after each object's own transforms. The
+ * text is malloc'ed. */
+static char *scaled_cbox(double s)
+{
+    FILE *f = fopen("scenes/cbox.scn", "r");
+    ck_assert_ptr_nonnull(f);
+    size_t cap = 1 << 16, n = 0;
+    char *text = malloc(cap), line[512];
+    ck_assert_ptr_nonnull(text);
+    while (fgets(line, sizeof line, f)) {
+        char *m = strstr(line, "material ");
+        char out[640];
+        if (strncmp(line, "camera position", 15) == 0)
+            snprintf(out, sizeof out, "camera position 0 0 %.9g target 0 0 "
+                     "0 up 0 1 0 width 32 height 32\n", 3.9 * s);
+        else if (strncmp(line, "render spp", 10) == 0)
+            snprintf(out, sizeof out, "render spp 4 maxdepth 7\n");
+        else if (m && (strncmp(line, "parallelogram", 13) == 0 ||
+                       strncmp(line, "box", 3) == 0))
+            snprintf(out, sizeof out, "%.*sscale %.9g %s", (int)(m - line),
+                     line, s, m);
+        else
+            snprintf(out, sizeof out, "%s", line);
+        size_t k = strlen(out);
+        ck_assert(n + k + 1 < cap);
+        memcpy(text + n, out, k + 1);
+        n += k;
+    }
+    fclose(f);
+    return text;
+}
+
+/* The largest difference of the render of text from ref (NULL: keep
+ * this render in ref instead), 1 thread; warnings in *nwarnings. */
+static double render_difference(const char *text, image_t *ref,
+                                long *nwarnings)
+{
+    scene_t s;
+    parse_ok(&s, text);
+    *nwarnings = s.warnings.n;
+    render_t r;
+    svet_error err;
+    ck_assert_msg(render_init(&r, &s, &err) == SVET_OK, "%s", err.msg);
+    render_pass(&r, s.render.spp, 1, NULL, NULL);
+    image_t img;
+    ck_assert_int_eq(render_image(&r, &img, &err), SVET_OK);
+    render_free(&r);
+    scene_free(&s);
+    double worst = 0;
+    if (ref->px) {
+        size_t n = (size_t)img.width * (size_t)img.height * 3;
+        for (size_t i = 0; i < n; i++) {
+            double d = fabs((double)img.px[i] - (double)ref->px[i]);
+            if (!(d <= worst)) /* a NaN counts as infinitely wrong */
+                worst = isnan(d) ? (double)INFINITY : d;
+        }
+        image_free(&img);
+    } else {
+        *ref = img;
+    }
+    return worst;
+}
+
+START_TEST(scaled_cornell_boxes_warn_where_float_renders_them_wrong)
+{
+    /* The box scaled by s renders as the unscaled one (to rounding, a
+     * largest difference near 1e-5) while s^3 times its sizes stays in
+     * real's normal range; beyond, float's hits are lost (at 5e12) or
+     * lose digits (at 1e-14), by 0.02 to 0.6. The warning must come
+     * exactly where the image is wrong, at these scales. */
+    static const double scales[] = { 1e-30, 1e-14, 1e-12, 1e12, 5e12, 1e30 };
+    image_t ref = { 0 };
+    long nw;
+    char *text = scaled_cbox(1);
+    render_difference(text, &ref, &nw);
+    free(text);
+    ck_assert_int_eq(nw, 0);
+    for (size_t i = 0; i < sizeof scales / sizeof *scales; i++) {
+#ifndef SVET_DOUBLE
+        if (scales[i] < 1e-20 || scales[i] > 1e20)
+            continue; /* float refuses their areas outright */
+#endif
+        text = scaled_cbox(scales[i]);
+        double d = render_difference(text, &ref, &nw);
+        free(text);
+        bool wrong = !(d < 1e-3);
+        ck_assert_msg(wrong == (nw > 0) && (wrong || d < 1e-4),
+                      "scale %g: largest difference %g, %ld warnings",
+                      scales[i], d, nw);
+#ifdef SVET_DOUBLE
+        ck_assert_msg(!wrong, "scale %g: %g", scales[i], d);
+#else
+        ck_assert_msg(wrong == (scales[i] < 1e-13 || scales[i] > 2e12),
+                      "scale %g: %g", scales[i], d);
+#endif
+    }
+    image_free(&ref);
+}
+END_TEST
+
+/* The Cornell box scaled by s parses with the one warning msg in float
+ * and none in double. */
+static void expect_precision_warning(double s, const char *msg)
+{
+    scene_t sc;
+    char *text = scaled_cbox(s);
+    parse_ok(&sc, text);
+    free(text);
+#ifdef SVET_DOUBLE
+    (void)msg;
+    ck_assert_int_eq(sc.warnings.n, 0);
+#else
+    ck_assert_int_eq(sc.warnings.n, 1);
+    ck_assert_str_eq(sc.warnings.msg[0], msg);
+#endif
+    scene_free(&sc);
+}
+
+START_TEST(precision_warnings_name_the_extent_and_the_smallest_object)
+{
+    expect_precision_warning(5e12,
+                     "t.scn: warning: the scene spans 2.83e+13, more than "
+                     "float resolves (lengths up to 6.98e+12: the flat "
+                     "shapes' intersection multiplies three lengths); render "
+                     "it with the double build (make REAL=double)");
+    /* the smallest object is named by its line: the light, 0.6 s across */
+    expect_precision_warning(1e-14,
+                     "t.scn:34:1: warning: the object is 5.97e-15 across, "
+                     "less than float resolves (lengths down to 2.27e-13: "
+                     "the flat shapes' intersection multiplies three "
+                     "lengths); render it with the double build (make "
+                     "REAL=double)");
+    scene_t s;
+    /* a plane has no size: far planes alone warn of nothing */
+    parse_ok(&s, M "plane point 0 -1e30 0 normal 0 1 0 material m\n"
+                   "light point position 0 1 0 intensity 1\n");
+    ck_assert_int_eq(s.warnings.n, 0);
+    scene_free(&s);
+}
+END_TEST
+
 /* --- errors -------------------------------------------------------------- */
 
 #ifdef SVET_DOUBLE
 #define BIG "1e300"
 #else
 #define BIG "1e+30" /* as long as the double one: same columns */
+#endif
+
+/* A coordinate of which twice overflows real. */
+#ifdef SVET_DOUBLE
+#define HUGE_COORD "1e308"
+#else
+#define HUGE_COORD "3e38"
 #endif
 
 /* Every kind of error, with its exact message and status. */
@@ -848,6 +1150,9 @@ static const struct {
       "t.scn:1:1: camera target must differ from its position" },
     { "camera target 0 5 0\n\n", SVET_ERR_RANGE,
       "t.scn:1:1: camera up must not be along the view direction" },
+    { "camera position -" HUGE_COORD " 0 0 target " HUGE_COORD " 0 0\n",
+      SVET_ERR_RANGE, "t.scn:1:1: camera target - position overflows "
+      REAL_NAME ": bring them closer" },
     /* later chapters */
     { "texture checker\n", SVET_ERR_UNSUPPORTED,
       "t.scn:1:1: 'texture' is not supported yet: ch. 10 (textures)" },
@@ -1216,6 +1521,9 @@ Suite *test_suite(void)
     tcase_add_test(tc, render_keys_parse_to_their_values);
     tcase_add_test(tc, output_and_tonemap_parse_to_their_values);
     tcase_add_test(tc, comments_blank_lines_tabs_and_crlf_are_accepted);
+    tcase_add_test(tc, a_byte_order_mark_at_the_start_is_skipped);
+    tcase_add_test(tc, a_file_without_statements_is_an_error);
+    tcase_add_test(tc, a_scene_without_light_parses_with_a_warning);
     tcase_add_test(tc, numbers_in_every_decimal_form_are_read);
     tcase_add_test(tc, every_material_component_parses_with_its_parameters);
     tcase_add_test(tc, every_shape_parses_with_its_material_and_name);
@@ -1230,6 +1538,12 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_mesh_without_usemtl_is_one_object_and_may_emit);
     tcase_add_test(tc, mesh_transforms_move_vertices_and_keep_normals_out);
     tcase_add_test(tc, mesh_errors_name_both_files);
+    tcase_add_test(tc, mesh_warnings_reach_the_scene_and_strict_refuses_them);
+    tcase_add_test(tc, lights_whose_products_overflow_are_refused);
+    tcase_add_test(tc,
+                   scaled_cornell_boxes_warn_where_float_renders_them_wrong);
+    tcase_add_test(
+        tc, precision_warnings_name_the_extent_and_the_smallest_object);
     tcase_add_test(tc,
                    every_error_names_file_line_column_and_what_was_expected);
     tcase_add_test(tc, a_nul_byte_is_an_error_not_the_end);

@@ -268,6 +268,14 @@ START_TEST(malformed_csv_files_are_refused_with_their_line)
                                        NULL), SVET_OK);
     ck_assert(n == 0 && method[0] == '\0');
     free(q);
+    /* a byte-order mark before the header is skipped, not glued to
+     * "method" (a spreadsheet's "CSV UTF-8" writes one) */
+    const char *bom = "\xEF\xBB\xBF" HEADER "a,1,0.5,0,1,1,1,1,1,1,1,1\n";
+    imgtest_write_bytes(path, bom, strlen(bom));
+    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, &q, &n,
+                                       NULL), SVET_OK);
+    ck_assert(n == 1 && strcmp(method, "a") == 0);
+    free(q);
     svet_error err;
     ck_assert_int_eq(converge_csv_read(imgtest_path("missing.csv"), method,
                                        sizeof method, &q, &n, &err),
