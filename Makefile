@@ -37,6 +37,19 @@ AR       := llvm-ar
 endif
 endif
 endif
+# SIMD=off: the library without its speed layers (every src/*/*_simd.c:
+# vector code, the grids' fast walk and packets), each algorithm answered
+# by its plain version, with SVET_NO_SIMD defined; the same bits. Its own
+# build directory, build/REAL-nosimd.
+SIMD     ?= on
+ifeq ($(SIMD),off)
+SIMDDEF  := -DSVET_NO_SIMD
+BUILD    ?= build/$(REAL)-nosimd
+else ifeq ($(SIMD),on)
+SIMDDEF  :=
+else
+$(error SIMD must be on or off, not '$(SIMD)')
+endif
 BUILD    ?= build/$(REAL)
 PREFIX   ?= /usr/local
 PKG_CONFIG ?= pkg-config
@@ -55,7 +68,7 @@ WARN     := -Wall -Wextra -Wpedantic -Wdouble-promotion -Wshadow \
             -Wstrict-prototypes -Wmissing-prototypes -Wformat=2
 CFLAGS   ?= $(OPT) $(ARCH) $(LTO) -g
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off $(WARN) \
-             $(REALDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
+             $(REALDEF) $(SIMDDEF) -Iinclude -fopenmp $(CFLAGS) $(EXTRA_CFLAGS)
 
 PKG_CFLAGS := $(shell $(PKG_CONFIG) --cflags OpenEXR libpng 2>/dev/null)
 PKG_LIBS   := $(shell $(PKG_CONFIG) --libs OpenEXR libpng 2>/dev/null)
@@ -70,7 +83,7 @@ LDLIBS   = -Wl,--as-needed $(PKG_LIBS) -lm -fopenmp $(EXTRA_LDFLAGS)
 # across the folders, so objects, suites and the chapters' .mk files name a
 # module by its name alone.
 PARTS    := $(sort $(notdir $(wildcard src/*)))
-SRCS     := $(sort $(wildcard src/*/*.c))
+SRCS     := $(sort $(filter-out $(if $(SIMDDEF),%_simd.c),$(wildcard src/*/*.c)))
 MODULES  := $(notdir $(SRCS:.c=))
 HDRS     := $(sort $(wildcard include/*/*.h))
 OBJS     := $(MODULES:%=$(BUILD)/obj/%.o)
@@ -146,7 +159,7 @@ test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all \
              -fno-omit-frame-pointer
 sanitize:
-	$(MAKE) BUILD=build/sanitize-$(REAL) OPT=-O1 LTO= \
+	$(MAKE) BUILD=build/sanitize-$(REAL)$(if $(SIMDDEF),-nosimd) OPT=-O1 LTO= \
 	    EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
 	    SVET_SANITIZE=1 test
 
@@ -161,13 +174,16 @@ sanitize:
 # A program is linked from exactly those objects, not the library, so a
 # missing module shows up as a link error here rather than in a student's
 # single cc line. `make ch01` builds the chapter's programs into $(BUILD)/.
+# A listed module that this build leaves out (a *_simd.c under SIMD=off)
+# is skipped: the cc lines build the plain versions alone.
 CHAPTERS :=
 -include $(sort $(wildcard chapters/*/*.mk))
 CHAPTERS := $(sort $(CHAPTERS))
 CHAPTER_PROGS := $(sort $(foreach c,$(CHAPTERS),$($(c)_PROGS)))
 
 define program_rule
-$(BUILD)/$(1): $$($(1)_SRC) $$($(1)_MODULES:%=$(BUILD)/obj/%.o)
+$(BUILD)/$(1): $$($(1)_SRC) \
+    $$(patsubst %,$(BUILD)/obj/%.o,$$(filter $(MODULES),$$($(1)_MODULES)))
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) $$^ -o $$@ -Wl,--as-needed $$($(1)_LIBS) -fopenmp
 endef
@@ -244,7 +260,8 @@ fuzz_obj_ARGS := -dict=fuzz/obj.dict
 src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
 $(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $< $(call src_of,$(fuzz_$*_MODULES)) \
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $(SIMDDEF) $< \
+	    $(call src_of,$(fuzz_$*_MODULES)) \
 	    -lm -o $@
 
 fuzz-%: $(FUZZ_BUILD)/fuzz_%
@@ -308,6 +325,7 @@ help:
 	@echo "make                 library, chapter programs and the svet command"
 	@echo "make test            every unit suite (REAL=double for the double build)"
 	@echo "make sanitize        every suite under ASan and UBSan"
+	@echo "make SIMD=off ...    without the speed layers (*_simd.c): build/REAL-nosimd"
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
