@@ -250,15 +250,17 @@ FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     frame material mesh obj parallelogram plane quadric ray rng sample scene \
-    scenefile shape sphere triangle vec xform allparts objmesh grid primset
+    scenefile shape sphere triangle vec xform allparts objmesh grid primset \
+    grid_build grid_walk_simd grid_packet_simd
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
-    rng shape triangle vec parallelogram xform
+    rng shape triangle vec parallelogram xform grid_build grid_walk_simd \
+    grid_packet_simd
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 
 # the source of module M, wherever its part's folder is
 src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
-$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
+$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS) $(wildcard src/*/*.h)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $(SIMDDEF) $< \
 	    $(call src_of,$(fuzz_$*_MODULES)) \

@@ -9,6 +9,9 @@
  * Coherent camera rays can also walk the grid together, in packets
  * (grid_intersect_packet: the coherent grid traversal of Wald, Ize,
  * Kensler, Knoll & Parker, SIGGRAPH 2006), with the same answers.
+ * Built in src/accel/grid_build.c, walked in src/accel/grid.c (the plain
+ * walk), src/accel/grid_walk_simd.c (the fast walk) and
+ * src/accel/grid_packet_simd.c (packets).
  * Tests: tests/accel/test_grid.c (agreement with brute force: tests/accel/test_accel.c)
  */
 #ifndef SVET_GRID_H
@@ -21,22 +24,18 @@
 #include "accel/primset.h"
 
 /* Cells per axis = about k N^(1/3) over the box's aspect (N primitives):
- * k^3 N cells in all. k measured by bench/bench_grid.c (`--tune`, and the
- * benchmark run with each k) on the sphere grids of 1e4 to 1e6 triangles:
- * with eight triangles to one sign test (the quads, AVX), 1.5 is at or
- * above 2 everywhere (5% on camera rays at 1e6, a fifth less memory);
- * 1 gains a little more on camera rays and loses 6% on random ones
- * (chapters/ch07/README.md has the tables). */
+ * k^3 N cells in all. k chosen by bench/bench_grid.c (`--tune`) on the
+ * sphere grids of 1e4 to 1e6 triangles: with eight triangles to one sign
+ * test (the quads, AVX), 1.5 is as fast as 2 with less memory, and a
+ * coarser grid loses on incoherent rays (bench/results/grid.md). */
 #define GRID_K_DEFAULT 1.5
 /* Hierarchical grid (Jevans & Wyvill 1989): the top level is the uniform
  * grid (k = HGRID_K_DEFAULT); a cell with more than HGRID_LEAF_DEFAULT
  * primitives gets a child grid of HGRID_CHILD_K_DEFAULT n^(1/3) cells per
  * axis for its n primitives, at most HGRID_DEPTH_DEFAULT levels below the
- * top. Measured as k above: a coarser top level (k 0.25 to 1, fewer steps
- * through empty space) gained up to 25% on camera rays at 1e6 triangles
- * but lost as much on random rays at 1e5; on evenly spread meshes this
- * one runs as the uniform grid does, and on the teapot in a stadium
- * hundreds of times faster. */
+ * top. Chosen as k above: a coarser top level helps camera rays and hurts
+ * random ones about as much; on evenly spread meshes this one runs as the
+ * uniform grid does, and on the teapot in a stadium far faster. */
 #define HGRID_K_DEFAULT 2.0
 #define HGRID_CHILD_K_DEFAULT 1.5
 #define HGRID_LEAF_DEFAULT 32
@@ -52,12 +51,9 @@
 /* Quads (below) only for scenes of at least this many mesh triangles.
  * They copy every triangle's corners into each of its cells (about 4.7
  * times the corners' memory): where the corners come from main memory
- * anyway that costs little and saves the gathers (1e6 triangles: camera
- * rays +9%, incoherent +8%, measured per CPU-second at load 2), but where
- * the corners and the grid fit the caches and the quads do not, the
- * incoherent rays wait on memory instead (1e5 triangles, 10 MB against
- * 33 MB: incoherent -22%, camera +10%; 1e4: incoherent -8%). Between the
- * two sizes it is not measured; 500,000 splits them. */
+ * anyway that costs little and saves the gathers, but where the corners
+ * and the grid fit the caches and the quads do not, the incoherent rays
+ * wait on memory instead (bench/results/grid.md has both sizes). */
 #define GRID_QUAD_MIN_DEFAULT 500000
 
 typedef struct {
@@ -74,7 +70,7 @@ void grid_params_hierarchical(grid_params_t *p);
 
 /* One grid: the top level, or a child of a cell. Coordinates in double,
  * whatever real is, so that the walk decides cells far more finely than
- * the primitives' own rounding (see the robustness notes in grid.c). */
+ * the primitives' own rounding (grid.c's opening comment). */
 typedef struct {
     double min[3];      /* lower corner */
     double w[3];        /* cell size per axis */
@@ -90,7 +86,8 @@ typedef struct {
 
 /* Cells per axis of a block (macro-cell): a block's 4 x 4 x 4 cells have
  * one bit each in a 64-bit word, so the walk tests a cell without touching
- * memory and crosses a block with no cell in it in one step (grid.c). */
+ * memory and crosses a block with no cell in it in one step
+ * (grid_walk_simd.c). */
 #define GRID_BLOCK 4
 
 /* An item with this bit set is a child grid's node number; otherwise the
@@ -113,7 +110,7 @@ typedef struct {
  * primset (one cache line each, scattered) or transposing them. Without
  * quads it gathers MESH_BATCH triangles the mailbox lets through and
  * tests them with mesh_ray_reject(). */
-#if defined(SIMD_REAL) && VLANES == MESH_BATCH
+#if defined(SIMD_REAL) && VLANES == MESH_BATCH && !defined(SVET_NO_SIMD)
 #define GRID_QUADS 1
 #else
 #define GRID_QUADS 0
@@ -189,6 +186,14 @@ bool grid_intersect(const grid_t *g, primset_query_t *q);
 /* Any hit in (q->tmin, q->tmax); stops at the first. This function can't
  * fail. */
 bool grid_occluded(const grid_t *g, primset_query_t *q);
+
+/* grid_intersect() and grid_occluded() by the plain walk of grid.c, the
+ * 3D-DDA of Amanatides & Woo cell by cell, in every build: the same
+ * answers (found, ref, t and bits of the hit), which the default build
+ * gets faster from the walk by blocks (grid_walk_simd.c). q->cells counts
+ * the cells it visits, every level's. These functions can't fail. */
+bool grid_intersect_plain(const grid_t *g, primset_query_t *q);
+bool grid_occluded_plain(const grid_t *g, primset_query_t *q);
 
 /* The most rays grid_intersect_packet() takes at once. */
 #define GRID_PACKET_MAX 64
