@@ -37,7 +37,7 @@
  */
 #include "grid_walk.h"
 
-/* --- the uniform grid: the 3D-DDA of Amanatides & Woo 1987 ---------------- */
+/* --- the uniform grid: the 3D-DDA of Amanatides & Woo 1987 --------------- */
 
 /* Walk node ni (the top level, or a child grid) over [t0, t1], the part
  * of the ray inside its box. Returns true when a shadow query found a hit.
@@ -108,31 +108,14 @@ static bool walk_plain(const grid_t *g, uint32_t ni, const walk_t *w,
     }
 }
 
-/* A query of the whole grid: the ray's part of the top level's box,
- * then its walk. */
-static bool query_plain(const grid_t *g, primset_query_t *q, bool shadow)
-{
-    if (g->ncells == 0 || g->ps->nbounded == 0)
-        return q->found;
-    walk_t w;
-    walk_init_at(&w, g, q, q->tmax, false);
-    const grid_node_t *top = &g->nodes[0];
-    double t0, t1;
-    if (!(w.t0 <= w.t1) ||
-        !slab(&w, top->min, top->max, w.t0, w.t1, &t0, &t1))
-        return q->found;
-    bool hit = walk_plain(g, 0, &w, q, t0, t1, shadow);
-    return shadow ? hit : q->found;
-}
-
 bool grid_intersect_plain(const grid_t *g, primset_query_t *q)
 {
-    return query_plain(g, q, false);
+    return grid_query(g, q, false, false, walk_plain);
 }
 
 bool grid_occluded_plain(const grid_t *g, primset_query_t *q)
 {
-    return query_plain(g, q, true);
+    return grid_query(g, q, true, false, walk_plain);
 }
 
 #ifdef SVET_NO_SIMD

@@ -367,9 +367,9 @@ static inline uint64_t pk_cell_rays(const packet_t *p, double u0, double u1,
     return m;
 }
 
-/* Ray i's walk_t, made on first use: the one walk_init() made when the
- * packet began (the same tmax), for the single walk's code (child grids,
- * a cell's other items, cells without quads). */
+/* Ray i's walk_t, made on first use: the one grid_query() would make as
+ * the packet began (the same tmax), for the single walk's code (child
+ * grids, a cell's other items, cells without quads). */
 static const walk_t *pk_walk(const grid_t *g, packet_t *p, walk_t *w,
                              const primset_query_t *q, int i)
 {
@@ -836,7 +836,7 @@ static int pk_setup4(const grid_t *g, packet_t *p, const primset_query_t *q,
             p->tend[j] = p->t1[j] = 0;
         if (!(ok >> l & 1))
             continue;
-        walk_t wl; /* walk_init()'s values, but for the wide ray */
+        walk_t wl; /* grid_query()'s values, but for the wide ray */
         walk_init_at(&wl, g, &q[j], q[j].tmax, false);
         double t0, t1;
         if (!(wl.t0 <= wl.t1) ||

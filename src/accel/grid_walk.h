@@ -132,16 +132,6 @@ static inline void walk_init_at(walk_t *w, const grid_t *g,
 #endif
 }
 
-/* The walk of q from its start, (tmin, tmax). */
-#if defined(__GNUC__) || defined(__clang__)
-__attribute__((always_inline))
-#endif
-static inline void walk_init(walk_t *w, const grid_t *g,
-                             const primset_query_t *q)
-{
-    walk_init_at(w, g, q, q->tmax, true);
-}
-
 /* Where the walk may stop once the nearest hit so far is at tmax: a cell
  * whose exit t_exit lies beyond it has t_exit (1 - WALK_SLACK) - bias >
  * tmax, the stopping rule of grid.c's opening comment (x + 2 s |x| >=
@@ -171,6 +161,35 @@ static inline double plane_t(const grid_node_t *nd, const walk_t *w, int a,
                              long p)
 {
     return (nd->min[a] + (double)p * nd->w[a] - w->o[a]) * w->inv_d[a];
+}
+
+/* A walk of node ni over [t0, t1]: the plain one (grid.c) or the fast one
+ * (grid_walk_simd.c). Returns true when a shadow query found a hit. */
+typedef bool (*grid_walk_fn)(const grid_t *g, uint32_t ni, const walk_t *w,
+                             primset_query_t *q, double t0, double t1,
+                             bool shadow);
+
+/* A query of the whole grid: the ray's part of the top level's box, then
+ * its walk by `walk` (a constant at each caller, so the call is direct
+ * once inlined); `wide` as for walk_init_at(). Returns q->found, or for a
+ * shadow query whether it found a hit. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+static inline bool grid_query(const grid_t *g, primset_query_t *q,
+                              bool shadow, bool wide, grid_walk_fn walk)
+{
+    if (g->ncells == 0 || g->ps->nbounded == 0)
+        return q->found;
+    walk_t w;
+    walk_init_at(&w, g, q, q->tmax, wide);
+    const grid_node_t *top = &g->nodes[0];
+    double t0, t1;
+    if (!(w.t0 <= w.t1) ||
+        !slab(&w, top->min, top->max, w.t0, w.t1, &t0, &t1))
+        return q->found;
+    bool hit = walk(g, 0, &w, q, t0, t1, shadow);
+    return shadow ? hit : q->found;
 }
 
 /* The axis of the nearest of the crossings tx, ty, tz (ties to the

@@ -320,29 +320,14 @@ done:
     return hit;
 }
 
-static bool query(const grid_t *g, primset_query_t *q, bool shadow)
-{
-    if (g->ncells == 0 || g->ps->nbounded == 0)
-        return q->found;
-    walk_t w;
-    walk_init(&w, g, q);
-    const grid_node_t *top = &g->nodes[0];
-    double t0, t1;
-    if (!(w.t0 <= w.t1) ||
-        !slab(&w, top->min, top->max, w.t0, w.t1, &t0, &t1))
-        return q->found;
-    bool hit = grid_walk_node(g, 0, &w, q, t0, t1, shadow);
-    return shadow ? hit : q->found;
-}
-
 bool grid_intersect(const grid_t *g, primset_query_t *q)
 {
-    return query(g, q, false);
+    return grid_query(g, q, false, true, grid_walk_node);
 }
 
 bool grid_occluded(const grid_t *g, primset_query_t *q)
 {
-    return query(g, q, true);
+    return grid_query(g, q, true, true, grid_walk_node);
 }
 
 /* --- quads: a cell's triangles side by side ------------------------------ */
