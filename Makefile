@@ -294,10 +294,10 @@ FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     fileio frame material mesh obj parallelogram plane quadric ray rng \
     sample scene scenefile shape sphere triangle vec xform allparts objmesh \
-    grid primset
+    grid grid_build primset
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error fileio frame grid mesh obj \
-    primset ray rng shape triangle vec parallelogram xform
+    primset ray rng shape triangle vec parallelogram xform grid_build
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 fuzz_image_MODULES := image imageio exrio pngio netpbm fileio error colour \
     tonemap spectrum
@@ -306,7 +306,7 @@ fuzz_image_LIBS := $(PKG_CFLAGS) $(PKG_LIBS)
 
 # the source of module M, wherever its part's folder is
 src_of = $(foreach m,$(1),$(filter %/$(m).c,$(SRCS)))
-$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS)
+$(FUZZ_BUILD)/fuzz_%: fuzz/fuzz_%.c $(SRCS) $(HDRS) $(wildcard src/*/*.h)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $(SIMDDEF) $< \
 	    $(call src_of,$(fuzz_$*_MODULES) $(call fast_of,$(fuzz_$*_MODULES))) \

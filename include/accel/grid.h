@@ -9,6 +9,9 @@
  * Coherent camera rays can also walk the grid together, in packets
  * (grid_intersect_packet: the coherent grid traversal of Wald, Ize,
  * Kensler, Knoll & Parker, SIGGRAPH 2006), with the same answers.
+ * Built in src/accel/grid_build.c, walked in src/accel/grid.c (the plain
+ * walk), src/accel/fast/grid_walk.c (the fast walk) and
+ * src/accel/fast/grid_packet.c (packets).
  * Tests: tests/accel/test_grid.c (agreement with brute force: tests/accel/test_accel.c)
  */
 #ifndef SVET_GRID_H
@@ -70,7 +73,7 @@ void grid_params_hierarchical(grid_params_t *p);
 
 /* One grid: the top level, or a child of a cell. Coordinates in double,
  * whatever real is, so that the walk decides cells far more finely than
- * the primitives' own rounding (see the robustness notes in grid.c). */
+ * the primitives' own rounding (grid.c's opening comment). */
 typedef struct {
     double min[3];      /* lower corner */
     double w[3];        /* cell size per axis */
@@ -86,7 +89,8 @@ typedef struct {
 
 /* Cells per axis of a block (macro-cell): a block's 4 x 4 x 4 cells have
  * one bit each in a 64-bit word, so the walk tests a cell without touching
- * memory and crosses a block with no cell in it in one step (grid.c). */
+ * memory and crosses a block with no cell in it in one step
+ * (fast/grid_walk.c). */
 #define GRID_BLOCK 4
 
 /* An item with this bit set is a child grid's node number; otherwise the
@@ -109,7 +113,7 @@ typedef struct {
  * primset (one cache line each, scattered) or transposing them. Without
  * quads it gathers MESH_BATCH triangles the mailbox lets through and
  * tests them with mesh_ray_reject(). */
-#if defined(SIMD_REAL) && VLANES == MESH_BATCH
+#if defined(SIMD_REAL) && VLANES == MESH_BATCH && defined(SVET_SIMD)
 #define GRID_QUADS 1
 #else
 #define GRID_QUADS 0
@@ -185,6 +189,14 @@ bool grid_intersect(const grid_t *g, primset_query_t *q);
 /* Any hit in (q->tmin, q->tmax); stops at the first. This function can't
  * fail. */
 bool grid_occluded(const grid_t *g, primset_query_t *q);
+
+/* grid_intersect() and grid_occluded() by the plain walk of grid.c, the
+ * 3D-DDA of Amanatides & Woo cell by cell, in every build: the same
+ * answers (found, ref, t and bits of the hit), which the default build
+ * gets faster from the walk by blocks (fast/grid_walk.c). q->cells counts
+ * the cells it visits, every level's. These functions can't fail. */
+bool grid_intersect_plain(const grid_t *g, primset_query_t *q);
+bool grid_occluded_plain(const grid_t *g, primset_query_t *q);
 
 /* The most rays grid_intersect_packet() takes at once. */
 #define GRID_PACKET_MAX 64

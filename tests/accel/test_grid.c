@@ -3,10 +3,11 @@
  * (about k^3 N cells over the box's aspect), every triangle listed in
  * every cell it overlaps (checked against clipping the triangle to the
  * cell, an independent method), the 3D-DDA's cell counts on rays whose
- * path is known, the hierarchy's refinement and its limits, and the
- * packets of camera rays (Wald et al. 2006) against single rays and brute
- * force, bad rays included. Agreement with brute force through accel.h:
- * tests/accel/test_accel.c.
+ * path is known, the hierarchy's refinement and its limits, the plain
+ * walk (grid.c) against the fast walk (fast/grid_walk.c) and brute force
+ * on the same rays, and the packets of camera rays (Wald et al. 2006)
+ * against single rays and brute force, bad rays included. Agreement with
+ * brute force through accel.h: tests/accel/test_accel.c.
  */
 #include "testutil.h"
 #include "accel/grid.h"
@@ -227,6 +228,9 @@ START_TEST(the_walk_visits_the_cells_a_ray_crosses)
         primset_query_init(&q, &rows[i], 0, (real)INFINITY);
         ck_assert(!grid_intersect(g, &q));
         ck_assert_int_eq(q.cells, n);
+        primset_query_init(&q, &rows[i], 0, (real)INFINITY);
+        ck_assert(!grid_intersect_plain(g, &q));
+        ck_assert_int_eq(q.cells, n);
     }
     ray_t diag = { { REAL_C(-0.5), REAL_C(-0.4), REAL_C(-0.45) },
                    { 1, 1, 1 } };
@@ -234,10 +238,16 @@ START_TEST(the_walk_visits_the_cells_a_ray_crosses)
     primset_query_init(&q, &diag, 0, (real)INFINITY);
     ck_assert(!grid_intersect(g, &q));
     ck_assert_int_eq(q.cells, 3 * n - 2);
+    primset_query_init(&q, &diag, 0, (real)INFINITY);
+    ck_assert(!grid_intersect_plain(g, &q));
+    ck_assert_int_eq(q.cells, 3 * n - 2);
     /* a short tmax stops the walk: from x = -1 to x = 3.9 covers cells
      * 0..1 (cell width 2.0...) */
     primset_query_init(&q, &rows[0], 0, REAL_C(3.5));
     grid_intersect(g, &q);
+    ck_assert_int_le(q.cells, 2);
+    primset_query_init(&q, &rows[0], 0, REAL_C(3.5));
+    grid_intersect_plain(g, &q);
     ck_assert_int_le(q.cells, 2);
     grid_free(g);
     primset_free(&ps);
@@ -259,13 +269,44 @@ static void brute(const primset_t *ps, const ray_t *r, primset_query_t *q)
     brute_to(ps, r, (real)INFINITY, q);
 }
 
+/* Do two queries end with the same answer: found, and then the same
+ * primitive, t and barycentrics, bit for bit? */
+static bool same_answer(const primset_query_t *a, const primset_query_t *b)
+{
+    return a->found == b->found &&
+           (!a->found ||
+            (a->ref == b->ref &&
+             memcmp(&a->hit.t, &b->hit.t, sizeof a->hit.t) == 0 &&
+             memcmp(a->hit.b, b->hit.b, sizeof a->hit.b) == 0));
+}
+
+/* The plain walk's answers (nearest hit, and any hit) for the query
+ * `from` (as it came, hit or not) are the fast walk's, bit for bit. */
+static void check_plain(const grid_t *g, const primset_query_t *from)
+{
+    primset_query_t fast = *from, plain = *from;
+    grid_intersect(g, &fast);
+    grid_intersect_plain(g, &plain);
+    const ray_t *r = from->r;
+    ck_assert_msg(same_answer(&plain, &fast),
+                  "ray (%g %g %g) (%g %g %g): plain walk %d (primitive %u), "
+                  "fast walk %d (primitive %u)",
+                  (double)r->o[0], (double)r->o[1], (double)r->o[2],
+                  (double)r->d[0], (double)r->d[1], (double)r->d[2],
+                  plain.found, plain.ref, fast.found, fast.ref);
+    fast = *from;
+    plain = *from;
+    ck_assert(grid_occluded_plain(g, &plain) == grid_occluded(g, &fast));
+}
+
 /* The grid's answers (nearest hit, and any hit) for r are brute force's,
- * bit for bit. */
+ * bit for bit, by the fast walk and by the plain walk. */
 static void check_ray(const grid_t *g, const primset_t *ps, const ray_t *r)
 {
     primset_query_t want, got, shadow;
     brute(ps, r, &want);
     primset_query_init(&got, r, 0, (real)INFINITY);
+    check_plain(g, &got);
     grid_intersect(g, &got);
     ck_assert_msg(got.found == want.found,
                   "ray (%g %g %g) (%g %g %g): grid %d, brute force %d",
@@ -689,6 +730,8 @@ static long check_packet(const grid_t *g, const primset_t *ps,
             }
         }
     }
+    for (int i = 0; i < n; i++)
+        check_plain(g, &one[i]);
     grid_intersect_packet(g, got, n);
     for (int i = 0; i < n; i++) {
         grid_intersect(g, &one[i]);
