@@ -174,7 +174,7 @@ static int nscene_inputs;
 
 static svet_status record_mesh(const char *path, const xform_t *x,
                                scene_mesh_part_t **parts, int *nparts,
-                               svet_error *err)
+                               scene_warnings_t *warnings, svet_error *err)
 {
     if (nscene_inputs < MAX_SCENE_INPUTS) {
         char *p = strdup(path);
@@ -183,7 +183,7 @@ static svet_status record_mesh(const char *path, const xform_t *x,
                                   path);
         scene_inputs[nscene_inputs++] = p;
     }
-    return scene_features_all()->mesh(path, x, parts, nparts, err);
+    return scene_features_all()->mesh(path, x, parts, nparts, warnings, err);
 }
 
 int cmd_scene_load(const char *cmd, scene_t *s, const char *path,

@@ -13,7 +13,7 @@
  * grid.c traces a packet's rays one by one.
  * Tests: tests/accel/test_grid.c
  */
-#include "grid_walk.h"
+#include "../grid_walk.h"
 
 #include <string.h>
 

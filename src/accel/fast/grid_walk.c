@@ -22,7 +22,7 @@
  * answers every query.
  * Tests: tests/accel/test_grid.c, tests/accel/test_accel.c
  */
-#include "grid_walk.h"
+#include "../grid_walk.h"
 
 #include <stdlib.h>
 #include <string.h>
