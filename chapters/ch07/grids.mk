@@ -1,5 +1,5 @@
 CHAPTERS += ch07
 ch07_PROGS += ch07_grids
 ch07_grids_SRC := chapters/ch07/ch07_grids.c
-ch07_grids_MODULES := accel grid primset mesh meshgen triangle shape frame vec bbox cobject ray rng error camera image netpbm fileio parallelogram xform
+ch07_grids_MODULES := accel grid primset mesh meshgen triangle shape frame vec bbox cobject ray rng error camera image netpbm fileio
 ch07_grids_LIBS := -lm
