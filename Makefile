@@ -85,6 +85,7 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 .SECONDARY:
 
 .PHONY: all lib test sanitize chapters vectors check-vectors cc-lines clean \
+        check-links \
         install uninstall help bench $(BENCHES)
 
 all: lib chapters $(BUILD)/svet
@@ -139,7 +140,7 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 
 # Every suite runs from the top directory (they read tests/vectors/ and
 # scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
-test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
+test: $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
 
 # AddressSanitizer + UndefinedBehaviorSanitizer, any report is fatal.
@@ -180,6 +181,17 @@ $(foreach c,$(CHAPTERS),$(eval $(call chapter_rule,$(c))))
 .PHONY: $(CHAPTERS)
 
 chapters: $(CHAPTER_PROGS:%=$(BUILD)/%)
+
+# A program's .mk may name the symbol prefixes of the parts its chapter
+# does not use (NAME_FORBID: ch05's grid_ mesh_ primset_ ...), and those
+# only link-time optimisation drops (NAME_FORBID_LTO: functions of a module
+# the program needs, such as parallelogram.c's batch, which a plain link
+# keeps); `make check-links` fails when the linked program has one of
+# them (tools/check-links.sh, on nm's list). Part of `make test`.
+check-links: $(CHAPTER_PROGS:%=$(BUILD)/%)
+	@fail=0; $(foreach p,$(CHAPTER_PROGS),sh tools/check-links.sh \
+	    $(BUILD)/$(p) $($(p)_FORBID) $(if $(strip $(LTO)),$($(p)_FORBID_LTO)) \
+	    || fail=1;) exit $$fail
 
 # Each chapter program's first comment is the one cc line that builds it
 # alone; this runs every such line in a scratch directory to prove it.
@@ -234,10 +246,11 @@ FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     frame material mesh obj parallelogram plane quadric ray rng sample scene \
-    scenefile shape sphere triangle vec xform allparts objmesh grid primset
+    scenefile shape sphere triangle vec xform allparts objmesh grid primset \
+    accel batch
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error frame grid mesh obj primset ray \
-    rng shape triangle vec parallelogram xform
+    rng shape triangle vec
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 
 # the source of module M, wherever its part's folder is
@@ -310,6 +323,7 @@ help:
 	@echo "make sanitize        every suite under ASan and UBSan"
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
+	@echo "make check-links     each chapter program links none of the parts it must not"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"
 	@echo "make reference       re-render tests/reference/ (converged references)"
