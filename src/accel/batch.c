@@ -134,7 +134,7 @@ static bool sphere_arrays(brute_t *b)
     return true;
 }
 
-/* The fast brute force over ps, or NULL when ps has mesh triangles (they
+/* The batched brute force over ps, or NULL when ps has mesh triangles (they
  * keep primset_test's inline test) or memory runs out (primset_test then
  * serves, with the same answers). Parallelograms past the batch's 64 are
  * tested through intersect(). */
@@ -187,7 +187,7 @@ static brute_t *brute_new(const primset_t *ps)
     return b;
 }
 
-/* The search of the fast brute force: the primitives' nearest-hit rule
+/* The search of the batched brute force: the primitives' nearest-hit rule
  * of primset_test(), the same arguments to each intersect(). */
 typedef struct {
     real tmin, tmax, tmax_tie;
@@ -301,7 +301,7 @@ static inline unsigned spheres_passed(const brute_t *b, uint32_t k0,
 #endif
 }
 
-/* The fast brute force: what primset_test() over every ref gives, with
+/* The batched brute force: what primset_test() over every ref gives, with
  * each primitive's culling test made here instead of behind a call: a
  * test skipped here is one whose intersect() would have answered "no
  * hit" at its first step. The order differs (the transformed objects
@@ -408,7 +408,7 @@ static inline bool brute_nearest(const brute_t *b, const ray_t *r,
     return true;
 }
 
-/* The memory of the fast brute force, as brute_new() allocates it (its
+/* The memory of the batched brute force, as brute_new() allocates it (its
  * parallelogram batch aside, which says nothing of its size). */
 static size_t brute_bytes(const brute_t *b)
 {
