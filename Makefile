@@ -106,9 +106,9 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 
 .SECONDARY:
 
-.PHONY: all lib test check-tags sanitize chapters figures vectors \
-        noise-vectors check-vectors cc-lines clean install uninstall help \
-        bench $(BENCHES)
+.PHONY: all lib test check-tags check-links sanitize chapters figures \
+        vectors noise-vectors check-vectors cc-lines clean install uninstall \
+        help bench $(BENCHES)
 
 all: lib chapters $(BUILD)/svet
 
@@ -162,9 +162,7 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 
 # Every suite runs from the top directory (they read tests/vectors/ and
 # scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
-# check-tags runs first, so run-tests.sh's "N passed, N failed" stays the
-# last line.
-test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
+test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
 
 # The book's equations tagged in the code as "eq. (N.M)", every one listed
@@ -231,6 +229,17 @@ test: chapters
 figures: $(CHAPTER_PROGS:%=$(BUILD)/%)
 	@sh tools/figures.sh $(BUILD) $(foreach p,$(CHAPTER_PROGS),$($(p)_SRC))
 
+# A program's .mk may name the symbol prefixes of the parts its chapter
+# does not use (NAME_FORBID: ch05's grid_ mesh_ primset_ ...), and those
+# only link-time optimisation drops (NAME_FORBID_LTO: functions of a module
+# the program needs, such as parallelogram.c's batch, which a plain link
+# keeps); `make check-links` fails when the linked program has one of
+# them (tools/check-links.sh, on nm's list). Part of `make test`.
+check-links: $(CHAPTER_PROGS:%=$(BUILD)/%)
+	@fail=0; $(foreach p,$(CHAPTER_PROGS),sh tools/check-links.sh \
+	    $(BUILD)/$(p) $($(p)_FORBID) $(if $(strip $(LTO)),$($(p)_FORBID_LTO)) \
+	    || fail=1;) exit $$fail
+
 # Each chapter program's first comment is the one cc line that builds it
 # alone; this runs every such line in a scratch directory to prove it.
 cc-lines:
@@ -294,10 +303,10 @@ FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     fileio frame material mesh obj parallelogram plane quadric ray rng \
     sample scene scenefile shape sphere triangle vec xform allparts objmesh \
-    grid grid_build primset
+    grid grid_build primset accel batch
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
-fuzz_obj_MODULES := accel bbox cobject error fileio frame grid mesh obj \
-    primset ray rng shape triangle vec parallelogram xform grid_build
+fuzz_obj_MODULES := accel bbox cobject error fileio frame grid grid_build \
+    mesh obj primset ray rng shape triangle vec
 fuzz_obj_ARGS := -dict=fuzz/obj.dict
 fuzz_image_MODULES := image imageio exrio pngio netpbm fileio error colour \
     tonemap spectrum
@@ -433,6 +442,7 @@ help:
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
 	@echo "make check-tags      the book's equations tagged in src/, include/; paths in *.md"
 	@echo "make figures         chapter programs' plots as PNG and SVG (gnuplot)"
+	@echo "make check-links     each chapter program links none of the parts it must not"
 	@echo "make vectors         regenerate tests/vectors/*.csv"
 	@echo "make noise-vectors   rewrite tests/vectors/noise_perlin.csv (needs a JDK)"
 	@echo "make bench-NAME      one benchmark: $(BENCHES)"

@@ -1,5 +1,10 @@
 CHAPTERS += ch05
 ch05_PROGS += ch05_cases
 ch05_cases_SRC := chapters/ch05/ch05_cases.c
-ch05_cases_MODULES := render accel primset integrator light camera scene scenefile material brdf sample rng cobject shape sphere plane disk parallelogram triangle box cylinder cone quadric xform mesh bbox ray frame vec colour image imgcompare converge netpbm tonemap fileio error
+ch05_cases_MODULES := render tracer integrator light camera scene scenefile material brdf sample rng cobject shape sphere plane disk parallelogram triangle box cylinder cone quadric xform bbox ray frame vec colour image imgcompare converge netpbm tonemap fileio error
 ch05_cases_LIBS := -lm
+# what it must not link (make check-links): ch. 7's acceleration layer,
+# structures and meshes; with link-time optimisation also the functions of
+# parallelogram.c and xform.c that only the batched brute force calls
+ch05_cases_FORBID := accel batch grid primset mesh objmesh obj_ 'obj\.c\.'
+ch05_cases_FORBID_LTO := parallelogram_batch_ parallelogram_intersect_prepared xform_culling_sphere xform_intersect_unculled

@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch07/ch07_grids.c src/accel/accel.c src/accel/grid.c src/accel/grid_build.c src/accel/primset.c src/mesh/mesh.c src/mesh/meshgen.c src/geometry/triangle.c src/geometry/shape.c src/core/frame.c src/core/vec.c src/core/bbox.c src/materials/cobject.c src/core/ray.c src/core/rng.c src/core/error.c src/render/camera.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/geometry/parallelogram.c src/geometry/xform.c -lm -o ch07 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch07/ch07_grids.c src/accel/accel.c src/accel/grid.c src/accel/grid_build.c src/accel/primset.c src/mesh/mesh.c src/mesh/meshgen.c src/geometry/triangle.c src/geometry/shape.c src/core/frame.c src/core/vec.c src/core/bbox.c src/materials/cobject.c src/core/ray.c src/core/rng.c src/core/error.c src/render/camera.c src/io/image.c src/io/netpbm.c src/io/fileio.c -lm -o ch07 */
 /*
  * ch07_grids.c - chapter 7, hierarchical grids: where the time of a ray
  * goes. For two procedural scenes (5 x 5 x 5 spheres of 1e5 triangles, and

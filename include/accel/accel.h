@@ -2,10 +2,13 @@
  * accel.h - what the renderer calls to find where a ray meets the scene
  * (ch. 7): one interface over brute force and the structures a program
  * links and offers through accel_params_t.structures (the uniform and the
- * hierarchical grid: grid.h's grid_accels), chosen by the scene or
- * automatically from it. Brute force is always there, so a program of
- * ch. 5 links no grid. Queries are thread-safe (any number of threads on
- * one accel_t) and every kind gives the same answer, bit for bit.
+ * hierarchical grid: grid.h's grid_accels; the batched brute force of
+ * batch.h), chosen by the scene or automatically from it. Brute force
+ * through primset.h is always there. The renderer reaches this file only
+ * through scene_features_t.accel (accel_layer below), so that a program
+ * of ch. 5 links none of it and traces with tracer.h's list of objects.
+ * Queries are thread-safe (any number of threads on one accel_t) and every
+ * kind gives the same answer, bit for bit.
  * Tests: tests/accel/test_accel.c; benchmark: bench/bench_grid.c
  */
 #ifndef SVET_ACCEL_H
@@ -16,6 +19,7 @@
 #include "materials/cobject.h"
 #include "core/error.h"
 #include "accel/primset.h"
+#include "render/tracer.h"
 
 /* The values of scene.h's scene_accel, so one casts to the other. */
 typedef enum {
@@ -30,9 +34,11 @@ typedef struct accel_ops accel_ops_t;
 typedef struct {
     accel_kind kind;
     const accel_ops_t *const *structures; /* what the program offers
-                           besides brute force, NULL-terminated (grid.h's
-                           grid_accels, or allparts.h's list); NULL or
-                           empty: brute force only */
+                           besides brute force through primset.h,
+                           NULL-terminated (grid.h's grid_accels, or
+                           allparts.h's list, which has batch.h's batched
+                           brute force too); NULL or empty: that brute
+                           force only */
     double grid_k;      /* uniform grid: k of k N^(1/3) cells per axis;
                            0 = GRID_K_DEFAULT */
     double hgrid_k;     /* hierarchical grid: top level's k; 0 =
@@ -44,8 +50,8 @@ typedef struct {
     int brute_max;      /* AUTO: brute force up to this many primitives;
                            0 = ACCEL_BRUTE_MAX */
     bool brute_generic; /* brute force through primset_test() alone,
-                           without the fast path over analytic primitives
-                           (accel.c): the same answers, for tests */
+                           even where the batched brute force (batch.h) is
+                           offered: the same answers, for tests */
 } accel_params_t;
 
 /* AUTO's rule (bench/results/grid.md shows both grids on both kinds of
@@ -67,7 +73,8 @@ typedef struct {
 
 /* An acceleration structure a program may link and offer (accel_params_t
  * .structures). It indexes the primset accel_build() makes; accel.c tests
- * the unbounded primitives itself and asks the structure for the rest.
+ * the unbounded primitives itself and asks the structure for the rest,
+ * unless the structure answers whole queries (tracer_intersect below).
  * Part II's structures (a kd-tree, say) slot in as one more table. */
 struct accel_stats;
 struct accel_ops {
@@ -94,6 +101,19 @@ struct accel_ops {
      * grid.h); NULL when the structure has no faster way than intersect()
      * ray by ray. */
     void (*intersect_packet)(const void *s, primset_query_t *q, int n);
+    /* A structure that answers whole queries itself, over every
+     * primitive of the primset (the unbounded ones and skip included),
+     * sets these two, in the shape of tracer.h's tracer_t on its own data
+     * s, rays that accel_ray_ok() refuses included; intersect and
+     * occluded above may then be NULL (accel.c asks primset_test() for
+     * the work counted by accel_intersect_counted()). The batched brute
+     * force of batch.h, of kind ACCEL_BRUTE, is one; NULL for the grids,
+     * which index the bounded primitives only. */
+    bool (*tracer_intersect)(const void *s, const ray_t *r, real tmin,
+                             real tmax, const COBJECT *const skip[2],
+                             hit_t *hit, const COBJECT **obj);
+    bool (*tracer_occluded)(const void *s, const ray_t *r, real tmin,
+                            real tmax, const COBJECT *const skip[2]);
 };
 
 /* The most queries an accel_ops_t.intersect_packet takes at once. */
@@ -118,6 +138,19 @@ static inline const char *accel_kind_needs(accel_kind k)
 {
     return k == ACCEL_GRID || k == ACCEL_HGRID ? "the grids of ch. 7 (grid.c)"
                                                : "";
+}
+
+/* "auto", "brute", "grid", "hgrid". Inline, so that the renderer's
+ * messages link nothing. This function can't fail. */
+static inline const char *accel_kind_name(accel_kind k)
+{
+    switch (k) {
+    case ACCEL_AUTO: return "auto";
+    case ACCEL_BRUTE: return "brute";
+    case ACCEL_GRID: return "grid";
+    case ACCEL_HGRID: return "hgrid";
+    }
+    return "?";
 }
 
 /* Defaults: AUTO, no structures (brute force only) and every number 0
@@ -167,8 +200,8 @@ bool accel_occluded(const accel_t *a, const ray_t *r, real tmin, real tmax);
  * as { NULL, NULL }: nothing skipped) name the object a ray spawned by
  * ray_spawn() leaves, traced from tmin = 0, or, for a shadow ray made by
  * ray_spawn_to() and traced over (0, its returned tmax), the objects of
- * both of its ends. Only planar primitives are ever skipped (brute
- * force's parallelograms; accel.c gives the argument): a ray can meet a
+ * both of its ends. Only planar primitives are ever skipped (the
+ * batched brute force's parallelograms; batch.c gives the argument): a ray can meet a
  * curved or closed surface it leaves again. The answers are those of the
  * queries without skip, bit for bit (tests/accel/test_accel.c compares them on
  * spawned rays). The renderer reaches these queries as accel_tracer_*()
@@ -182,7 +215,7 @@ bool accel_occluded_skip(const accel_t *a, const ray_t *r, real tmin,
                          real tmax, const COBJECT *const skip[2]);
 
 /* accel_intersect_skip() and accel_occluded_skip() in the shape of
- * integrator.h's tracer_t.intersect and .occluded, so that render.c's
+ * tracer.h's tracer_t.intersect and .occluded, so that render.c's
  * tracer calls them with no function in between: a is the accel_t (as
  * tracer_t's ctx). accel_tracer_intersect() answers into the caller's hit
  * and object directly, with no accel_hit_t in between; *hit and *obj are
@@ -206,28 +239,21 @@ bool accel_has_packets(const accel_t *a);
  * may be anything (any origins, any n >= 0); they go fastest with one
  * origin and nearly one direction (a pinhole camera's rays over 8 x 8
  * pixels: grid.h's grid_intersect_packet() walks them together). A
- * structure without packets answers ray by ray. In the shape of
- * integrator.h's tracer_t.intersect_packet (a: the accel_t). This
- * function can't fail. */
+ * structure without packets answers ray by ray. render.c calls it as
+ * accel_layer_t.intersect_packet (a: the accel_t). This function can't
+ * fail. */
 void accel_tracer_intersect_packet(const void *a, const ray_t *r, int n,
                                    real tmin, real tmax, hit_t *hit,
                                    const COBJECT **obj, bool *found);
 
 /* Whether a query takes ray r over (tmin, tmax) at all: all six
  * coordinates finite, d nonzero, tmin < tmax (a query answers "no hit"
- * otherwise). accel_ray_ok_plain is the same test without SIMD.
+ * otherwise). accel_ray_ok_plain is the same test without SIMD
+ * (tracer.h's tracer_ray_ok()).
  * Test hooks: tests/accel/test_accel.c checks both against the definition (the
  * queries make the test inline). These functions can't fail. */
 bool accel_ray_ok(const ray_t *r, real tmin, real tmax);
 bool accel_ray_ok_plain(const ray_t *r, real tmin, real tmax);
-
-/* Bit k set when ray r passes the k-th culling sphere of a's fast brute
- * force (those of the objects given to accel_build() that
- * xform_culling_sphere() gives one, in their order; k < 64), as its
- * vector test finds it; 0 when a has no fast brute force. Test hook:
- * tests/accel/test_accel.c compares each bit with xform_sphere_misses_ray().
- * This function can't fail. */
-uint64_t accel_spheres_passed(const accel_t *a, const ray_t *r);
 
 /* Work done by one query, for the heat maps of ch. 7. */
 typedef struct {
@@ -263,11 +289,35 @@ void accel_get_stats(const accel_t *a, accel_stats_t *s);
  * the references in cells of more than 64; 12345 primitives)". */
 const char *accel_describe(const accel_t *a);
 
-/* "auto", "brute", "grid", "hgrid". */
-const char *accel_kind_name(accel_kind k);
-
 /* The kind named s (as accel_kind_name spells it). Fails with
  * SVET_ERR_PARSE naming the valid choices. */
 svet_status accel_kind_parse(const char *s, accel_kind *k, svet_error *err);
+
+/* accel.c's functions as one table, which a program hands the renderer
+ * in scene_features_t.accel (allparts.h), so that render.c builds its
+ * tracer here without naming this file: a program that offers no table
+ * (ch. 5) links none of accel.c, primset.c or the structures. */
+typedef struct accel_layer {
+    svet_status (*build)(accel_t **out, COBJECT *const *objs, int nobjs,
+                         const accel_params_t *p, svet_error *err);
+    void (*free)(accel_t *a);
+    tracer_t (*tracer)(const accel_t *a); /* accel_tracer() */
+    bool (*has_packets)(const accel_t *a);
+    void (*intersect_packet)(const void *a, const ray_t *r, int n, real tmin,
+                             real tmax, hit_t *hit, const COBJECT **obj,
+                             bool *found);
+    const char *(*describe)(const accel_t *a);
+} accel_layer_t;
+
+/* The tracer over a: accel_tracer_intersect() and accel_tracer_occluded()
+ * with a as ctx, or, where a's structure answers whole queries (the
+ * batched brute force), its own tracer_intersect and tracer_occluded with
+ * its data as ctx, which answer the same with no call in between. a must
+ * outlive it. This function can't fail. */
+tracer_t accel_tracer(const accel_t *a);
+
+/* { accel_build, accel_free, accel_tracer, accel_has_packets,
+ * accel_tracer_intersect_packet, accel_describe }. */
+extern const accel_layer_t accel_layer;
 
 #endif

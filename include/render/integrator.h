@@ -17,33 +17,7 @@
 #include "materials/radiance.h"
 #include "core/rng.h"
 #include "render/scene.h"
-
-/* How rays find surfaces: brute force over the scene's objects, or an
- * acceleration structure (ch. 7). */
-typedef struct {
-    /* Nearest hit in (tmin, tmax): fills *hit and *obj. skip: the objects
-     * the ray cannot meet, which the tracer may leave out (accel.h's
-     * accel_intersect_skip(); each entry may be NULL, and skip itself:
-     * nothing skipped). */
-    bool (*intersect)(const void *ctx, const ray_t *r, real tmin, real tmax,
-                      const COBJECT *const skip[2], hit_t *hit,
-                      const COBJECT **obj);
-    /* Any hit in (tmin, tmax) (shadow rays); skip as for intersect. */
-    bool (*occluded)(const void *ctx, const ray_t *r, real tmin, real tmax,
-                     const COBJECT *const skip[2]);
-    /* The nearest hits of n rays at once, no skip: found[i] as intersect()
-     * answers r[i], bit for bit, hit[i] and obj[i] filled on a hit
-     * (accel.h's accel_tracer_intersect_packet()). NULL where the tracer
-     * has nothing faster than intersect() ray by ray (brute force); the
-     * renderer then traces its camera rays one at a time. */
-    void (*intersect_packet)(const void *ctx, const ray_t *r, int n,
-                             real tmin, real tmax, hit_t *hit,
-                             const COBJECT **obj, bool *found);
-    const void *ctx;
-} tracer_t;
-
-/* A tracer that tests every object of s (ch. 7 starts from this). */
-tracer_t tracer_brute(const scene_t *s);
+#include "render/tracer.h"
 
 typedef struct {
     const scene_t *scene;
@@ -76,21 +50,14 @@ void integrator_init(integrator_t *it, const scene_t *s,
 RADIANCE integrator_li(const integrator_t *it, const ray_t *r, pcg32_t *g,
                        integrator_stats_t *st);
 
-/* Where the camera ray meets the scene, traced by the caller (a packet of
- * camera rays: tracer_t.intersect_packet): found, and then the hit and
- * the object, as tracer_t.intersect over (0, inf) answers. */
-typedef struct {
-    bool found;
-    hit_t hit;
-    const COBJECT *obj;
-} integrator_first_t;
-
-/* integrator_li() of a camera ray r whose first hit is *first: the same
+/* integrator_li() of a camera ray r whose nearest hit over (0, inf) the
+ * caller has found already: found, and then *hit and obj as
+ * tracer_t.intersect leaves them (read only when found). The same
  * estimate, bit for bit, and the same random numbers, without tracing r
- * (it is still counted in st->rays). This function can't fail. */
-RADIANCE integrator_li_from(const integrator_t *it, const ray_t *r,
-                            const integrator_first_t *first, pcg32_t *g,
-                            integrator_stats_t *st);
+ * again (it is still counted in st->rays). This function can't fail. */
+RADIANCE integrator_li_hit(const integrator_t *it, const ray_t *r, bool found,
+                           const hit_t *hit, const COBJECT *obj, pcg32_t *g,
+                           integrator_stats_t *st);
 
 /* The power heuristic with beta = 2 for two strategies with densities a
  * (the one used) and b: a^2 / (a^2 + b^2), computed without overflow;

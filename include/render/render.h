@@ -21,6 +21,7 @@
 #include "render/integrator.h"
 #include "render/light.h"
 #include "render/scene.h"
+#include "render/tracer.h"
 
 #define RENDER_TILE 16
 /* Camera rays go to the tracer RENDER_PACKET x RENDER_PACKET pixels at a
@@ -37,14 +38,21 @@ typedef struct {
     const scene_t *scene;
     camera_t camera;
     lightset_t lights;      /* empty (nothing allocated) without lights */
-    tracer_t tracer;
-    void *accel;            /* the acceleration structure (accel.h): brute
-                               force, or one of those the scene's
-                               features offer (the grids of ch. 7) */
-    void (*accel_free)(void *);
+    tracer_t tracer;        /* ch. 5's list of the objects, or the tracer
+                               of the acceleration layer the scene's
+                               features offer (ch. 7) */
+    const struct accel_layer *layer; /* that layer (accel.h), or NULL */
+    void *accel;            /* and the accel_t it built: brute force, or
+                               one of the structures the features offer */
+    /* The camera rays of a block of pixels at once, as accel.h's
+     * accel_tracer_intersect_packet() with accel as ctx: where the
+     * structure takes packets (the grids of ch. 7); else NULL. */
+    void (*intersect_packet)(const void *ctx, const ray_t *r, int n,
+                             real tmin, real tmax, hit_t *hit,
+                             const COBJECT **obj, bool *found);
     char accel_choice[200]; /* what was chosen for tracing, and why */
-    bool packets;           /* camera rays in packets (tracer.intersect_
-                               packet): where the scene asks for them
+    bool packets;           /* camera rays in packets (intersect_packet):
+                               where the scene asks for them
                                (scene_render_t.packets) and the structure
                                takes them; a caller may clear it to trace
                                them one at a time, for the same image */
@@ -58,7 +66,8 @@ typedef struct {
 
 /* Prepare to render scene s: the camera, the lights (only if the scene has
  * some), the tracer over the acceleration structure the scene asks for
- * among those s->features offers (scene.h; NULL: brute force), the
+ * among those s->features offers (scene.h; no acceleration layer: ch.
+ * 5's list of the objects, tracer.h), the
  * accumulation images. s must outlive r. Returns SVET_ERR_RANGE for an
  * unusable camera, SVET_ERR_UNSUPPORTED for an accel the features do not
  * offer, SVET_ERR_NOMEM. */

@@ -183,14 +183,15 @@ void scene_warn(scene_warnings_t *w, const char *fmt, ...);
 
 /* --- the optional parts a program links (ch. 7 on) ----------------------- */
 
-/* "Model only what the scene requires" holds for programs too: the grids
- * and the OBJ meshes of ch. 7 (and Part II's photon maps, media, ...) are
- * linked only by the programs that offer them, which say so by handing a
- * scene_features_t to the scene file reader (scenefile_read_with), which
- * keeps it in scene_t.features for the renderer. The svet command, the
- * fuzzers and the tests pass allparts.h's scene_features_all(); ch. 5
- * passes nothing and links neither (ch. 7's program hands grid.h's
- * grid_accels to accel.h directly). */
+/* "Model only what the scene requires" holds for programs too: the
+ * acceleration structures and the OBJ meshes of ch. 7 (and Part II's
+ * photon maps, media, ...) are linked only by the programs that offer
+ * them, which say so by handing a scene_features_t to the scene file
+ * reader (scenefile_read_with), which keeps it in scene_t.features for
+ * the renderer. The svet command, the fuzzers and the tests pass
+ * allparts.h's scene_features_all(); ch. 5 passes nothing and links none
+ * of them, tracing with its own list of the objects (tracer.h); ch. 7's
+ * program hands grid.h's grid_accels to accel.h directly. */
 
 /* One object a mesh loader made, and the material its faces asked for
  * (the OBJ file's usemtl name; NULL for faces before any usemtl). */
@@ -221,10 +222,17 @@ typedef svet_status (*scene_mesh_loader)(const char *path,
 void scene_mesh_parts_free(scene_mesh_part_t *parts, int n);
 
 struct accel_ops;
+struct accel_layer;
 
 typedef struct scene_features {
+    /* The acceleration layer of ch. 7 (accel.h's accel_layer), through
+     * which the renderer builds its tracer over the structure the scene
+     * asks for among `accels`; NULL: ch. 5's list of the objects
+     * (tracer.h's tracer_brute), and a scene may ask for no structure. */
+    const struct accel_layer *accel;
     /* The acceleration structures offered besides brute force (accel.h's
-     * accel_ops_t), NULL-terminated; NULL: brute force only. */
+     * accel_ops_t: the grids, the batched brute force), NULL-terminated;
+     * NULL: brute force only. */
     const struct accel_ops *const *accels;
     /* The `mesh` statement's loader; NULL: the statement is refused. */
     scene_mesh_loader mesh;

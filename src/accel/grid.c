@@ -236,13 +236,16 @@ static double ops_crowded(const void *v, long crowd)
 }
 
 const accel_ops_t grid_uniform_accel = {
-    ACCEL_GRID, build_uniform, ops_intersect, ops_occluded, ops_free,
-    ops_stats, ops_crowded, ops_intersect_packet
+    .kind = ACCEL_GRID, .build = build_uniform, .intersect = ops_intersect,
+    .occluded = ops_occluded, .free = ops_free, .stats = ops_stats,
+    .crowded = ops_crowded, .intersect_packet = ops_intersect_packet
 };
 
 const accel_ops_t grid_hierarchical_accel = {
-    ACCEL_HGRID, build_hierarchical, ops_intersect, ops_occluded, ops_free,
-    ops_stats, ops_crowded, ops_intersect_packet
+    .kind = ACCEL_HGRID, .build = build_hierarchical,
+    .intersect = ops_intersect, .occluded = ops_occluded, .free = ops_free,
+    .stats = ops_stats, .crowded = ops_crowded,
+    .intersect_packet = ops_intersect_packet
 };
 
 const accel_ops_t *const grid_accels[] = {

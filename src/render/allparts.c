@@ -6,11 +6,19 @@
 #include "render/allparts.h"
 
 #include "accel/accel.h"
+#include "accel/batch.h"
 #include "accel/grid.h"
 #include "mesh/objmesh.h"
 
+/* ch. 7: the batched brute force and the uniform and hierarchical grids,
+ * in the order of their kinds */
+static const accel_ops_t *const accels[] = { &batch_accel,
+                                             &grid_uniform_accel,
+                                             &grid_hierarchical_accel, NULL };
+
 static const scene_features_t all = {
-    .accels = grid_accels, /* ch. 7: the uniform and hierarchical grids */
+    .accel = &accel_layer, /* ch. 7: the acceleration layer */
+    .accels = accels,
     .mesh = objmesh_load,  /* ch. 7: OBJ files for the `mesh` statement */
 };
 

@@ -22,44 +22,6 @@
 #include "materials/material.h"
 #include "core/sample.h"
 
-/* --- brute-force tracing over the scene's objects ------------------------ */
-
-/* skip is only a hint (integrator.h): brute force tests everything */
-static bool brute_intersect(const void *ctx, const ray_t *r, real tmin,
-                            real tmax, const COBJECT *const skip[2],
-                            hit_t *hit, const COBJECT **obj)
-{
-    (void)skip;
-    const scene_t *s = ctx;
-    bool any = false;
-    for (int i = 0; i < s->nobjects; i++) {
-        if (cobject_intersect(s->objects[i], r, tmin, tmax, hit)) {
-            tmax = hit->t;
-            *obj = s->objects[i];
-            any = true;
-        }
-    }
-    return any;
-}
-
-static bool brute_occluded(const void *ctx, const ray_t *r, real tmin,
-                           real tmax, const COBJECT *const skip[2])
-{
-    (void)skip;
-    const scene_t *s = ctx;
-    hit_t h;
-    for (int i = 0; i < s->nobjects; i++)
-        if (cobject_intersect(s->objects[i], r, tmin, tmax, &h))
-            return true;
-    return false;
-}
-
-tracer_t tracer_brute(const scene_t *s)
-{
-    tracer_t t = { brute_intersect, brute_occluded, NULL, s };
-    return t;
-}
-
 /* --- helpers -------------------------------------------------------------- */
 
 void integrator_init(integrator_t *it, const scene_t *s,
@@ -148,10 +110,18 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     return rad_scale(rad_mul(f, ls.Li), scale);
 }
 
+/* The camera ray's first hit, as the caller found it
+ * (integrator_li_hit()). */
+typedef struct {
+    bool found;
+    hit_t hit;
+    const COBJECT *obj;
+} first_t;
+
 /* The camera ray's first hit: *first when the caller traced it (NULL:
  * traced here), so that both ways give the same bits. */
 static bool first_hit(const integrator_t *it, const ray_t *r,
-                      const integrator_first_t *first, hit_t *h,
+                      const first_t *first, hit_t *h,
                       const COBJECT **obj)
 {
     if (!first)
@@ -165,7 +135,7 @@ static bool first_hit(const integrator_t *it, const ray_t *r,
 }
 
 static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
-                                  const integrator_first_t *first,
+                                  const first_t *first,
                                   pcg32_t *g, integrator_stats_t *st)
 {
     hit_t h;
@@ -193,15 +163,8 @@ static RADIANCE ambient_occlusion(const integrator_t *it, const ray_t *r,
                                                                            : 1);
 }
 
-RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
-                       pcg32_t *g, integrator_stats_t *st)
-{
-    return integrator_li_from(it, camera, NULL, g, st);
-}
-
-RADIANCE integrator_li_from(const integrator_t *it, const ray_t *camera,
-                            const integrator_first_t *first, pcg32_t *g,
-                            integrator_stats_t *st)
+static RADIANCE li(const integrator_t *it, const ray_t *camera,
+                   const first_t *first, pcg32_t *g, integrator_stats_t *st)
 {
     st->paths++;
     if (it->mode == SCENE_INTEGRATOR_AO)
@@ -331,4 +294,20 @@ RADIANCE integrator_li_from(const integrator_t *it, const ray_t *camera,
             break;
     }
     return L;
+}
+
+RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,
+                       pcg32_t *g, integrator_stats_t *st)
+{
+    return li(it, camera, NULL, g, st);
+}
+
+RADIANCE integrator_li_hit(const integrator_t *it, const ray_t *camera,
+                           bool found, const hit_t *hit, const COBJECT *obj,
+                           pcg32_t *g, integrator_stats_t *st)
+{
+    first_t first = { found, { 0, 0, { 0, 0, 0 } }, obj };
+    if (found)
+        first.hit = *hit;
+    return li(it, camera, &first, g, st);
 }

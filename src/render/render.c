@@ -17,9 +17,50 @@
 #include <omp.h>
 #endif
 
-static void accel_release(void *a)
+/* The tracer of r: through the acceleration layer of ch. 7 where the
+ * program offers it (s->features->accel: the grids and the batched brute
+ * force in the svet command), which builds the scene's choice among the
+ * structures offered (AUTO picks brute force for a few primitives and a
+ * grid only when there are many: accel.h); else ch. 5's list of the
+ * objects (tracer.h), and the scene may ask for nothing else. */
+static svet_status tracer_init(render_t *r, const scene_t *s,
+                               svet_error *err)
 {
-    accel_free(a);
+    const accel_layer_t *L = s->features ? s->features->accel : NULL;
+    const accel_kind kind = (accel_kind)s->render.accel;
+    if (!L) {
+        if (kind != ACCEL_AUTO && kind != ACCEL_BRUTE)
+            return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                                  "accel %s: this program was built "
+                                  "without %s", accel_kind_name(kind),
+                                  accel_kind_needs(kind));
+        r->tracer = tracer_brute(s);
+        snprintf(r->accel_choice, sizeof r->accel_choice,
+                 "brute (the list of %d objects of ch. 5)", s->nobjects);
+        return SVET_OK;
+    }
+    /* every number 0: its default (accel_params_default()) */
+    accel_params_t ap = { .kind = kind, .structures = s->features->accels };
+    accel_t *a = NULL;
+    svet_status st = L->build(&a, s->objects, s->nobjects, &ap, err);
+    if (st != SVET_OK)
+        return st;
+    r->layer = L;
+    r->accel = a;
+    r->tracer = L->tracer(a);
+    /* packets of camera rays only where the structure is faster with
+     * them: brute force (the Cornell box) keeps the per-pixel loop */
+    if (L->has_packets(a))
+        r->intersect_packet = L->intersect_packet;
+    r->packets = s->render.packets && r->intersect_packet;
+    if (r->packets)
+        snprintf(r->accel_choice, sizeof r->accel_choice,
+                 "%s; camera rays in packets of %d x %d", L->describe(a),
+                 RENDER_PACKET, RENDER_PACKET);
+    else
+        snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
+                 L->describe(a));
+    return SVET_OK;
 }
 
 svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
@@ -41,38 +82,11 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
         if (st != SVET_OK)
             return st;
     }
-    /* The scene's choice of acceleration structure among those the
-     * program offers (s->features: the grids in the svet command, none in
-     * ch. 5); AUTO picks brute force for a few primitives and a grid only
-     * when there are many (accel.h) */
-    accel_params_t ap;
-    accel_params_default(&ap);
-    ap.kind = (accel_kind)s->render.accel;
-    ap.structures = s->features ? s->features->accels : NULL;
-    accel_t *a = NULL;
-    st = accel_build(&a, s->objects, s->nobjects, &ap, err);
+    st = tracer_init(r, s, err);
     if (st != SVET_OK) {
         render_free(r);
         return st;
     }
-    r->accel = a;
-    r->accel_free = accel_release;
-    /* the tracer over the acceleration structure (ch. 7) */
-    r->tracer.intersect = accel_tracer_intersect;
-    r->tracer.occluded = accel_tracer_occluded;
-    r->tracer.ctx = a;
-    /* packets of camera rays only where the structure is faster with
-     * them: brute force (the Cornell box) keeps the per-pixel loop */
-    if (accel_has_packets(a))
-        r->tracer.intersect_packet = accel_tracer_intersect_packet;
-    r->packets = s->render.packets && r->tracer.intersect_packet;
-    if (r->packets)
-        snprintf(r->accel_choice, sizeof r->accel_choice,
-                 "%s; camera rays in packets of %d x %d", accel_describe(a),
-                 RENDER_PACKET, RENDER_PACKET);
-    else
-        snprintf(r->accel_choice, sizeof r->accel_choice, "%s",
-                 accel_describe(a));
     integrator_init(&r->integrator, s, &r->lights, r->tracer);
     st = image_accum_alloc(&r->acc, c->width, c->height, err);
     if (st != SVET_OK) {
@@ -90,8 +104,8 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
 void render_free(render_t *r)
 {
     lightset_free(&r->lights);
-    if (r->accel && r->accel_free)
-        r->accel_free(r->accel);
+    if (r->accel && r->layer)
+        r->layer->free(r->accel);
     image_accum_free(&r->acc);
     free(r->sum2);
     memset(r, 0, sizeof *r);
@@ -142,7 +156,7 @@ static void pixels_one_by_one(render_t *r, int x0, int y0, int x1, int y1,
 
 /* The same, with the camera rays of each sample of each block of
  * RENDER_PACKET x RENDER_PACKET pixels traced at once
- * (tracer.intersect_packet: one walk of the grid for them all). A pixel
+ * (intersect_packet: one walk of the grid for them all). A pixel
  * still adds its samples in index order and each sample draws its own
  * numbers, and the packet gives each ray the hit it would find alone, so
  * the image is pixels_one_by_one()'s, bit for bit. */
@@ -155,7 +169,6 @@ static void pixels_in_packets(render_t *r, int x0, int y0, int x1, int y1,
     hit_t hit[N];
     const COBJECT *obj[N];
     bool found[N];
-    const tracer_t *t = &r->tracer;
     for (int by = y0; by < y1; by += RENDER_PACKET)
         for (int bx = x0; bx < x1; bx += RENDER_PACKET) {
             int bx1 = bx + RENDER_PACKET < x1 ? bx + RENDER_PACKET : x1;
@@ -165,23 +178,19 @@ static void pixels_in_packets(render_t *r, int x0, int y0, int x1, int y1,
                 for (int y = by; y < by1; y++)
                     for (int x = bx; x < bx1; x++, n++)
                         camera_sample(r, x, y, s, &g[n], &ray[n]);
-                t->intersect_packet(t->ctx, ray, n, 0, (real)INFINITY, hit,
+                r->intersect_packet(r->accel, ray, n, 0, (real)INFINITY, hit,
                                     obj, found);
                 n = 0;
                 for (int y = by; y < by1; y++)
                     for (int x = bx; x < bx1; x++, n++) {
                         /* hit[n], obj[n] were written only on a hit,
                          * and are read only then */
-                        integrator_first_t first;
-                        first.found = found[n];
-                        if (found[n]) {
-                            first.hit = hit[n];
-                            first.obj = obj[n];
-                        }
                         accumulate(r, x, y,
-                                   integrator_li_from(&r->integrator,
-                                                      &ray[n], &first,
-                                                      &g[n], st));
+                                   integrator_li_hit(&r->integrator,
+                                                     &ray[n], found[n],
+                                                     &hit[n],
+                                                     found[n] ? obj[n] : NULL,
+                                                     &g[n], st));
                     }
             }
         }
@@ -217,7 +226,7 @@ static long pass(render_t *r, long spp_end, int threads,
         int x0 = (int)(t % tx) * RENDER_TILE, y0 = (int)(t / tx) * RENDER_TILE;
         int x1 = x0 + RENDER_TILE < W ? x0 + RENDER_TILE : W;
         int y1 = y0 + RENDER_TILE < H ? y0 + RENDER_TILE : H;
-        if (r->packets && r->tracer.intersect_packet)
+        if (r->packets && r->intersect_packet)
             pixels_in_packets(r, x0, y0, x1, y1, s0, spp_end, &st);
         else
             pixels_one_by_one(r, x0, y0, x1, y1, s0, spp_end, &st);

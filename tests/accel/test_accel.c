@@ -13,6 +13,7 @@
  */
 #include "testutil.h"
 #include "accel/accel.h"
+#include "accel/batch.h"
 #include "accel/grid.h"
 #include "geometry/box.h"
 #include "geometry/cone.h"
@@ -35,12 +36,17 @@
 /* The structures compared with brute force through primset_test() alone
  * (kind 0): the defaults, grids made coarse, fine and deep so that every
  * path of the build and the walk runs (few and many primitives per cell,
- * nested child grids), and brute force with its fast path over analytic
- * primitives (kind 6). */
+ * nested child grids), and the batched brute force over analytic
+ * primitives (kind 6; batch.h). */
+/* Every structure, as the svet command offers them (allparts.c). */
+static const accel_ops_t *const all_accels[] = {
+    &batch_accel, &grid_uniform_accel, &grid_hierarchical_accel, NULL
+};
+
 static void kind_params(int k, accel_params_t *p)
 {
     accel_params_default(p);
-    p->structures = grid_accels;
+    p->structures = all_accels;
     switch (k) {
     case 0: p->kind = ACCEL_BRUTE; p->brute_generic = true; break;
     case 6: p->kind = ACCEL_BRUTE; break;
@@ -911,7 +917,9 @@ static long skip_rays(scene_t_ *s, pcg32_t *g, int count, real scale)
 {
     accel_t *a;
     svet_error e;
-    ck_assert(accel_build(&a, s->objs, s->n, NULL, &e) == SVET_OK);
+    accel_params_t p;
+    kind_params(6, &p); /* the batched brute force, which skips */
+    ck_assert(accel_build(&a, s->objs, s->n, &p, &e) == SVET_OK);
     long rays = 0;
     for (int i = 0; i < count; i++) {
         ray_t r;
@@ -1039,8 +1047,8 @@ END_TEST
 #ifdef SVET_SIMD
 START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
 {
-    /* Brute force tests the transformed boxes' culling spheres a vector
-     * at a time (accel.c, spheres_passed()); each answer must be
+    /* The batched brute force tests the transformed boxes' culling
+     * spheres a vector at a time (batch.c, spheres_passed()); each answer must be
      * xform_sphere_misses_ray()'s for that sphere. Eleven boxes under
      * random maps (more than one vector, a part-filled last one) among
      * other objects; rays whose line passes a sphere's centre at
@@ -1079,8 +1087,10 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
         }
     }
     ck_assert_int_eq(n, 13);
-    accel_t *a;
-    ck_assert(accel_build(&a, objs, n, NULL, &e) == SVET_OK);
+    primset_t ps;
+    void *a;
+    ck_assert(primset_build(&ps, objs, n, &e) == SVET_OK);
+    ck_assert(batch_accel.build(&a, &ps, NULL, &e) == SVET_OK);
     long cases = 0, passed = 0;
     for (int i = 0; i < 200000; i++) {
         ray_t r;
@@ -1143,7 +1153,7 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
         }
         xform_sphere_ray_t rs;
         xform_sphere_ray(&r, &rs);
-        uint64_t got = accel_spheres_passed(a, &r);
+        uint64_t got = batch_spheres_passed(a, &r);
         for (int k = 0; k < nsph; k++, cases++) {
             bool pass = !xform_sphere_misses_ray(&sp[k], &r, &rs);
             ck_assert_msg(((got >> k) & 1) == pass, "ray %d sphere %d", i, k);
@@ -1154,7 +1164,8 @@ START_TEST(vector_sphere_test_answers_as_each_sphere_bit_for_bit)
     ck_assert(passed > cases / 50 && passed < cases - cases / 50);
     test_report_cases("vector_sphere_test_answers_as_each_sphere_bit_for_bit",
                       cases);
-    accel_free(a);
+    batch_accel.free(a);
+    primset_free(&ps);
     for (int i = 0; i < n; i++)
         cobject_free(objs[i]);
 }

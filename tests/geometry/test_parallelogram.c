@@ -225,7 +225,7 @@ static bool same_hit(const hit_t *a, const hit_t *b)
 }
 
 #ifdef SVET_SIMD
-/* o's intersect() the way brute force's fast path makes it (accel.c):
+/* o's intersect() the way the batched brute force makes it (batch.c):
  * the early rejections from a batch (of o alone, or of o among others at
  * bit i), then the watertight test on a ray prepared apart. */
 static bool via_batch(const parallelogram_batch_t *batch, int i,

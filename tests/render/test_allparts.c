@@ -1,11 +1,13 @@
 /*
  * test_allparts.c - the list of every optional part (allparts.h): it
- * offers both grids of ch. 7, in the order of their kinds, and the OBJ
- * loader, so that a scene read with it may use `mesh` and every `accel`.
+ * offers the acceleration layer of ch. 7 with the batched brute force and
+ * both grids, in the order of their kinds, and the OBJ loader, so that a
+ * scene read with it may use `mesh` and every `accel`.
  * (Without it: tests/render/test_scenefile.c, test_render.c, test_accel.c.)
  */
 #include "testutil.h"
 #include "accel/accel.h"
+#include "accel/batch.h"
 #include "render/allparts.h"
 #include "accel/grid.h"
 #include "mesh/objmesh.h"
@@ -14,28 +16,42 @@
 
 #include <string.h>
 
-START_TEST(all_parts_offer_both_grids_and_the_obj_loader)
+START_TEST(all_parts_offer_every_structure_and_the_obj_loader)
 {
     const scene_features_t *f = scene_features_all();
     ck_assert_ptr_nonnull(f);
     ck_assert(f == scene_features_all());
     ck_assert(f->mesh == objmesh_load);
-    ck_assert(f->accels == grid_accels);
+    ck_assert(f->accel == &accel_layer);
     int n = 0;
     while (f->accels[n])
         n++;
-    ck_assert_int_eq(n, 2);
+    ck_assert_int_eq(n, 3);
+    ck_assert(accel_offered(f->accels, ACCEL_BRUTE) == &batch_accel);
     ck_assert(accel_offered(f->accels, ACCEL_GRID) == &grid_uniform_accel);
     ck_assert(accel_offered(f->accels, ACCEL_HGRID) ==
               &grid_hierarchical_accel);
-    ck_assert(accel_offered(f->accels, ACCEL_BRUTE) == NULL);
     ck_assert(accel_offered(NULL, ACCEL_GRID) == NULL);
-    /* every table is complete: accel.c calls them without checking */
+    /* in the order of their kinds */
+    for (int i = 0; i < n; i++)
+        ck_assert_int_eq(f->accels[i]->kind, ACCEL_BRUTE + i);
+    /* every table is complete: accel.c calls them without checking; a
+     * structure answers whole queries or those over the bounded
+     * primitives, and AUTO asks the grids how crowded they are */
     for (int i = 0; i < n; i++) {
         const accel_ops_t *o = f->accels[i];
-        ck_assert(o->build && o->intersect && o->occluded && o->free &&
-                  o->stats && o->crowded);
+        ck_assert(o->build && o->free && o->stats);
+        ck_assert((o->tracer_intersect && o->tracer_occluded) ||
+                  (o->intersect && o->occluded));
+        if (o->kind != ACCEL_BRUTE)
+            ck_assert(o->crowded && o->intersect && o->occluded);
     }
+    /* the layer's table is complete */
+    const accel_layer_t *L = f->accel;
+    ck_assert(L->build == accel_build && L->free == accel_free &&
+              L->tracer == accel_tracer && L->has_packets == accel_has_packets &&
+              L->intersect_packet == accel_tracer_intersect_packet &&
+              L->describe == accel_describe);
 }
 END_TEST
 
@@ -86,7 +102,7 @@ Suite *test_suite(void)
 {
     Suite *s = suite_create("allparts");
     TCase *tc = tcase_create("allparts");
-    tcase_add_test(tc, all_parts_offer_both_grids_and_the_obj_loader);
+    tcase_add_test(tc, all_parts_offer_every_structure_and_the_obj_loader);
     tcase_add_test(tc, a_mesh_scene_renders_alike_with_every_accel_offered);
     suite_add_tcase(s, tc);
     return s;

@@ -103,8 +103,8 @@ START_TEST(without_grids_auto_renders_with_brute_force_the_same_image)
     ck_assert(s.features == NULL); /* a program of ch. 5 */
     render_t brute, grid;
     ck_assert_int_eq(render_init(&brute, &s, NULL), SVET_OK);
-    ck_assert_str_eq(brute.accel_choice, "brute (auto: 33 primitives; this "
-                                         "program offers no grid)");
+    ck_assert_str_eq(brute.accel_choice, "brute (the list of 33 objects of "
+                                         "ch. 5)");
     /* asking for a grid there fails, and says what to link */
     s.render.accel = SCENE_ACCEL_GRID;
     render_t r;
@@ -185,10 +185,9 @@ START_TEST(packets_of_camera_rays_render_the_same_image)
                           "%s", pk.accel_choice);
             one.packets = false;
             /* every camera ray goes through the packets, once, or none */
-            ck_assert(pk.tracer.intersect_packet ==
-                      accel_tracer_intersect_packet);
-            pk.tracer.intersect_packet = counted_packet;
-            one.tracer.intersect_packet = counted_packet;
+            ck_assert(pk.intersect_packet == accel_tracer_intersect_packet);
+            pk.intersect_packet = counted_packet;
+            one.intersect_packet = counted_packet;
             packet_rays = 0;
             render_pass(&pk, 3, 2, NULL, NULL);
             render_pass(&pk, 5, 1, NULL, NULL);
