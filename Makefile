@@ -106,7 +106,7 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 
 .SECONDARY:
 
-.PHONY: all lib test check-tags check-links sanitize chapters figures \
+.PHONY: all lib test test-images check-tags check-links sanitize chapters figures \
         vectors noise-vectors check-vectors cc-lines clean install uninstall \
         help bench $(BENCHES)
 
@@ -164,6 +164,14 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 # scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
 test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
+
+# `make test-images`: the suites that render or trace whole scenes (the
+# renderer, the references' Z-tests, the tracers, the grids, svet render),
+# e.g. `make SIMD=off test-images` for the plain build in CI.
+IMAGE_TESTS := $(filter %/test_render %/test_reference %/test_tracer \
+                 %/test_grid %/test_batch %/test_cmd_render,$(TESTS))
+test-images: $(IMAGE_TESTS) $(if $(SVET_MAIN),$(BUILD)/svet)
+	@REAL=$(REAL)$(if $(SIMDDEF),,-plain) sh tools/run-tests.sh $(IMAGE_TESTS)
 
 # The book's equations tagged in the code as "eq. (N.M)", every one listed
 # in tools/eq-tags.txt; and every path a Markdown file names exists.
@@ -437,6 +445,7 @@ clean:
 help:
 	@echo "make                 library, chapter programs and the svet command"
 	@echo "make test            every unit suite (REAL=double for the double build)"
+	@echo "make test-images     the suites that render whole scenes (e.g. SIMD=off)"
 	@echo "make sanitize        every suite under ASan and UBSan"
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
