@@ -428,11 +428,21 @@ static svet_status batch_build(void **out, const primset_t *ps,
     if (ps->ntri != 0)
         return svet_error_set(err, SVET_ERR_UNSUPPORTED,
                               "brute: the batch takes no mesh triangles");
+#ifndef SVET_SIMD
+    /* the batch is made of the speed layers (the parallelograms' early
+     * rejections, the culling spheres): the plain build has none, and
+     * brute force is primset_test()'s, which answers the same */
+    (void)ps;
+    return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                          "brute: the batch is a speed layer, and this build "
+                          "(SIMD=off) has none");
+#else
     brute_t *b = brute_new(ps);
     if (!b)
         return svet_error_set(err, SVET_ERR_NOMEM, "brute: out of memory");
     *out = b;
     return SVET_OK;
+#endif
 }
 
 static void batch_free(void *s)

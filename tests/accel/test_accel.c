@@ -40,7 +40,10 @@
  * primitives (kind 6; batch.h). */
 /* Every structure, as the svet command offers them (allparts.c). */
 static const accel_ops_t *const all_accels[] = {
-    &batch_accel, &grid_uniform_accel, &grid_hierarchical_accel, NULL
+#ifdef SVET_SIMD
+    &batch_accel, /* a speed layer: not in the plain build */
+#endif
+    &grid_uniform_accel, &grid_hierarchical_accel, NULL
 };
 
 static void kind_params(int k, accel_params_t *p)

@@ -241,8 +241,13 @@ START_TEST(the_list_answers_as_every_structure_bit_for_bit)
         /* the batch is what the svet command's brute force is, except
          * over a mesh, which it leaves to primset_test() */
         accel_t *a = build(&s, ACCEL_BRUTE, false);
+#ifdef SVET_SIMD
         ck_assert((accel_tracer(a).intersect == accel_tracer_intersect) ==
                   (sc % 4 == 3));
+#else
+        /* no batch in the plain build: primset_test() is brute force */
+        ck_assert(accel_tracer(a).intersect == accel_tracer_intersect);
+#endif
         accel_free(a);
         queries += compare_on(&s, &g, 1500, &ties);
         scene_free(&s);
