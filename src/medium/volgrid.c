@@ -7,7 +7,6 @@
 #include "io/fileio.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -99,50 +98,21 @@ static void put_le32(unsigned char *b, uint32_t u)
     b[3] = (unsigned char)(u >> 24);
 }
 
-/* Open path for reading, refusing what is not a regular file: O_NONBLOCK
- * so that opening a FIFO does not wait for a writer. */
-static FILE *open_regular(const char *path, long long *size, svet_error *err)
-{
-    int fd = open(path, O_RDONLY | O_NONBLOCK);
-    if (fd < 0) {
-        svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                       strerror(errno));
-        return NULL;
-    }
-    struct stat st;
-    if (fstat(fd, &st) != 0) {
-        svet_error_set(err, SVET_ERR_IO, "%s: cannot read: %s", path,
-                       strerror(errno));
-        close(fd);
-        return NULL;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        svet_error_set(err, SVET_ERR_IO, "%s: not a regular file (%s)", path,
-                       S_ISDIR(st.st_mode)    ? "a directory"
-                       : S_ISFIFO(st.st_mode) ? "a FIFO"
-                                              : "a device or socket");
-        close(fd);
-        return NULL;
-    }
-    FILE *f = fdopen(fd, "rb");
-    if (!f) {
-        svet_error_set(err, SVET_ERR_IO, "%s: cannot open: %s", path,
-                       strerror(errno));
-        close(fd);
-        return NULL;
-    }
-    *size = (long long)st.st_size;
-    return f;
-}
-
 svet_status volgrid_read(volgrid_t *g, const char *path, size_t max_values,
                          svet_error *err)
 {
     memset(g, 0, sizeof *g);
-    long long size;
-    FILE *f = open_regular(path, &size, err);
-    if (!f)
-        return SVET_ERR_IO;
+    FILE *f;
+    svet_status ost = fileio_open_read(path, &f, err); /* regular files only */
+    if (ost != SVET_OK)
+        return ost;
+    struct stat sb;
+    if (fstat(fileno(f), &sb) != 0) {
+        fclose(f);
+        return svet_error_set(err, SVET_ERR_IO, "%s: cannot read: %s", path,
+                              strerror(errno));
+    }
+    long long size = (long long)sb.st_size;
     unsigned char h[VOLGRID_HEADER_BYTES];
     svet_status st = SVET_OK;
     if (fread(h, 1, sizeof h, f) != sizeof h) {

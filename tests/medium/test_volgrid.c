@@ -171,10 +171,10 @@ START_TEST(malformed_files_are_refused_with_their_reason)
     /* missing, a directory, a FIFO (which must not block) */
     snprintf(p, sizeof p, "%s/missing.vol", dir);
     expect_refusal(p, VOLGRID_DEFAULT_MAX_VALUES, "cannot open");
-    expect_refusal(dir, VOLGRID_DEFAULT_MAX_VALUES, "a directory");
+    expect_refusal(dir, VOLGRID_DEFAULT_MAX_VALUES, "is a directory");
     snprintf(p, sizeof p, "%s/fifo.vol", dir);
     ck_assert_int_eq(mkfifo(p, 0600), 0);
-    expect_refusal(p, VOLGRID_DEFAULT_MAX_VALUES, "a FIFO");
+    expect_refusal(p, VOLGRID_DEFAULT_MAX_VALUES, "is a FIFO");
     remove_dir();
 }
 END_TEST
