@@ -37,7 +37,7 @@ typedef struct {
 
 #define NOISE_MAX_OCTAVES 32
 
-/* Two octaves' default: 6 octaves, lacunarity 2, gain 0.5. */
+/* The default octaves: 6 of them, lacunarity 2, gain 0.5. */
 noise_octaves_t noise_octaves_default(void);
 
 /* The fractal sum sum_i gain^i noise(lacunarity^i p), and its gradient in
