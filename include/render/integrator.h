@@ -33,7 +33,7 @@ typedef struct {
 } integrator_t;
 
 /* Per-thread counters. */
-typedef struct {
+typedef struct integrator_stats {
     uint64_t rays;        /* every ray traced: camera, bounce and shadow */
     uint64_t paths;
 } integrator_stats_t;

@@ -34,7 +34,7 @@
 typedef void (*render_progress_fn)(void *ctx, long tiles_done,
                                    long tiles_total);
 
-typedef struct {
+typedef struct render {
     const scene_t *scene;
     camera_t camera;
     lightset_t lights;      /* empty (nothing allocated) without lights */
@@ -62,6 +62,12 @@ typedef struct {
                                samples, for the variance of the mean */
     long spp_done;          /* samples [0, spp_done) of every pixel are in */
     integrator_stats_t stats;
+    /* The scene's rendering method of Part II (scenepart.h: `render
+     * integrator photon`) and its state after prepare; NULL: the
+     * integrator of ch. 5 */
+    const struct render_method *method;
+    void *method_state;
+    svet_error error;       /* render_pass()'s failure, when it fails */
 } render_t;
 
 /* Prepare to render scene s: the camera, the lights (only if the scene has
@@ -74,10 +80,13 @@ typedef struct {
 svet_status render_init(render_t *r, const scene_t *s, svet_error *err);
 
 /* Add samples [spp_done, spp_end) to every pixel with `threads` threads
- * (0 = all cores), calling progress (may be NULL) after each tile. This
- * function can't fail. */
-void render_pass(render_t *r, long spp_end, int threads,
-                 render_progress_fn progress, void *ctx);
+ * (0 = all cores), calling progress (may be NULL) after each tile. With
+ * the integrators of ch. 5 this can't fail; a rendering method of Part II
+ * (r->method) may fail in its begin_pass (out of memory for a new photon
+ * map): then nothing is added, and the status is returned with its
+ * message in r->error. */
+svet_status render_pass(render_t *r, long spp_end, int threads,
+                        render_progress_fn progress, void *ctx);
 
 /* render_pass(), given up as soon as *stop is non-zero (a signal handler
  * sets it; read between tiles, so within one tile's samples of it): the

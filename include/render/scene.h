@@ -130,8 +130,11 @@ typedef struct {
                               where the structure takes them (the grids of
                               ch. 7); off: one at a time. The image is the
                               same bit for bit */
-    /* -- later chapters put their settings below, each in its own
-     *    struct: photon maps (ch. 8), the irradiance cache (ch. 9). -- */
+    /* A rendering method of Part II (scenepart.h), chosen with `render
+     * integrator NAME` among those the features' parts offer; NULL: the
+     * integrator above. Its own settings are its part's data
+     * (scene_part_data). Borrowed from the part */
+    const struct render_method *method;
 } scene_render_t;
 
 /* --- lights (ch. 5) ------------------------------------------------------ */
@@ -236,8 +239,10 @@ typedef struct scene_features {
     const struct accel_ops *const *accels;
     /* The `mesh` statement's loader; NULL: the statement is refused. */
     scene_mesh_loader mesh;
-    /* -- Part II adds its parts here: photon maps (ch. 8), media (ch. 11),
-     *    ... and allparts.c one line each. -- */
+    /* The parts of Part II offered (scenepart.h: photon maps, the
+     * irradiance cache, textures, media), NULL-terminated; NULL: none.
+     * Each brings its statements and rendering methods. */
+    const struct scene_part *const *parts;
 } scene_features_t;
 
 /* --- the scene ----------------------------------------------------------- */
@@ -279,9 +284,10 @@ typedef struct {
 
     scene_warnings_t warnings;  /* what the reader found worth telling */
 
-    /* -- later chapters add their parts below: textures (ch. 10), media
-     *    (ch. 11), sky and sun (ch. 12), smoke grids (ch. 13). The scene
-     *    file parser rejects their keywords until they exist. -- */
+    /* What the parts of Part II keep (scenepart.h's scene_part_data):
+     * textures (ch. 10), media (ch. 11), their settings. Owned */
+    struct scene_part_slot *part_data;
+    int npart_data;
 } scene_t;
 
 /* Set s to an empty scene with the defaults of scenes/README.md: camera at

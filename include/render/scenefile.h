@@ -62,7 +62,10 @@ svet_status scenefile_parse(scene_t *s, const char *text, size_t len,
  * validation the file gets. Keys: spp, maxdepth, seed, integrator,
  * ao_distance, roulette, roulette_depth, threads, time_limit, passes,
  * checkpoint, accel, packets, width, height, resolution (WxH), fov, fov_axis,
- * exr, png, tonemap, exposure, key, white, bias, curve, gamma. Returns
+ * exr, png, tonemap, exposure, key, white, bias, curve, gamma; and
+ * STATEMENT.KEY for the settings statements of the parts the scene's
+ * features offer (scenepart.h: photonmap.k=50 is the line
+ * "photonmap k 50"). Returns
  * SVET_OK, or SVET_ERR_PARSE / SVET_ERR_RANGE with "override 'spp=x': ..."
  * in err (SVET_ERR_UNSUPPORTED for an accel that s->features does not
  * offer); on failure s is unchanged. */

@@ -9,6 +9,7 @@
 #include "accel/batch.h"
 #include "accel/grid.h"
 #include "mesh/objmesh.h"
+#include "render/scenepart.h"
 
 /* ch. 7: the batched brute force and the uniform and hierarchical grids,
  * in the order of their kinds */
@@ -16,10 +17,15 @@ static const accel_ops_t *const accels[] = { &batch_accel,
                                              &grid_uniform_accel,
                                              &grid_hierarchical_accel, NULL };
 
+/* Part II: photon maps (ch. 8), the irradiance cache (ch. 9), textures
+ * (ch. 10), media (ch. 11), each a scenepart.h scene_part_t */
+static const scene_part_t *const parts[] = { NULL };
+
 static const scene_features_t all = {
     .accel = &accel_layer, /* ch. 7: the acceleration layer */
     .accels = accels,
     .mesh = objmesh_load,  /* ch. 7: OBJ files for the `mesh` statement */
+    .parts = parts,
 };
 
 const scene_features_t *scene_features_all(void)

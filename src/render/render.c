@@ -8,6 +8,7 @@
 #include "render/render.h"
 
 #include "accel/accel.h"
+#include "render/scenepart.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,6 +89,18 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
         return st;
     }
     integrator_init(&r->integrator, s, &r->lights, r->tracer);
+    /* a rendering method of Part II (scenepart.h): its pre-pass now,
+     * camera rays one at a time (it traces them itself) */
+    if (s->render.method) {
+        r->method = s->render.method;
+        r->packets = false;
+        st = r->method->prepare(&r->method_state, r, s->render.threads, err);
+        if (st != SVET_OK) {
+            r->method_state = NULL;
+            render_free(r);
+            return st;
+        }
+    }
     st = image_accum_alloc(&r->acc, c->width, c->height, err);
     if (st != SVET_OK) {
         render_free(r);
@@ -106,6 +119,8 @@ void render_free(render_t *r)
     lightset_free(&r->lights);
     if (r->accel && r->layer)
         r->layer->free(r->accel);
+    if (r->method && r->method->free)
+        r->method->free(r->method_state);
     image_accum_free(&r->acc);
     free(r->sum2);
     memset(r, 0, sizeof *r);
@@ -128,6 +143,8 @@ RADIANCE render_sample(const render_t *r, int x, int y, long sample,
     pcg32_t g;
     ray_t ray;
     camera_sample(r, x, y, sample, &g, &ray);
+    if (r->method)
+        return r->method->li(r->method_state, r, &ray, sample, &g, st);
     return integrator_li(&r->integrator, &ray, &g, st);
 }
 
@@ -250,10 +267,24 @@ static long pass(render_t *r, long spp_end, int threads,
     return skipped;
 }
 
-void render_pass(render_t *r, long spp_end, int threads,
-                 render_progress_fn progress, void *ctx)
+/* A method's begin_pass for samples [spp_done, spp_end), if it has one. */
+static svet_status begin_pass(render_t *r, long spp_end, int threads,
+                              svet_error *err)
 {
+    if (!r->method || !r->method->begin_pass || spp_end <= r->spp_done)
+        return SVET_OK;
+    return r->method->begin_pass(r->method_state, r, r->spp_done, spp_end,
+                                 threads, err);
+}
+
+svet_status render_pass(render_t *r, long spp_end, int threads,
+                        render_progress_fn progress, void *ctx)
+{
+    svet_status st = begin_pass(r, spp_end, threads, &r->error);
+    if (st != SVET_OK)
+        return st;
     pass(r, spp_end, threads, progress, ctx, NULL);
+    return SVET_OK;
 }
 
 svet_status render_pass_until(render_t *r, long spp_end, int threads,
@@ -275,6 +306,14 @@ svet_status render_pass_until(render_t *r, long spp_end, int threads,
         free(count);
         free(nonfinite);
         return svet_error_set(err, SVET_ERR_NOMEM, "render: out of memory");
+    }
+    svet_status st = begin_pass(r, spp_end, threads, err);
+    if (st != SVET_OK) {
+        free(sum);
+        free(sum2);
+        free(count);
+        free(nonfinite);
+        return st;
     }
     memcpy(sum, r->acc.sum, 3 * n * sizeof *sum);
     memcpy(sum2, r->sum2, 3 * n * sizeof *sum2);

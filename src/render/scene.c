@@ -5,12 +5,20 @@
  * Tests: tests/render/test_scene.c
  */
 #include "render/scene.h"
+#include "render/scenepart.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "materials/material.h"
+
+/* One part's data (scenepart.h): its name is a string of the part's. */
+struct scene_part_slot {
+    const char *name;           /* the part's name: a string of the part's */
+    void *data;
+    void (*free_fn)(void *);
+};
 
 void scene_init(scene_t *s)
 {
@@ -72,7 +80,58 @@ void scene_free(scene_t *s)
     free(s->render.output_exr);
     free(s->render.output_png);
     free(s->path);
+    for (int i = 0; i < s->npart_data; i++)
+        if (s->part_data[i].free_fn)
+            s->part_data[i].free_fn(s->part_data[i].data);
+    free(s->part_data);
     scene_init(s);
+}
+
+/* --- the parts of Part II (scenepart.h) ----------------------------------- */
+
+void *scene_part_data(const scene_t *s, const char *name)
+{
+    for (int i = 0; i < s->npart_data; i++)
+        if (strcmp(s->part_data[i].name, name) == 0)
+            return s->part_data[i].data;
+    return NULL;
+}
+
+svet_status scene_set_part_data(scene_t *s, const char *name, void *data,
+                                void (*free_fn)(void *), svet_error *err)
+{
+    for (int i = 0; i < s->npart_data; i++)
+        if (strcmp(s->part_data[i].name, name) == 0) {
+            if (s->part_data[i].free_fn && s->part_data[i].data != data)
+                s->part_data[i].free_fn(s->part_data[i].data);
+            s->part_data[i].data = data;
+            s->part_data[i].free_fn = free_fn;
+            return SVET_OK;
+        }
+    struct scene_part_slot *p =
+        realloc(s->part_data, (size_t)(s->npart_data + 1) * sizeof *p);
+    if (!p) {
+        if (free_fn)
+            free_fn(data);
+        return svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
+    }
+    s->part_data = p;
+    p[s->npart_data++] = (struct scene_part_slot){ name, data, free_fn };
+    return SVET_OK;
+}
+
+const render_method_t *scene_find_method(const scene_features_t *features,
+                                         const char *name)
+{
+    if (!features || !features->parts)
+        return NULL;
+    for (int i = 0; features->parts[i]; i++) {
+        const render_method_t *const *m = features->parts[i]->methods;
+        for (int j = 0; m && m[j]; j++)
+            if (strcmp(m[j]->name, name) == 0)
+                return m[j];
+    }
+    return NULL;
 }
 
 void scene_warn(scene_warnings_t *w, const char *fmt, ...)

@@ -6,6 +6,7 @@
  * Tests: tests/render/test_scenefile.c; fuzzing: fuzz/fuzz_scene.c
  */
 #include "render/scenefile.h"
+#include "render/scenepart.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -44,55 +45,8 @@
  * of a million numbers costs no memory. */
 #define MAX_TOKENS 4096
 
-/* A token of a line: a word, or a "quoted string" without its quotes. */
-typedef struct {
-    const char *s; /* first byte (not NUL-terminated) */
-    int len;
-    int col;       /* 1-based column of its first byte (of the quote) */
-    bool quoted;
-} tok_t;
-
-/* What a key's values look like. */
-typedef enum {
-    V_NUM,       /* one number */
-    V_INT,       /* a whole number in [lo, hi] */
-    V_U64,       /* a whole number 0 .. 2^64 - 1 */
-    V_VEC3,      /* three numbers */
-    V_COLOUR,    /* one number (grey) or three (RGB), each >= 0 */
-    V_WORD,      /* one of `choices` */
-    V_STRING,    /* a word or a quoted string (a file name) */
-    V_FLAG,      /* no value: present or not */
-    V_ONOFF,     /* on or off */
-    V_SCALE,     /* transforms: repeatable, applied in written order */
-    V_ROTATE,
-    V_TRANSLATE
-} vtype;
-
-enum {
-    F_REQUIRED = 1, /* the statement needs this key */
-    F_POSITIVE = 2, /* the number must be > 0 */
-    F_NONNEG = 4,   /* the number must be >= 0 */
-    F_NONZERO = 8   /* the vector must not be zero */
-};
-
-typedef struct {
-    const char *key;
-    vtype type;
-    int flags;
-    long lo, hi;                 /* V_INT's range */
-    const char *const *choices;  /* V_WORD's words, NULL-terminated */
-} spec_t;
-
-/* The value of one key after parsing. */
-typedef struct {
-    bool set;
-    int col;     /* column of the key */
-    real v[3];   /* numbers, vector, colour */
-    long i;      /* integer, or index of a V_WORD choice */
-    uint64_t u;  /* V_U64 */
-    bool on;     /* V_FLAG, V_ONOFF */
-    tok_t word;  /* V_WORD, V_STRING, V_ONOFF: the token */
-} val_t;
+/* tok_t, vtype, spec_t and val_t are scenepart.h's: the parts of Part
+ * II read their statements' keys with them. */
 
 /* One affine transform of an object, as written. */
 typedef struct {
@@ -102,7 +56,7 @@ typedef struct {
 } xform_op;
 
 /* The state of the parser. */
-typedef struct {
+typedef struct scenefile_ctx {
     scene_t *scene;
     const char *name;      /* what messages call the file */
     const char *dir;       /* directory for relative mesh paths, or NULL */
@@ -893,7 +847,7 @@ static const spec_t render_spec[R_N] = {
     [R_ROULETTE] = { "roulette", V_ONOFF, 0, 0, 0, NULL },
     [R_RRDEPTH] = { "roulette_depth", V_INT, 0, 0, SCENE_MAX_DEPTH, NULL },
     [R_SEED] = { "seed", V_U64, 0, 0, 0, NULL },
-    [R_INTEGRATOR] = { "integrator", V_WORD, 0, 0, 0, integrators },
+    [R_INTEGRATOR] = { "integrator", V_STRING, 0, 0, 0, NULL },
     [R_AO_DISTANCE] = { "ao_distance", V_NUM, F_NONNEG, 0, 0, NULL },
     [R_THREADS] = { "threads", V_INT, 0, 0, SCENE_MAX_THREADS, NULL },
     [R_TIME_LIMIT] = { "time_limit", V_NUM, F_NONNEG, 0, 0, NULL },
@@ -902,6 +856,54 @@ static const spec_t render_spec[R_N] = {
     [R_ACCEL] = { "accel", V_WORD, 0, 0, 0, accels },
     [R_PACKETS] = { "packets", V_ONOFF, 0, 0, 0, NULL },
 };
+
+/* `integrator WORD`: one of ch. 5's (integrators[]) or a rendering method
+ * of a part the program offers (scenepart.h). */
+static svet_status integrator_of(ctx_t *c, const tok_t *t,
+                                 scene_render_t *r)
+{
+    for (int i = 0; integrators[i]; i++)
+        if (tok_is(t, integrators[i])) {
+            r->integrator = (scene_integrator)i;
+            r->method = NULL;
+            return SVET_OK;
+        }
+    char word[SCENE_MAX_NAME + 1];
+    tok_copy(t, word, sizeof word);
+    const render_method_t *m = t->quoted || t->len > SCENE_MAX_NAME
+                                   ? NULL
+                                   : scene_find_method(c->features, word);
+    if (m) {
+        r->integrator = SCENE_INTEGRATOR_PATH;
+        r->method = m;
+        return SVET_OK;
+    }
+    /* the methods of Part II that this program was built without */
+    static const struct {
+        const char *name, *chapter;
+    } later[] = {
+        { "photon", "the photon maps of ch. 8" },
+        { "ppm", "the progressive photon maps of ch. 8" },
+        { "irradiance", "the irradiance cache of ch. 9" },
+        { "volpath", "the participating media of ch. 11" },
+    };
+    for (size_t i = 0; i < sizeof later / sizeof *later; i++)
+        if (tok_is(t, later[i].name))
+            return fail(c, t->col, SVET_ERR_UNSUPPORTED,
+                        "'integrator %s': this program was built without "
+                        "%s", later[i].name, later[i].chapter);
+    const char *names[32];
+    int n = 0;
+    for (int i = 0; integrators[i] && n < 32; i++)
+        names[n++] = integrators[i];
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    for (int i = 0; parts && parts[i]; i++)
+        for (int j = 0; parts[i]->methods && parts[i]->methods[j] && n < 32;
+             j++)
+            names[n++] = parts[i]->methods[j]->name;
+    return unknown(c, t, "value of 'integrator'", names, n);
+}
 
 static svet_status st_render(ctx_t *c)
 {
@@ -920,8 +922,11 @@ static svet_status st_render(ctx_t *c)
         r->roulette_depth = (int)v[R_RRDEPTH].i;
     if (v[R_SEED].set)
         r->seed = v[R_SEED].u;
-    if (v[R_INTEGRATOR].set)
-        r->integrator = (scene_integrator)v[R_INTEGRATOR].i;
+    if (v[R_INTEGRATOR].set) {
+        st = integrator_of(c, &v[R_INTEGRATOR].word, r);
+        if (st)
+            return st;
+    }
     if (v[R_AO_DISTANCE].set)
         r->ao_distance = v[R_AO_DISTANCE].v[0];
     if (v[R_THREADS].set)
@@ -1892,15 +1897,123 @@ static svet_status statement(ctx_t *c)
     for (int i = 0; i < NSTATEMENTS; i++)
         if (tok_is(t, statements[i].name))
             return statements[i].fn(c);
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    for (int i = 0; parts && parts[i]; i++)
+        for (const scene_statement_t *ps = parts[i]->statements;
+             ps && ps->keyword; ps++)
+            if (tok_is(t, ps->keyword))
+                return ps->parse(c);
     for (size_t i = 0; i < sizeof reserved / sizeof *reserved; i++)
         if (tok_is(t, reserved[i].name))
             return fail(c, t->col, SVET_ERR_UNSUPPORTED,
                         "'%s' is not supported yet: %s", reserved[i].name,
                         reserved[i].chapter);
-    const char *names[NSTATEMENTS];
+    const char *names[NSTATEMENTS + 16];
+    int n = 0;
     for (int i = 0; i < NSTATEMENTS; i++)
-        names[i] = statements[i].name;
-    return unknown(c, t, "keyword", names, NSTATEMENTS);
+        names[n++] = statements[i].name;
+    for (int i = 0; parts && parts[i]; i++)
+        for (const scene_statement_t *ps = parts[i]->statements;
+             ps && ps->keyword && n < NSTATEMENTS + 16; ps++)
+            names[n++] = ps->keyword;
+    return unknown(c, t, "keyword", names, n);
+}
+
+/* --- what a part of Part II reads its statements with (scenepart.h) ------ */
+
+scene_t *scenefile_scene(scenefile_ctx *c)
+{
+    return c->scene;
+}
+
+const tok_t *scenefile_tokens(scenefile_ctx *c, int *n)
+{
+    *n = c->ntok - c->pos;
+    return c->tok + c->pos;
+}
+
+void scenefile_skip(scenefile_ctx *c, int k)
+{
+    c->pos = c->pos + k < c->ntok ? c->pos + k : c->ntok;
+}
+
+int scenefile_stmt_col(const scenefile_ctx *c)
+{
+    return c->stmt_col;
+}
+
+int scenefile_eol_col(const scenefile_ctx *c)
+{
+    return c->eol_col;
+}
+
+svet_status scenefile_name(scenefile_ctx *c, const char *what, char *buf,
+                           int *col)
+{
+    char show[64];
+    if (c->pos >= c->ntok)
+        return fail(c, c->eol_col, SVET_ERR_PARSE, "%s expects a name",
+                    what);
+    const tok_t *t = &c->tok[c->pos++];
+    if (!name_ok(t))
+        return fail(c, t->col, SVET_ERR_PARSE,
+                    "'%s' is not a %s name: expected a letter or '_' then "
+                    "letters, digits, '_', '-' or '.' (at most %d)",
+                    show_tok(t, show, sizeof show), what, SCENE_MAX_NAME);
+    tok_copy(t, buf, SCENE_MAX_NAME + 1);
+    if (col)
+        *col = t->col;
+    return SVET_OK;
+}
+
+svet_status scenefile_keys(scenefile_ctx *c, const char *stmt,
+                           const spec_t *spec, int nspec, val_t *vals,
+                           bool stop_at_plus)
+{
+    return parse_keys(c, stmt, spec, nspec, vals, stop_at_plus);
+}
+
+svet_status scenefile_fail(scenefile_ctx *c, int col, svet_status st,
+                           const char *fmt, ...)
+{
+    char msg[SVET_ERROR_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return fail(c, col, st, "%s", msg);
+}
+
+void scenefile_warn(scenefile_ctx *c, int col, const char *fmt, ...)
+{
+    char msg[SVET_ERROR_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    scene_warn(&c->scene->warnings, "%s:%d:%d: warning: %s", c->name,
+               c->line, col, msg);
+}
+
+void scenefile_tok_copy(const tok_t *t, char *buf, size_t size)
+{
+    tok_copy(t, buf, size);
+}
+
+bool scenefile_tok_is(const tok_t *t, const char *w)
+{
+    return tok_is(t, w);
+}
+
+char *scenefile_path(scenefile_ctx *c, const tok_t *t, svet_error *err)
+{
+    char *rel = tok_strdup(t);
+    char *p = rel ? path_join(c->dir, rel) : NULL;
+    free(rel);
+    if (!p)
+        svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
+    return p;
 }
 
 /* --- what only the whole scene can tell ---------------------------------- */
@@ -1992,6 +2105,14 @@ static svet_status whole_scene(ctx_t *c)
                    "'light', 'emit' or 'environment' above black): the "
                    "image will be black", c->name);
     precision_warnings(c);
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    for (int i = 0; parts && parts[i]; i++)
+        if (parts[i]->finish) {
+            svet_status st = parts[i]->finish(c);
+            if (st)
+                return st;
+        }
     return SVET_OK;
 }
 
@@ -2161,6 +2282,42 @@ svet_status scenefile_override(scene_t *s, const char *setting,
         if (strlen(overrides[k].key) == klen &&
             memcmp(overrides[k].key, setting, klen) == 0)
             break;
+    const char *dot = memchr(setting, '.', klen);
+    if (k == NOVERRIDES && dot && dot > setting && dot + 1 < eq) {
+        /* STATEMENT.KEY=VALUE: a key of a part's settings statement,
+         * e.g. photonmap.k=50 is the line "photonmap k 50" */
+        size_t vlen0 = strlen(value);
+        if (vlen0 == 0 || vlen0 > 4096 || strpbrk(value, " \t#\""))
+            return fail(&c, 1, SVET_ERR_PARSE,
+                        "expected exactly one value after '='");
+        char *line = malloc(klen + vlen0 + 4);
+        if (!line)
+            return svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
+        snprintf(line, klen + vlen0 + 4, "%.*s %.*s %s",
+                 (int)(dot - setting), setting, (int)(eq - dot - 1), dot + 1,
+                 value);
+        svet_status st = lex(&c, line, line + strlen(line));
+        if (!st && c.ntok != 3)
+            st = fail(&c, 1, SVET_ERR_PARSE,
+                      "expected exactly one value after '='");
+        bool is_part = false;
+        const scene_part_t *const *parts = c.features ? c.features->parts
+                                                      : NULL;
+        for (int i = 0; !st && parts && parts[i]; i++)
+            for (const scene_statement_t *ps = parts[i]->statements;
+                 ps && ps->keyword; ps++)
+                if (tok_is(&c.tok[0], ps->keyword))
+                    is_part = true;
+        if (!st && !is_part)
+            st = fail(&c, 1, SVET_ERR_PARSE,
+                      "'%.*s' is not a settings statement this program "
+                      "offers", (int)(dot - setting), setting);
+        if (!st)
+            st = statement(&c);
+        free(line);
+        ctx_free(&c);
+        return st;
+    }
     if (k == NOVERRIDES) {
         const char *names[NOVERRIDES];
         for (int i = 0; i < NOVERRIDES; i++)

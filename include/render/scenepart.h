@@ -1,0 +1,193 @@
+/*
+ * scenepart.h - how a part of Part II (photon maps, the irradiance cache,
+ * textures, media, ...) joins the scene file and the renderer without the
+ * core naming it: its statements (`texture`, `medium`, `photonmap`), its
+ * data kept in the scene, and its rendering methods (`render integrator
+ * photon`). A program offers a part by listing it in scene_features_t.parts
+ * (scene.h; allparts.c lists them all); a program that does not (ch. 5)
+ * links none of its code, and its keywords are refused with the chapter
+ * that brings them. The keys of a part's statements are read with the
+ * scene file's own machinery (spec_t, scenefile_keys), so their messages
+ * name file:line:column as the core's do.
+ * Tests: tests/render/test_scenepart.c
+ */
+#ifndef SVET_SCENEPART_H
+#define SVET_SCENEPART_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "core/ray.h"
+#include "materials/radiance.h"
+#include "render/scene.h"
+
+struct render;
+struct integrator_stats;
+
+/* --- the scene file's keys, for a part's statements ----------------------- */
+
+/* The parser's state while it reads one line (scenefile.c). */
+typedef struct scenefile_ctx scenefile_ctx;
+
+/* A token of a line: a word, or a "quoted string" without its quotes. */
+typedef struct {
+    const char *s; /* first byte (not NUL-terminated) */
+    int len;
+    int col;       /* 1-based column of its first byte (of the quote) */
+    bool quoted;
+} tok_t;
+
+/* What a key's values look like. */
+typedef enum {
+    V_NUM,       /* one number */
+    V_INT,       /* a whole number in [lo, hi] */
+    V_U64,       /* a whole number 0 .. 2^64 - 1 */
+    V_VEC3,      /* three numbers */
+    V_COLOUR,    /* one number (grey) or three (RGB), each >= 0 */
+    V_WORD,      /* one of `choices` */
+    V_STRING,    /* a word or a quoted string (a file name) */
+    V_FLAG,      /* no value: present or not */
+    V_ONOFF,     /* on or off */
+    V_SCALE,     /* transforms: repeatable, applied in written order */
+    V_ROTATE,
+    V_TRANSLATE
+} vtype;
+
+enum {
+    F_REQUIRED = 1, /* the statement needs this key */
+    F_POSITIVE = 2, /* the number must be > 0 */
+    F_NONNEG = 4,   /* the number must be >= 0 */
+    F_NONZERO = 8   /* the vector must not be zero */
+};
+
+/* One key a statement takes. */
+typedef struct {
+    const char *key;
+    vtype type;
+    int flags;
+    long lo, hi;                 /* V_INT's range */
+    const char *const *choices;  /* V_WORD's words, NULL-terminated */
+} spec_t;
+
+/* The value of one key after parsing. */
+typedef struct {
+    bool set;
+    int col;     /* column of the key */
+    real v[3];   /* numbers, vector, colour */
+    long i;      /* integer, or index of a V_WORD choice */
+    uint64_t u;  /* V_U64 */
+    bool on;     /* V_FLAG, V_ONOFF */
+    tok_t word;  /* V_WORD, V_STRING, V_ONOFF: the token */
+} val_t;
+
+/* The scene being read. */
+scene_t *scenefile_scene(scenefile_ctx *c);
+
+/* The rest of the line's tokens, from the next one to read: *n of them
+ * at the returned pointer. scenefile_skip(c, k) moves past k of them. */
+const tok_t *scenefile_tokens(scenefile_ctx *c, int *n);
+void scenefile_skip(scenefile_ctx *c, int k);
+
+/* Column of the statement's keyword, and of the end of the line. */
+int scenefile_stmt_col(const scenefile_ctx *c);
+int scenefile_eol_col(const scenefile_ctx *c);
+
+/* The next token as a name (a letter or '_', then letters, digits, '_',
+ * '-', '.'; at most SCENE_MAX_NAME bytes) into buf of SCENE_MAX_NAME + 1
+ * bytes, its column in *col. `what` says what the name is for the
+ * message ("texture"). Fails with SVET_ERR_PARSE and file:line:col. */
+svet_status scenefile_name(scenefile_ctx *c, const char *what, char *buf,
+                           int *col);
+
+/* Read the rest of the line as keys of statement stmt (spec's nspec keys,
+ * values into vals[nspec]), with the core's checks and messages: unknown
+ * keys with "did you mean", a key given twice, missing required keys,
+ * NaN, ranges. Stops at a '+' when stop_at_plus. */
+svet_status scenefile_keys(scenefile_ctx *c, const char *stmt,
+                           const spec_t *spec, int nspec, val_t *vals,
+                           bool stop_at_plus);
+
+/* Fail with "file:line:col: message" (or "override 'k=v': message"). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+svet_status scenefile_fail(scenefile_ctx *c, int col, svet_status st,
+                           const char *fmt, ...);
+
+/* Add a warning "file:line:col: warning: message" to the scene. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+void scenefile_warn(scenefile_ctx *c, int col, const char *fmt, ...);
+
+/* The token as a NUL-terminated string in buf (cut to size - 1). */
+void scenefile_tok_copy(const tok_t *t, char *buf, size_t size);
+
+/* True when t is the unquoted word w. */
+bool scenefile_tok_is(const tok_t *t, const char *w);
+
+/* The file a token names, relative to the scene file's directory unless
+ * absolute, newly allocated (NULL: out of memory, err set). */
+char *scenefile_path(scenefile_ctx *c, const tok_t *t, svet_error *err);
+
+/* --- a part's data in the scene ------------------------------------------- */
+
+/* The data part `name` keeps in s (its textures, its media, its settings),
+ * or NULL when it has none yet. */
+void *scene_part_data(const scene_t *s, const char *name);
+
+/* Keep data (owned by s from now on, freed with free_fn at scene_free;
+ * free_fn may be NULL) as part `name`'s; replaces what was there (freeing
+ * it). Fails with SVET_ERR_NOMEM (data freed then too). */
+svet_status scene_set_part_data(scene_t *s, const char *name, void *data,
+                                void (*free_fn)(void *), svet_error *err);
+
+/* --- a part's statements and rendering methods ----------------------------- */
+
+/* A statement a part adds, e.g. { "texture", texture_statement }. */
+typedef struct {
+    const char *keyword;
+    svet_status (*parse)(scenefile_ctx *c);
+} scene_statement_t;
+
+/* A way of rendering a part offers: the word after `render integrator`.
+ * The renderer (render.c) calls prepare once, after its tracer and
+ * lights exist (a photon map's tracing, an irradiance cache's pre-pass),
+ * then begin_pass before each pass over the samples [s0, s1) of every
+ * pixel (may be NULL; a progressive photon map's new map), then li for
+ * every camera sample, from several threads at once. The image must
+ * depend on the scene, the seed and the sample indices only: not on the
+ * thread count, nor on how the samples are split into passes or parts
+ * (svet merge). */
+typedef struct render_method {
+    const char *name;                /* "photon", "ppm", "irradiance" */
+    const char *describe;            /* a line for the summary */
+    svet_status (*prepare)(void **state, const struct render *r,
+                           int threads, svet_error *err);
+    svet_status (*begin_pass)(void *state, const struct render *r, long s0,
+                              long s1, int threads, svet_error *err);
+    RADIANCE (*li)(const void *state, const struct render *r,
+                   const ray_t *ray, long sample, pcg32_t *g,
+                   struct integrator_stats *st);
+    void (*free)(void *state);
+} render_method_t;
+
+/* Called once the whole file is read (may be NULL): what only the whole
+ * scene can tell (a medium's boundary is closed, a texture is used). */
+typedef svet_status (*scene_part_finish_fn)(scenefile_ctx *c);
+
+typedef struct scene_part {
+    const char *name;                      /* "photon", "texture", ... */
+    const scene_statement_t *statements;   /* ends with { NULL, NULL } */
+    const render_method_t *const *methods; /* NULL-terminated, or NULL */
+    scene_part_finish_fn finish;
+} scene_part_t;
+
+/* The method `name` among the parts features offers, or NULL. */
+const render_method_t *scene_find_method(const scene_features_t *features,
+                                         const char *name);
+
+#endif
