@@ -338,7 +338,7 @@ fuzz_args_ARGS := -dict=fuzz/args.dict -close_fd_mask=3
 $(FUZZ_BUILD)/fuzz_args: fuzz/fuzz_args.c $(SRCS) $(HDRS) $(CMD_SRCS) \
                          $(wildcard cmd/*.h)
 	@mkdir -p $(@D)
-	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) -Icmd $(PKG_CFLAGS) $< \
+	$(FUZZ_CC) $(FUZZ_FLAGS) $(REALDEF) $(SIMDDEF) -Icmd $(PKG_CFLAGS) $< \
 	    $(call src_of,$(fuzz_args_MODULES)) $(fuzz_args_SRCS) \
 	    $(PKG_LIBS) -lm -o $@
 

@@ -481,6 +481,47 @@ static int target_channel(const char *name, const channel_map_t *map,
     return k < img->channels ? k : -1;
 }
 
+/* OpenEXRCore 3.1's B44 and B44A decoders can read past the end of their
+ * scratch buffer on a corrupt chunk (found by fuzz/fuzz_image.c): before
+ * each such chunk, give the decoder a zeroed scratch buffer large enough
+ * for every read, each channel's rows rounded up to whole 4 x 4 blocks and
+ * to the chunk's height. The library keeps a buffer it is given when it
+ * is large enough, and frees it with the context's allocator (malloc's
+ * free, the default: exrio sets none). A valid file decodes as before. */
+static exr_result_t pad_b44_scratch(exr_context_t ctx,
+                                    exr_decode_pipeline_t *dec,
+                                    const exr_chunk_info_t *cinfo)
+{
+    exr_compression_t comp = EXR_COMPRESSION_NONE;
+    exr_result_t rv = exr_get_compression(ctx, 0, &comp);
+    if (rv != EXR_ERR_SUCCESS)
+        return rv;
+    if (comp != EXR_COMPRESSION_B44 && comp != EXR_COMPRESSION_B44A)
+        return EXR_ERR_SUCCESS;
+    uint64_t need = 0;
+    for (int c = 0; c < dec->channel_count; c++) {
+        const exr_coding_channel_info_t *ch = &dec->channels[c];
+        uint64_t nx = (uint64_t)(ch->width > 0 ? ch->width : 0);
+        uint64_t ny = (uint64_t)(ch->height > cinfo->height ? ch->height
+                                                            : cinfo->height);
+        nx = (nx + 3) / 4 * 4;
+        ny = (ny + 3) / 4 * 4;
+        need += nx * ny * 8; /* 8: the widest element, with room to spare */
+    }
+    need += cinfo->unpacked_size + 64;
+    if (dec->scratch_buffer_1 && dec->scratch_alloc_size_1 >= need) {
+        memset(dec->scratch_buffer_1, 0, dec->scratch_alloc_size_1);
+        return EXR_ERR_SUCCESS;
+    }
+    void *buf = calloc(1, (size_t)need);
+    if (!buf)
+        return EXR_ERR_OUT_OF_MEMORY;
+    free(dec->scratch_buffer_1);
+    dec->scratch_buffer_1 = buf;
+    dec->scratch_alloc_size_1 = (size_t)need;
+    return EXR_ERR_SUCCESS;
+}
+
 /* Decode every chunk into planar floats (one plane per channel, by
  * unpack_to_planes) and interleave the wanted ones into img
  * (test_exrio's every_layout_and_compression_reads_back tries the
@@ -542,6 +583,8 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw,
             break;
         }
         dec.decoding_user_data = &sc; /* for unpack_to_planes */
+        if ((rv = pad_b44_scratch(ctx, &dec, &cinfo)) != EXR_ERR_SUCCESS)
+            break;
         if ((rv = exr_decoding_run(ctx, 0, &dec)) != EXR_ERR_SUCCESS)
             break;
         for (int c = 0; c < dec.channel_count; c++) {

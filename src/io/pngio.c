@@ -11,6 +11,7 @@
 #include "io/fileio.h"
 
 #include <png.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -144,6 +145,43 @@ static void read_data(png_structp png, png_bytep data, size_t n)
                                  : "unexpected end of file (truncated)");
 }
 
+/* Walk the chunks after the signature (f just past it) and refuse a
+ * chunk other than the pixels' (IDAT) that claims more bytes than the file
+ * holds: libpng would allocate the claimed length before reading, so a
+ * 60-byte file could ask for 2 GB (found by fuzz/fuzz_image.c). A short
+ * IDAT is left to libpng, which reports the truncation. f is left just
+ * past the signature. file_bytes < 0: the size is unknown; nothing is
+ * checked. */
+static svet_status chunks_fit(FILE *f, long file_bytes, const char *path,
+                              svet_error *err)
+{
+    if (file_bytes < 0)
+        return SVET_OK;
+    long pos = 8;
+    unsigned char h[8];
+    while (pos + 8 <= file_bytes && fseek(f, pos, SEEK_SET) == 0 &&
+           fread(h, 1, sizeof h, f) == sizeof h) {
+        unsigned long len = (unsigned long)h[0] << 24 | (unsigned long)h[1]
+                            << 16 | (unsigned long)h[2] << 8 | h[3];
+        bool idat = memcmp(h + 4, "IDAT", 4) == 0;
+        if (!idat && (double)len + 12.0 > (double)(file_bytes - pos)) {
+            fseek(f, 8, SEEK_SET);
+            return svet_error_set(err, SVET_ERR_PARSE,
+                                  "%s: the chunk at byte %ld claims %lu "
+                                  "bytes, more than the file holds",
+                                  path, pos, len);
+        }
+        if (memcmp(h + 4, "IEND", 4) == 0 || len > 0x7fffffffUL)
+            break;
+        pos += (long)len + 12;
+    }
+    fseek(f, 8, SEEK_SET);
+    return SVET_OK;
+}
+
+/* The largest chunk other than IDAT that a read keeps in memory. */
+#define PNGIO_MAX_CHUNK (16L << 20)
+
 static int read_rows(png_structp png, png_infop info, FILE *f, png_read_t *r,
                      const png_msg_t *m)
 {
@@ -153,6 +191,12 @@ static int read_rows(png_structp png, png_infop info, FILE *f, png_read_t *r,
     png_set_sig_bytes(png, 8);
     /* libpng checks IHDR against these before any row is decoded. */
     png_set_user_limits(png, IMAGE_MAX_DIM, IMAGE_MAX_DIM);
+    /* A chunk other than the pixels (text, ICC profile) is read whole into
+     * memory; its length is the file's word, so a 60-byte file can ask for
+     * 2 GB (found by fuzz/fuzz_image.c). No real one needs more than this;
+     * libpng refuses the chunk (or the file, for a critical one). */
+    png_set_chunk_malloc_max(png, PNGIO_MAX_CHUNK);
+    png_set_chunk_cache_max(png, 1000);
     png_read_info(png, info);
     int depth, color;
     png_get_IHDR(png, info, &r->w, &r->h, &depth, &color, NULL, NULL, NULL);
@@ -239,6 +283,10 @@ svet_status pngio_read_with(const char *path, image_t *img, int *bits,
         return svet_error_set(err, SVET_ERR_PARSE, "%s: not a PNG file (%s)",
                               path, got == 0 ? "it is empty"
                                              : "wrong signature");
+    }
+    if ((st = chunks_fit(f, r.file_bytes, path, err)) != SVET_OK) {
+        fclose(f);
+        return st;
     }
     png_msg_t msg = { path, err, "" };
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &msg,
