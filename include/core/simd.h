@@ -27,12 +27,13 @@
 
 #include "core/real.h"
 
-/* The intrinsics' headers wherever the compiler targets their
- * instructions; the vectors below only with SVET_SIMD. */
-#ifdef __SSE2__
+/* The intrinsics' headers only in a build with the speed layers
+ * (SVET_SIMD), wherever the compiler targets their instructions: the
+ * plain build includes none of them. */
+#if defined(SVET_SIMD) && defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#ifdef __AVX__
+#if defined(SVET_SIMD) && defined(__AVX__)
 #include <immintrin.h>
 #endif
 

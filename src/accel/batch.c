@@ -431,8 +431,10 @@ static svet_status batch_build(void **out, const primset_t *ps,
 #ifndef SVET_SIMD
     /* the batch is made of the speed layers (the parallelograms' early
      * rejections, the culling spheres): the plain build has none, and
-     * brute force is primset_test()'s, which answers the same */
+     * brute force is primset_test()'s, which answers the same; the
+     * batch's code is still compiled, so that it stays correct C */
     (void)ps;
+    (void)brute_new;
     return svet_error_set(err, SVET_ERR_UNSUPPORTED,
                           "brute: the batch is a speed layer, and this build "
                           "(SIMD=off) has none");
