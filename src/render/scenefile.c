@@ -84,23 +84,36 @@ typedef struct scenefile_ctx {
 
 /* --- messages ------------------------------------------------------------ */
 
+/* A message "file:line:col: ..." (or "override 'k=v': ...") in c->err,
+ * from a va_list: fail() and scenefile_fail() are its front ends. */
 #if defined(__GNUC__)
-__attribute__((format(printf, 4, 5)))
+__attribute__((format(printf, 4, 0)))
 #endif
-static svet_status fail(ctx_t *c, int col, svet_status st, const char *fmt,
-                        ...)
+static svet_status vfail(ctx_t *c, int col, svet_status st, const char *fmt,
+                         va_list ap)
 {
     char msg[SVET_ERROR_LEN];
-    va_list ap;
-    va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
     if (c->override)
         return svet_error_set(c->err, st, "override '%s': %s", c->override,
                               msg);
     return svet_error_set(c->err, st, "%s:%d:%d: %s", c->name, c->line, col,
                           msg);
 }
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+static svet_status fail(ctx_t *c, int col, svet_status st, const char *fmt,
+                        ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    st = vfail(c, col, st, fmt, ap);
+    va_end(ap);
+    return st;
+}
+
 
 /* A token as messages show it: at most 40 bytes, anything unprintable as
  * '?', so that a binary file gives a readable message. */
@@ -1977,12 +1990,11 @@ svet_status scenefile_keys(scenefile_ctx *c, const char *stmt,
 svet_status scenefile_fail(scenefile_ctx *c, int col, svet_status st,
                            const char *fmt, ...)
 {
-    char msg[SVET_ERROR_LEN];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    st = vfail(c, col, st, fmt, ap);
     va_end(ap);
-    return fail(c, col, st, "%s", msg);
+    return st;
 }
 
 void scenefile_warn(scenefile_ctx *c, int col, const char *fmt, ...)
