@@ -161,7 +161,7 @@ typedef struct {
  * every camera sample, from several threads at once. The image must
  * depend on the scene, the seed and the sample indices only: not on the
  * thread count, nor on how the samples are split into passes or parts
- * (svet merge). */
+ * (svet merge). free is called only for a state prepare made. */
 typedef struct render_method {
     const char *name;                /* "photon", "ppm", "irradiance" */
     const char *describe;            /* a line for the summary */

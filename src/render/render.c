@@ -119,7 +119,7 @@ void render_free(render_t *r)
     lightset_free(&r->lights);
     if (r->accel && r->layer)
         r->layer->free(r->accel);
-    if (r->method && r->method->free)
+    if (r->method && r->method->free && r->method_state)
         r->method->free(r->method_state);
     image_accum_free(&r->acc);
     free(r->sum2);

@@ -1902,6 +1902,20 @@ static const struct {
     { "include", "no chapter: one scene is one file" },
 };
 
+/* The statement a part the program offers adds under keyword t, or NULL. */
+static const scene_statement_t *part_statement(const ctx_t *c,
+                                               const tok_t *t)
+{
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    for (int i = 0; parts && parts[i]; i++)
+        for (const scene_statement_t *ps = parts[i]->statements;
+             ps && ps->keyword; ps++)
+            if (tok_is(t, ps->keyword))
+                return ps;
+    return NULL;
+}
+
 static svet_status statement(ctx_t *c)
 {
     const tok_t *t = &c->tok[0];
@@ -1910,13 +1924,11 @@ static svet_status statement(ctx_t *c)
     for (int i = 0; i < NSTATEMENTS; i++)
         if (tok_is(t, statements[i].name))
             return statements[i].fn(c);
+    const scene_statement_t *ps = part_statement(c, t);
+    if (ps)
+        return ps->parse(c);
     const scene_part_t *const *parts = c->features ? c->features->parts
                                                    : NULL;
-    for (int i = 0; parts && parts[i]; i++)
-        for (const scene_statement_t *ps = parts[i]->statements;
-             ps && ps->keyword; ps++)
-            if (tok_is(t, ps->keyword))
-                return ps->parse(c);
     for (size_t i = 0; i < sizeof reserved / sizeof *reserved; i++)
         if (tok_is(t, reserved[i].name))
             return fail(c, t->col, SVET_ERR_UNSUPPORTED,
@@ -1927,9 +1939,9 @@ static svet_status statement(ctx_t *c)
     for (int i = 0; i < NSTATEMENTS; i++)
         names[n++] = statements[i].name;
     for (int i = 0; parts && parts[i]; i++)
-        for (const scene_statement_t *ps = parts[i]->statements;
-             ps && ps->keyword && n < NSTATEMENTS + 16; ps++)
-            names[n++] = ps->keyword;
+        for (const scene_statement_t *q = parts[i]->statements;
+             q && q->keyword && n < NSTATEMENTS + 16; q++)
+            names[n++] = q->keyword;
     return unknown(c, t, "keyword", names, n);
 }
 
@@ -2312,15 +2324,7 @@ svet_status scenefile_override(scene_t *s, const char *setting,
         if (!st && c.ntok != 3)
             st = fail(&c, 1, SVET_ERR_PARSE,
                       "expected exactly one value after '='");
-        bool is_part = false;
-        const scene_part_t *const *parts = c.features ? c.features->parts
-                                                      : NULL;
-        for (int i = 0; !st && parts && parts[i]; i++)
-            for (const scene_statement_t *ps = parts[i]->statements;
-                 ps && ps->keyword; ps++)
-                if (tok_is(&c.tok[0], ps->keyword))
-                    is_part = true;
-        if (!st && !is_part)
+        if (!st && !part_statement(&c, &c.tok[0]))
             st = fail(&c, 1, SVET_ERR_PARSE,
                       "'%.*s' is not a settings statement this program "
                       "offers", (int)(dot - setting), setting);

@@ -108,11 +108,45 @@ static const render_method_t glow_method = {
     glow_begin, glow_li, glow_state_free
 };
 static const render_method_t *const glow_methods[] = { &glow_method, NULL };
+/* `glowmap NAME FILE`: a name and a file path relative to the scene */
+static char glowmap_name[SCENE_MAX_NAME + 1], *glowmap_path;
+static svet_status glowmap_statement(scenefile_ctx *c)
+{
+    int col;
+    svet_status st = scenefile_name(c, "glowmap", glowmap_name, &col);
+    if (st)
+        return st;
+    int n;
+    const tok_t *t = scenefile_tokens(c, &n);
+    if (n != 1)
+        return scenefile_fail(c, scenefile_eol_col(c), SVET_ERR_PARSE,
+                              "glowmap expects one file after its name");
+    svet_error e;
+    free(glowmap_path);
+    glowmap_path = scenefile_path(c, t, &e);
+    scenefile_skip(c, 1);
+    if (!glowmap_path)
+        return scenefile_fail(c, t->col, e.status, "%s", e.msg);
+    if (scenefile_tok_is(t, "dark.png"))
+        scenefile_warn(c, t->col, "a dark glow map");
+    return SVET_OK;
+}
+
+/* the whole scene: a glowmap needs a glow statement */
+static svet_status glow_finish(scenefile_ctx *c)
+{
+    if (glowmap_path && !scene_part_data(scenefile_scene(c), "glow"))
+        return scenefile_fail(c, 1, SVET_ERR_PARSE,
+                              "glowmap '%s' without a glow", glowmap_name);
+    return SVET_OK;
+}
+
 static const scene_statement_t glow_statements[] = {
-    { "glow", glow_statement }, { NULL, NULL }
+    { "glow", glow_statement }, { "glowmap", glowmap_statement },
+    { NULL, NULL }
 };
 static const scene_part_t glow_part = { "glow", glow_statements,
-                                        glow_methods, NULL };
+                                        glow_methods, glow_finish };
 static const scene_part_t *const parts[] = { &glow_part, NULL };
 static const scene_features_t features = { .parts = parts };
 
@@ -174,6 +208,35 @@ START_TEST(a_part_statement_reports_file_line_and_column)
         "glwo level 1\n";
     ck_assert_int_eq(parse(&s, typo, &features, &e), SVET_ERR_PARSE);
     ck_assert_msg(strstr(e.msg, "did you mean 'glow'"), "%s", e.msg);
+}
+END_TEST
+
+START_TEST(a_part_reads_names_files_and_checks_the_whole_scene)
+{
+    scene_t s;
+    svet_error e;
+    const char *ok = BALL "glow level 1\nglowmap g1 dark.png\n";
+    ck_assert_int_eq(scenefile_parse_with(&s, ok, strlen(ok), "t.scn", "d",
+                                          &features, &e), SVET_OK);
+    ck_assert_str_eq(glowmap_name, "g1");
+    ck_assert_str_eq(glowmap_path, "d/dark.png");
+    /* and the core's "nothing emits light" after it */
+    ck_assert_int_eq(s.warnings.n, 2);
+    ck_assert_msg(strstr(s.warnings.msg[0], "t.scn:4:12: warning: a dark"),
+                  "%s", s.warnings.msg[0]);
+    scene_free(&s);
+    const char *lone = BALL "glowmap g1 x.png\n";
+    ck_assert_int_eq(parse(&s, lone, &features, &e), SVET_ERR_PARSE);
+    ck_assert_msg(strstr(e.msg, "without a glow"), "%s", e.msg);
+    const char *bad = BALL "glow level 1\nglowmap 9a x.png\n";
+    ck_assert_int_eq(parse(&s, bad, &features, &e), SVET_ERR_PARSE);
+    ck_assert_msg(strstr(e.msg, "t.scn:4:9: '9a' is not a glowmap name"),
+                  "%s", e.msg);
+    const char *two = BALL "glow level 1\nglowmap g x.png y.png\n";
+    ck_assert_int_eq(parse(&s, two, &features, &e), SVET_ERR_PARSE);
+    ck_assert_msg(strstr(e.msg, "one file"), "%s", e.msg);
+    free(glowmap_path);
+    glowmap_path = NULL;
 }
 END_TEST
 
@@ -247,6 +310,7 @@ Suite *test_suite(void)
     TCase *tc = tcase_create("core");
     tcase_add_test(tc, a_part_statement_is_read_with_the_core_keys);
     tcase_add_test(tc, a_part_statement_reports_file_line_and_column);
+    tcase_add_test(tc, a_part_reads_names_files_and_checks_the_whole_scene);
     tcase_add_test(tc, without_the_part_its_keywords_are_refused);
     tcase_add_test(tc, the_renderer_runs_the_method_pass_by_pass);
     suite_add_tcase(s, tc);
