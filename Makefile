@@ -415,12 +415,14 @@ bitcheck:
 	REAL=double BASE=$(BASE) sh tools/bitcheck.sh build/double/svet \
 	    build/double-plain/svet
 
-# `make ab-render BASE=COMMIT [THREADS=1,2] [PAIRS=6]`: the Cornell box's
-# camera samples per second against commit BASE's, alternating runs, the
-# images compared too (tools/ab-render.sh; REAL as given).
+# `make ab-render BASE=COMMIT [THREADS=1,2] [PAIRS=6] [SPP=16]`: the
+# Cornell box's camera samples per second against commit BASE's,
+# alternating runs, the images compared too (tools/ab-render.sh; REAL as
+# given).
 ab-render: $(BUILD)/svet
 	$(if $(BASE),,$(error ab-render: give BASE=COMMIT))
-	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) $(THREADS) $(PAIRS)
+	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) "$(THREADS)" \
+	    "$(PAIRS)" "$(SPP)"
 
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
