@@ -36,11 +36,17 @@ void ray_offset_origin(VECTOR3 po, const VECTOR3 p, const VECTOR3 p_error,
      * (n (-d) is -(n d) bit for bit: rounding is symmetric). */
     real d = fabs(n[X]) * p_error[X] + fabs(n[Y]) * p_error[Y] +
              fabs(n[Z]) * p_error[Z];
+#ifdef SVET_SIMD
+    /* Two calls rather than d = -d: a compiler that turns the sign into a
+     * select makes the vector step wait for the dot product, where a
+     * predicted branch does not. */
+    if (SVECTOR3(w, n) < 0)
+        ray_offset_along_simd(po, p, n, -d);
+    else
+        ray_offset_along_simd(po, p, n, d);
+#else
     if (SVECTOR3(w, n) < 0)
         d = -d;
-#ifdef SVET_SIMD
-    ray_offset_along_simd(po, p, n, d);
-#else
     ray_offset_along_plain(po, p, n, d);
 #endif
 }
