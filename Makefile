@@ -376,7 +376,7 @@ fuzz-all:
 # `make tradeoffs` measures every knob of the renderer
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
-.PHONY: reference tradeoffs count-render count-grid ab-grid ab-render \
+.PHONY: reference tradeoffs count-render count-grid ab-grid ab-render ab-plain \
         bitcheck fuzz-all
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
@@ -424,6 +424,13 @@ ab-render: $(BUILD)/svet
 	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) "$(THREADS)" \
 	    "$(PAIRS)" "$(SPP)"
 
+# `make ab-plain [THREADS=1,2] [PAIRS=6] [SPP=16]`: the same, the default
+# build against the plain one (SIMD=off, build/REAL-plain/), same bits.
+ab-plain: build/$(REAL)/svet
+	$(MAKE) REAL=$(REAL) SIMD=off build/$(REAL)-plain/svet
+	BASE_SVET=build/$(REAL)-plain/svet REAL=$(REAL) sh tools/ab-render.sh \
+	    build/$(REAL)/svet plain "$(THREADS)" "$(PAIRS)" "$(SPP)"
+
 tradeoffs:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
@@ -463,6 +470,7 @@ help:
 	@echo "make count-grid      instructions per ray of the grid at 1e6 (valgrind)"
 	@echo "make ab-grid BASE=C  the grid's rays/s against commit C's, alternating"
 	@echo "make ab-render BASE=C the Cornell box's samples/s against commit C's"
+	@echo "make ab-plain         the same, the default build against SIMD=off's"
 	@echo "make SIMD=off ...    any target without the speed layers (build/REAL-plain/)"
 	@echo "make bitcheck        every scene the same bytes with SIMD=on and off [BASE=C]"
 	@echo "make fuzz-NAME       one fuzz target (clang): $(FUZZ_TARGETS)"
