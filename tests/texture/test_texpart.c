@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/exrio.h"
 #include "io/pngio.h"
 #include "render/allparts.h"
 #include "render/render.h"
@@ -111,26 +112,6 @@ START_TEST(a_program_without_textures_refuses_their_names)
 }
 END_TEST
 
-/* CRC-32 of PNG chunks (ISO 3309, as the PNG specification's annex D). */
-static uint32_t crc32_of(const unsigned char *p, size_t n)
-{
-    uint32_t c = 0xffffffffu;
-    for (size_t i = 0; i < n; i++) {
-        c ^= p[i];
-        for (int k = 0; k < 8; k++)
-            c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
-    }
-    return c ^ 0xffffffffu;
-}
-
-static void put32(unsigned char *p, uint32_t v)
-{
-    p[0] = (unsigned char)(v >> 24);
-    p[1] = (unsigned char)(v >> 16);
-    p[2] = (unsigned char)(v >> 8);
-    p[3] = (unsigned char)v;
-}
-
 START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
 {
     char text[1024];
@@ -142,21 +123,6 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     const char *junk = imgtest_path("junk.png");
     imgtest_write_bytes(junk, "hello, world\n", 13);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", junk);
-    refused(text, "t.scn:2:22:", "texture file:");
-    /* a PNG whose header claims 100000 x 100000 pixels: refused before
-     * anything is allocated (io/image.h's limit) */
-    unsigned char png[8 + 25] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a,
-                                  '\n' };
-    put32(png + 8, 13);
-    memcpy(png + 12, "IHDR", 4);
-    put32(png + 16, 100000);
-    put32(png + 20, 100000);
-    png[24] = 8; /* bit depth */
-    png[25] = 2; /* RGB */
-    put32(png + 29, crc32_of(png + 12, 17));
-    const char *bomb = imgtest_path("bomb.png");
-    imgtest_write_bytes(bomb, png, sizeof png);
-    snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", bomb);
     refused(text, "t.scn:2:22:", "texture file:");
     /* truncated: a real PNG cut in half */
     image_t img;
@@ -171,9 +137,27 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     size_t n = imgtest_read_bytes(good, &bytes);
     const char *cut = imgtest_path("cut.png");
     imgtest_write_bytes(cut, bytes, n / 2);
-    free(bytes);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", cut);
     refused(text, "t.scn:2:22:", "texture file:");
+    /* the same PNG with a header that claims 100000 x 100000 pixels (a
+     * decompression bomb): refused before anything is allocated, by the
+     * readers' pixel limit (io/image.h) */
+    imgtest_png_patch_ihdr(bytes, 100000, 100000);
+    const char *bomb = imgtest_path("bomb.png");
+    imgtest_write_bytes(bomb, bytes, n);
+    free(bytes);
+    snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", bomb);
+    refused(text, "t.scn:2:22:", "texture file:");
+    /* an EXR holding a NaN: refused at its texel */
+    imgtest_hdr_image(&img, 4, 4, 3);
+    image_at(&img, 2, 1)[1] = NAN;
+    const char *nan_exr = imgtest_path("nan.exr");
+    ck_assert_int_eq(exrio_write(nan_exr, &img, EXRIO_FLOAT, EXRIO_ZIP, &e),
+                     SVET_OK);
+    image_free(&img);
+    snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n",
+             nan_exr);
+    refused(text, "t.scn:2:22:", "the texel (2, 1) is not a finite number");
     /* and the whole one loads */
     snprintf(text, sizeof text,
              HEAD "texture t image file \"%s\" filter bilinear wrap mirror\n"
