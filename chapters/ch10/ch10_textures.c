@@ -1,4 +1,4 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch10/ch10_textures.c src/texture/texture.c src/texture/solid.c src/texture/noise.c src/texture/bumpgen.c src/texture/mipmap.c src/texture/interp.c src/geometry/shape.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/core/error.c -lm -o ch10 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch10/ch10_textures.c src/texture/texture.c src/texture/solid.c src/texture/noise.c src/texture/bumpgen.c src/texture/mipmap.c src/texture/interp.c src/geometry/shape.c src/materials/cobject.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/core/error.c -lm -o ch10 */
 /*
  * ch10_textures.c - chapter 10, textures: spheres of noise, turbulence,
  * marble, wood and granite (Perlin 1985), a bump-mapped sphere beside the
