@@ -4,14 +4,24 @@
  * the hit untouched bit for bit; image heights' central differences are
  * exact for a linear image; a solid's height derivatives are its
  * gradient along dP/ds and dP/dt (central differences agree); the 2D
- * checker alternates.
+ * checker alternates; every primitive's (s, t) moves by (h, 0) and (0, h)
+ * when the point moves by h dP/ds and h dP/dt (texture coordinates and
+ * tangents agree, the box and the disk included).
  */
 #include "testutil.h"
 
 #include <math.h>
 #include <string.h>
 
+#include "geometry/box.h"
+#include "geometry/cone.h"
+#include "geometry/cylinder.h"
+#include "geometry/disk.h"
+#include "geometry/parallelogram.h"
 #include "geometry/plane.h"
+#include "geometry/sphere.h"
+#include "geometry/triangle.h"
+#include "geometry/xform.h"
 #include "texture/texture.h"
 
 /* The hit of a ray straight down onto the plane z = 0 (normal +z) at
@@ -184,6 +194,94 @@ START_TEST(the_checker_alternates_over_s_and_t)
 }
 END_TEST
 
+/* The hit of the ray from o toward a on obj (which it must meet). */
+static void hit_toward(const COBJECT *obj, const VECTOR3 o, const VECTOR3 a,
+                       PATHPOINT *pp)
+{
+    ray_t r;
+    vec_copy(r.o, o);
+    vec_sub(r.d, a, o);
+    hit_t h;
+    ck_assert(cobject_intersect(obj, &r, 0, (real)INFINITY, &h));
+    cobject_fill(obj, &r, &h, pp);
+}
+
+START_TEST(every_primitives_tangents_match_its_texture_coordinates)
+{
+    svet_error e;
+    const double ang = 0.7, c7 = cos(ang), s7 = sin(ang);
+    struct {
+        const char *name;
+        COBJECT *obj;
+        VECTOR3 a, off; /* a point on the surface, and the eye's offset */
+    } cases[9];
+    int n = 0;
+#define CASE(nm, o, ax, ay, az, ox, oy, oz)                                  \
+    do {                                                                     \
+        cases[n].name = nm;                                                  \
+        cases[n].obj = o;                                                    \
+        ck_assert_msg(cases[n].obj != NULL, "%s: %s", nm, e.msg);            \
+        vec_set(cases[n].a, (real)(ax), (real)(ay), (real)(az));             \
+        vec_set(cases[n].off, (real)(ox), (real)(oy), (real)(oz));           \
+        n++;                                                                 \
+    } while (0)
+    VECTOR3 zero = { 0, 0, 0 }, ez = { 0, 0, 1 }, top = { 0, 0, 2 };
+    VECTOR3 c1 = { 2, 0, 0 }, c3 = { 0, 1, REAL_C(0.5) };
+    VECTOR3 p1 = { 1, 0, 0 }, p2 = { 0, 1, REAL_C(0.3) };
+    VECTOR3 bmax = { 1, 2, 3 };
+    /* each point off the poles and seams of its parametrisation */
+    CASE("sphere", sphere_new(zero, 1, &e), 0.48, 0.6, 0.64, 1.0, 1.2, 1.5);
+    CASE("disk", disk_new(zero, ez, 1, &e), 0.4 * c7, 0.4 * s7, 0,
+         0.1, 0.2, 2);
+    CASE("parallelogram", parallelogram_new(zero, c1, c3, &e), 0.7, 0.4, 0.2,
+         0.1, 0.2, 2);
+    CASE("triangle", triangle_new(zero, p1, p2, &e), 0.3, 0.25, 0.075,
+         0.1, 0.1, 2);
+    CASE("box", box_new(zero, bmax, &e), 0.3, 0.7, 3, 0.2, 0.1, 2);
+    CASE("cylinder", cylinder_new(zero, top, 1, true, &e), c7, s7, 0.8,
+         2 * c7, 2 * s7, 0.2);
+    CASE("cone", cone_new(zero, top, 1, true, &e), 0.7 * c7, 0.7 * s7, 0.6,
+         2 * c7, 2 * s7, 0.6);
+    CASE("plane", plane_new(zero, ez, &e), 0.3, 0.4, 0, 0.1, 0.1, 2);
+    {
+        /* a sphere moved and stretched: the transform carries dP/ds */
+        xform_t x = xform_compose(xform_scale((VECTOR3){ 2, 1, 1 }),
+                                  xform_translate((VECTOR3){ 0, 0, 1 }));
+        CASE("ellipsoid", xform_new(sphere_new(zero, 1, &e), &x, &e),
+             2 * 0.48, 0.6, 1.64, 1.0, 1.2, 1.5);
+    }
+#undef CASE
+    const double h = 1e-3;
+    for (int i = 0; i < n; i++) {
+        VECTOR3 o;
+        vec_add(o, cases[i].a, cases[i].off);
+        PATHPOINT pp;
+        hit_toward(cases[i].obj, o, cases[i].a, &pp);
+        for (int axis = 0; axis < 2; axis++) {
+            const real *d = axis == 0 ? pp.dpds : pp.dpdt;
+            ck_assert_msg(vec_length(d) > 0, "%s: dP/d%c is zero",
+                          cases[i].name, axis ? 't' : 's');
+            VECTOR3 q;
+            for (int k = 0; k < 3; k++)
+                q[k] = pp.cross_point[k] + (real)(h * (double)d[k]);
+            PATHPOINT pq;
+            hit_toward(cases[i].obj, o, q, &pq);
+            double ds = (double)pq.st[0] - (double)pp.st[0];
+            double dt = (double)pq.st[1] - (double)pp.st[1];
+            double want_s = axis == 0 ? h : 0, want_t = axis == 0 ? 0 : h;
+            /* the surface bends away from its tangent by O(h^2): a few
+             * percent of h, far above float's rounding of st (1e-7) */
+            ck_assert_msg(fabs(ds - want_s) < 0.03 * h &&
+                              fabs(dt - want_t) < 0.03 * h,
+                          "%s, along dP/d%c: (s, t) moved by (%g, %g), not "
+                          "(%g, %g)", cases[i].name, axis ? 't' : 's', ds, dt,
+                          want_s, want_t);
+        }
+        cobject_free(cases[i].obj);
+    }
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("texture");
@@ -194,6 +292,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, an_image_height_has_the_exact_slope_of_a_linear_image);
     tcase_add_test(tc, a_solid_height_follows_its_gradient_along_the_tangents);
     tcase_add_test(tc, the_checker_alternates_over_s_and_t);
+    tcase_add_test(tc, every_primitives_tangents_match_its_texture_coordinates);
     suite_add_tcase(s, tc);
     return s;
 }
