@@ -76,29 +76,29 @@ START_TEST(a_bump_of_height_a_s_on_a_plane_tilts_the_normal_by_atan_a)
 }
 END_TEST
 
-START_TEST(a_zero_bump_leaves_the_hit_bit_for_bit)
+/* texture_bump(dhds, dhdt) at a plane's hit moves nothing, bit for bit. */
+static void bump_leaves_the_hit(real dhds, real dhdt)
 {
     COBJECT *obj;
     PATHPOINT pp, before;
     plane_hit(&obj, &pp, 1, 2);
     memcpy(&before, &pp, sizeof pp);
-    ck_assert(!texture_bump(&pp, 0, 0));
+    ck_assert(!texture_bump(&pp, dhds, dhdt));
     ck_assert(memcmp(&before, &pp, sizeof pp) == 0);
     cobject_free(obj);
+}
+
+START_TEST(a_zero_bump_leaves_the_hit_bit_for_bit)
+{
+    bump_leaves_the_hit(0, 0);
 }
 END_TEST
 
 START_TEST(a_bump_that_hides_the_viewer_keeps_the_geometric_frame)
 {
-    COBJECT *obj;
-    PATHPOINT pp, before;
-    plane_hit(&obj, &pp, 1, 2);
-    memcpy(&before, &pp, sizeof pp);
     /* out = (-0.3, 0.2, 1)/|.|: a slope of -1e3 along +x turns the normal
      * to almost +x, where out is behind it */
-    ck_assert(!texture_bump(&pp, -1000, 0));
-    ck_assert(memcmp(&before, &pp, sizeof pp) == 0);
-    cobject_free(obj);
+    bump_leaves_the_hit(-1000, 0);
 }
 END_TEST
 
