@@ -241,3 +241,29 @@ void imgtest_fill_disk(const char *dir)
     ck_assert_int_eq(errno, ENOSPC);
     fclose(f);
 }
+
+uint32_t imgtest_png_crc32(const unsigned char *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++)
+            c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xffffffffu;
+}
+
+void imgtest_put_be32(unsigned char *p, uint32_t v)
+{
+    p[0] = (unsigned char)(v >> 24);
+    p[1] = (unsigned char)(v >> 16);
+    p[2] = (unsigned char)(v >> 8);
+    p[3] = (unsigned char)v;
+}
+
+void imgtest_png_patch_ihdr(unsigned char *png, uint32_t w, uint32_t h)
+{
+    imgtest_put_be32(png + 16, w);
+    imgtest_put_be32(png + 20, h);
+    imgtest_put_be32(png + 29, imgtest_png_crc32(png + 12, 17));
+}

@@ -10,6 +10,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 #include "core/error.h"
 #include "io/image.h"
 
@@ -70,5 +71,16 @@ typedef svet_status (*imgtest_reader_fn)(const char *path, image_t *img,
                                          svet_error *err);
 void imgtest_check_bad_file(imgtest_reader_fn reader, const char *path,
                             svet_status status, const char *words);
+
+/* CRC-32 of PNG chunks (ISO 3309, as in the PNG spec's annex D), for
+ * making bad files whose checksums are right. */
+uint32_t imgtest_png_crc32(const unsigned char *p, size_t n);
+
+/* v big-endian into p[0..3]. */
+void imgtest_put_be32(unsigned char *p, uint32_t v);
+
+/* Set a PNG's IHDR width and height and recompute its CRC (IHDR is the
+ * first chunk: type at 12, data 16..28, CRC at 29). */
+void imgtest_png_patch_ihdr(unsigned char *png, uint32_t w, uint32_t h);
 
 #endif

@@ -247,7 +247,21 @@ typedef struct scene_features {
 
 /* --- the scene ----------------------------------------------------------- */
 
-typedef struct {
+struct scene;
+
+/* A part's per-hit shading (scene_t.shade): at the hit pp of obj (whose
+ * `texture` field holds the part's binding) by ray r after `depth`
+ * scattering events, it may move pp's shading frame u, v, n (a bump map;
+ * bout follows n) and returns the material to shade with: obj->material,
+ * or one it built in *scratch for this hit. Called from several threads at
+ * once; it must not draw random numbers. Can't fail. */
+typedef const struct material *(*scene_shade_fn)(const struct scene *s,
+                                                 const COBJECT *obj,
+                                                 const ray_t *r, int depth,
+                                                 PATHPOINT *pp,
+                                                 struct material *scratch);
+
+typedef struct scene {
     char *path;                 /* the file it was read from, or NULL. Owned */
     const scene_features_t *features; /* what the program that read it
                                    offers (the renderer builds from these),
@@ -288,6 +302,12 @@ typedef struct {
      * textures (ch. 10), media (ch. 11), their settings. Owned */
     struct scene_part_slot *part_data;
     int npart_data;
+
+    /* The per-hit shading a part installs (ch. 10's textures), called by
+     * the integrator for an object whose `texture` field is set, once its
+     * PATHPOINT is filled; NULL when no object has one, and an untextured
+     * object costs the integrator one NULL test. */
+    scene_shade_fn shade;
 } scene_t;
 
 /* Set s to an empty scene with the defaults of scenes/README.md: camera at

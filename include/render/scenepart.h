@@ -60,7 +60,10 @@ enum {
     F_REQUIRED = 1, /* the statement needs this key */
     F_POSITIVE = 2, /* the number must be > 0 */
     F_NONNEG = 4,   /* the number must be >= 0 */
-    F_NONZERO = 8   /* the vector must not be zero */
+    F_NONZERO = 8,  /* the vector must not be zero */
+    F_NAMED = 16    /* V_NUM, V_COLOUR: a name may stand in place of the
+                       value (a texture, ch. 10): val_t.named is set, the
+                       number is left 0, and a part resolves the name */
 };
 
 /* One key a statement takes. */
@@ -80,7 +83,9 @@ typedef struct {
     long i;      /* integer, or index of a V_WORD choice */
     uint64_t u;  /* V_U64 */
     bool on;     /* V_FLAG, V_ONOFF */
-    tok_t word;  /* V_WORD, V_STRING, V_ONOFF: the token */
+    tok_t word;  /* V_WORD, V_STRING, V_ONOFF: the token; F_NAMED: the
+                    name given in place of the value */
+    bool named;  /* F_NAMED: a name was given, not a number */
 } val_t;
 
 /* The scene being read. */
@@ -179,11 +184,51 @@ typedef struct render_method {
  * scene can tell (a medium's boundary is closed, a texture is used). */
 typedef svet_status (*scene_part_finish_fn)(scenefile_ctx *c);
 
+/* --- names in place of a material's numbers (ch. 10) ---------------------- */
+
+/* Which parameter of a material (material.h's material_params) a name
+ * stands for: `material m lambert rho wood` gives SCENE_PARAM_RHO_D, and
+ * the component `+ bump NAME strength S` SCENE_PARAM_BUMP. */
+typedef enum {
+    SCENE_PARAM_RHO_D,   /* lambert rho */
+    SCENE_PARAM_RHO_S,   /* mirror rho */
+    SCENE_PARAM_RHO_G,   /* phong or ward rho */
+    SCENE_PARAM_E,       /* phong e */
+    SCENE_PARAM_ALPHA,   /* ward alpha: alpha_x = alpha_y */
+    SCENE_PARAM_ALPHA_X, /* ward alpha_x */
+    SCENE_PARAM_ALPHA_Y, /* ward alpha_y */
+    SCENE_PARAM_RHO_T,   /* transmission rho */
+    SCENE_PARAM_RHO_DT,  /* diffuse_transmission rho */
+    SCENE_PARAM_BUMP     /* the height of a bump map (Blinn 1978) */
+} scene_param_t;
+
+/* One name a material statement gave in place of a value. */
+typedef struct {
+    scene_param_t param;
+    tok_t name;     /* the name, with its column */
+    real strength;  /* SCENE_PARAM_BUMP: the height's scale (1 when not
+                       given); 1 otherwise */
+} scene_named_t;
+
+/* Called after a material whose statement gave names (F_NAMED keys, a
+ * bump) was added to the scene as m, the material with each named colour
+ * black and each named number at its default: the part resolves the names
+ * (an unknown one fails with scenefile_fail at its column) and arranges
+ * the per-hit shading (scene_t.shade, scene.h). */
+typedef svet_status (*scene_part_names_fn)(scenefile_ctx *c,
+                                           const char *material,
+                                           const struct material *m,
+                                           const scene_named_t *names,
+                                           int n);
+
 typedef struct scene_part {
     const char *name;                      /* "photon", "texture", ... */
     const scene_statement_t *statements;   /* ends with { NULL, NULL } */
     const render_method_t *const *methods; /* NULL-terminated, or NULL */
     scene_part_finish_fn finish;
+    /* resolves names in place of a material's values (may be NULL: a
+     * name there is refused, unless another part offers this) */
+    scene_part_names_fn material_names;
 } scene_part_t;
 
 /* The method `name` among the parts features offers, or NULL. */

@@ -246,6 +246,10 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
             break;
 
         const material_t *m = obj->material;
+        /* a part's per-hit shading (a texture, a bump map: scene.h) */
+        material_t shaded;
+        if (obj->texture)
+            m = it->scene->shade(it->scene, obj, &r, depth, pp, &shaded);
         /* whether light from behind the surface can scatter toward the
          * viewer (rho_t or rho_dt not black, found by material_init) */
         const bool two = m->transmits;

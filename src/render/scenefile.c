@@ -44,6 +44,9 @@
  * with every key and 64 transforms has about 300), few enough that a line
  * of a million numbers costs no memory. */
 #define MAX_TOKENS 4096
+/* The most names in place of values on one material line: one per
+ * parameter of the mixed surface (scenepart.h's scene_param_t). */
+#define MAX_NAMED 16
 
 /* tok_t, vtype, spec_t and val_t are scenepart.h's: the parts of Part
  * II read their statements' keys with them. */
@@ -79,6 +82,9 @@ typedef struct scenefile_ctx {
     bbox_t bounds;         /* of the objects of finite size so far */
     double smallest;       /* the smallest such object's diagonal, */
     int smallest_line;     /* and its line (0: none yet) */
+    scene_named_t named[MAX_NAMED]; /* names in place of the current
+                                       material's values (F_NAMED) */
+    int nnamed;
 } ctx_t;
 
 
@@ -557,11 +563,27 @@ static svet_status parse_xform(ctx_t *c, const spec_t *sp, int col)
     return push_xform(c, &x, col);
 }
 
+static bool name_ok(const tok_t *t);
+
+/* A name where F_NAMED allows one in place of the number (a texture's,
+ * ch. 10): taken into v->word, the value left 0, for a part to resolve. */
+static bool named_value(ctx_t *c, const spec_t *sp, val_t *v)
+{
+    if (!(sp->flags & F_NAMED) || c->pos >= c->ntok ||
+        is_number(&c->tok[c->pos]) || !name_ok(&c->tok[c->pos]))
+        return false;
+    v->named = true;
+    v->word = c->tok[c->pos++];
+    return true;
+}
+
 static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
 {
     svet_status st = SVET_OK;
     char what[48], show[64];
     snprintf(what, sizeof what, "'%s'", sp->key);
+    if (named_value(c, sp, v))
+        return SVET_OK;
     switch (sp->type) {
     case V_FLAG:
         v->on = true;
@@ -1216,35 +1238,59 @@ static svet_status st_environment(ctx_t *c)
  * transmission with Fresnel's reflectance at normal incidence. */
 static const char *const components[] = {
     "lambert", "mirror", "phong", "ward", "transmission",
-    "diffuse_transmission", "glass", NULL
+    "diffuse_transmission", "glass", "bump", NULL
 };
 enum { C_LAMBERT, C_MIRROR, C_PHONG, C_WARD, C_TRANSMISSION, C_DIFFUSE_T,
-       C_GLASS, C_N };
+       C_GLASS, C_BUMP, C_N };
 
 enum { M_RHO, M_E, M_ALPHA, M_ALPHA_X, M_ALPHA_Y, M_BOUNDED, M_ETA, M_TINT,
        M_N };
+/* F_NAMED: a texture's name may stand in place of the value (ch. 10) */
 static const spec_t lambert_spec[] = {
-    { "rho", V_COLOUR, F_REQUIRED, 0, 0, NULL },
+    { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
 };
 static const spec_t mirror_spec[] = {
-    { "rho", V_COLOUR, F_REQUIRED, 0, 0, NULL },
+    { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
     { "eta", V_NUM, F_POSITIVE, 0, 0, NULL },
 };
 static const spec_t phong_spec[] = {
-    { "rho", V_COLOUR, F_REQUIRED, 0, 0, NULL },
-    { "e", V_NUM, F_NONNEG, 0, 0, NULL },
+    { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
+    { "e", V_NUM, F_NONNEG | F_NAMED, 0, 0, NULL },
 };
 static const spec_t ward_spec[] = {
-    { "rho", V_COLOUR, F_REQUIRED, 0, 0, NULL },
-    { "alpha", V_NUM, F_POSITIVE, 0, 0, NULL },
-    { "alpha_x", V_NUM, F_POSITIVE, 0, 0, NULL },
-    { "alpha_y", V_NUM, F_POSITIVE, 0, 0, NULL },
+    { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
+    { "alpha", V_NUM, F_POSITIVE | F_NAMED, 0, 0, NULL },
+    { "alpha_x", V_NUM, F_POSITIVE | F_NAMED, 0, 0, NULL },
+    { "alpha_y", V_NUM, F_POSITIVE | F_NAMED, 0, 0, NULL },
     { "bounded", V_FLAG, 0, 0, 0, NULL },
 };
 static const spec_t transmission_spec[] = {
-    { "rho", V_COLOUR, F_REQUIRED, 0, 0, NULL },
+    { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
     { "eta", V_NUM, F_POSITIVE, 0, 0, NULL },
 };
+static const spec_t bump_spec[] = {
+    { "strength", V_NUM, 0, 0, 0, NULL },
+};
+
+/* Note the names component `kind`'s keys v[] gave in place of values
+ * (F_NAMED): key i of the component is parameter params[i]. A named number
+ * is left unset, so that the material is built with its default. */
+static svet_status note_named(ctx_t *c, val_t *v, int nv,
+                              const scene_param_t *params)
+{
+    for (int i = 0; i < nv; i++) {
+        if (!v[i].named)
+            continue;
+        if (c->nnamed == MAX_NAMED)
+            return fail(c, v[i].word.col, SVET_ERR_RANGE,
+                        "more than %d names in place of values on one "
+                        "material", MAX_NAMED);
+        c->named[c->nnamed++] = (scene_named_t){ params[i], v[i].word, 1 };
+        if (i > 0)
+            v[i].set = false; /* a number, not a colour: keep its default */
+    }
+    return SVET_OK;
+}
 static const spec_t glass_spec[] = {
     { "eta", V_NUM, F_REQUIRED | F_POSITIVE, 0, 0, NULL },
     { "tint", V_COLOUR, 0, 0, 0, NULL },
@@ -1290,17 +1336,53 @@ static svet_status component(ctx_t *c, material_params *p, int seen[C_N],
     /* A missing key is reported at the component, not the statement. */
     int stmt_col = c->stmt_col;
     c->stmt_col = t->col;
+    static const scene_param_t rho_of[C_N] = {
+        [C_LAMBERT] = SCENE_PARAM_RHO_D, [C_MIRROR] = SCENE_PARAM_RHO_S,
+        [C_PHONG] = SCENE_PARAM_RHO_G, [C_WARD] = SCENE_PARAM_RHO_G,
+        [C_TRANSMISSION] = SCENE_PARAM_RHO_T,
+        [C_DIFFUSE_T] = SCENE_PARAM_RHO_DT
+    };
+    const scene_param_t params[5] = {
+        rho_of[kind], kind == C_PHONG ? SCENE_PARAM_E : SCENE_PARAM_ALPHA,
+        SCENE_PARAM_ALPHA_X, SCENE_PARAM_ALPHA_Y, SCENE_PARAM_ALPHA
+    };
     switch (kind) {
     case C_LAMBERT:
         st = parse_keys(c, what, lambert_spec, 1, v, true);
         if (!st)
+            st = note_named(c, v, 1, params);
+        if (!st)
             p->rho_d = colour_of(&v[0]);
         break;
+    case C_BUMP: {
+        /* `bump NAME strength S`: a height map (Blinn 1978), ch. 10 */
+        if (c->pos >= c->ntok || !name_ok(&c->tok[c->pos])) {
+            st = fail(c, c->pos < c->ntok ? c->tok[c->pos].col : c->eol_col,
+                      SVET_ERR_PARSE, "'bump' expects the name of a "
+                      "texture, then 'strength S'");
+            break;
+        }
+        tok_t name = c->tok[c->pos++];
+        st = parse_keys(c, what, bump_spec, 1, v, true);
+        if (st)
+            break;
+        if (c->nnamed == MAX_NAMED) {
+            st = fail(c, name.col, SVET_ERR_RANGE, "too many names on one "
+                      "material");
+            break;
+        }
+        c->named[c->nnamed++] = (scene_named_t){
+            SCENE_PARAM_BUMP, name, v[0].set ? v[0].v[0] : 1
+        };
+        break;
+    }
     case C_MIRROR:
     case C_TRANSMISSION:
         st = parse_keys(c, what, kind == C_MIRROR ? mirror_spec
                                                   : transmission_spec,
                         2, v, true);
+        if (!st)
+            st = note_named(c, v, 1, params);
         if (st)
             break;
         if (kind == C_MIRROR)
@@ -1312,6 +1394,8 @@ static svet_status component(ctx_t *c, material_params *p, int seen[C_N],
         break;
     case C_PHONG:
         st = parse_keys(c, what, phong_spec, 2, v, true);
+        if (!st)
+            st = note_named(c, v, 2, params);
         if (st)
             break;
         p->gloss = MATERIAL_GLOSS_PHONG;
@@ -1321,6 +1405,8 @@ static svet_status component(ctx_t *c, material_params *p, int seen[C_N],
         break;
     case C_WARD:
         st = parse_keys(c, what, ward_spec, 5, v, true);
+        if (!st)
+            st = note_named(c, v, 4, params);
         if (st)
             break;
         if (v[1].set && (v[2].set || v[3].set)) {
@@ -1346,6 +1432,8 @@ static svet_status component(ctx_t *c, material_params *p, int seen[C_N],
         break;
     case C_DIFFUSE_T:
         st = parse_keys(c, what, lambert_spec, 1, v, true);
+        if (!st)
+            st = note_named(c, v, 1, params);
         if (!st)
             p->rho_dt = colour_of(&v[0]);
         break;
@@ -1393,6 +1481,30 @@ static bool name_ok(const tok_t *t)
     return true;
 }
 
+/* Hand the names the material gave in place of values to the part that
+ * resolves them (the textures of ch. 10, scenepart.h). */
+static svet_status material_names(ctx_t *c, const char *name,
+                                  const material_t *m)
+{
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    for (int i = 0; parts && parts[i]; i++)
+        if (parts[i]->material_names)
+            return parts[i]->material_names(c, name, m, c->named,
+                                             c->nnamed);
+    char show[64];
+    const scene_named_t *n = &c->named[0];
+    if (n->param == SCENE_PARAM_BUMP)
+        return fail(c, n->name.col, SVET_ERR_UNSUPPORTED,
+                    "'bump %s': this program was built without the "
+                    "textures of ch. 10", show_tok(&n->name, show,
+                                                   sizeof show));
+    return fail(c, n->name.col, SVET_ERR_PARSE,
+                "expected a number, got '%s' (a texture's name goes here "
+                "only in a program built with the textures of ch. 10)",
+                show_tok(&n->name, show, sizeof show));
+}
+
 static svet_status st_material(ctx_t *c)
 {
     char show[64], name[SCENE_MAX_NAME + 1];
@@ -1413,6 +1525,7 @@ static svet_status st_material(ctx_t *c)
     material_params_default(&p);
     int seen[C_N] = { 0 };
     int eta_col = 0;
+    c->nnamed = 0;
     if (c->pos >= c->ntok)
         return fail(c, c->eol_col, SVET_ERR_PARSE,
                     "material '%s' expects a component: %s", name,
@@ -1439,6 +1552,8 @@ static svet_status st_material(ctx_t *c)
     st = scene_add_material(c->scene, name, m, &e);
     if (st)
         return fail(c, nt->col, st, "%s", e.msg);
+    if (c->nnamed > 0)
+        return material_names(c, name, m);
     return SVET_OK;
 }
 

@@ -20,6 +20,7 @@
 static const char *const PROGS[] = {
     "ch01_brdf", "ch01_geometry", "ch02_colour", "ch03_estimator",
     "ch04_montecarlo", "ch05_cases", "ch06_display", "ch07_grids",
+    "ch10_textures",
 };
 #define NPROGS ((int)(sizeof PROGS / sizeof PROGS[0]))
 
@@ -194,6 +195,7 @@ START_TEST(a_bad_value_is_refused)
         { "ch03_estimator", "--paths", "-1" },
         { "ch04_montecarlo", "--kmax", "11" },
         { "ch07_grids", "--width", "-4" },
+        { "ch10_textures", "--size", "8" },
     };
     const char *dir = scratch();
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -352,6 +354,22 @@ START_TEST(ch07_writes_its_heat_maps_and_makes_its_directory)
 }
 END_TEST
 
+START_TEST(ch10_writes_the_grazing_errors_and_the_noise)
+{
+    const char *dir = run_small("ch10_textures", "--size 16");
+    int n = read_csv(dir, "ch10_grazing.csv", lines, 1000);
+    ck_assert_str_eq(lines[0], "row,nearest,bilinear,trilinear");
+    ck_assert_int_eq(n, 1 + 64);
+    n = read_csv(dir, "ch10_noise.csv", lines, 1000);
+    ck_assert_str_eq(lines[0], "x,noise,dnoise_dx,central");
+    /* the analytic derivative against the central difference, whose
+     * rounding in float is about 1e-7 / 2e-3 = 5e-5 */
+    for (int i = 1; i < n; i++)
+        ck_assert(fabs(field(lines[i], 2) - field(lines[i], 3)) < 1e-3);
+    rm_dir(dir);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("chapters");
@@ -368,6 +386,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, ch05_writes_its_table);
     tcase_add_test(tc, ch06_writes_the_curve_and_the_histogram);
     tcase_add_test(tc, ch07_writes_its_heat_maps_and_makes_its_directory);
+    tcase_add_test(tc, ch10_writes_the_grazing_errors_and_the_noise);
     suite_add_tcase(s, tc);
     return s;
 }

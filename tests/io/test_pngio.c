@@ -151,36 +151,6 @@ START_TEST(every_png_colour_type_is_read_as_rgb_or_rgba)
 }
 END_TEST
 
-/* CRC-32 of PNG chunks (ISO 3309, as in the PNG spec's annex D), for
- * making bad files whose checksums are right. */
-static uint32_t crc32_of(const unsigned char *p, size_t n)
-{
-    uint32_t c = 0xffffffffu;
-    for (size_t i = 0; i < n; i++) {
-        c ^= p[i];
-        for (int k = 0; k < 8; k++)
-            c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
-    }
-    return c ^ 0xffffffffu;
-}
-
-static void put_be32(unsigned char *p, uint32_t v)
-{
-    p[0] = (unsigned char)(v >> 24);
-    p[1] = (unsigned char)(v >> 16);
-    p[2] = (unsigned char)(v >> 8);
-    p[3] = (unsigned char)v;
-}
-
-/* Set IHDR's width and height and recompute its CRC (IHDR is the first
- * chunk: type at 12, data 16..28, CRC at 29). */
-static void patch_ihdr(unsigned char *png, uint32_t w, uint32_t h)
-{
-    put_be32(png + 16, w);
-    put_be32(png + 20, h);
-    put_be32(png + 29, crc32_of(png + 12, 17));
-}
-
 START_TEST(bad_png_files_get_clear_errors)
 {
     svet_error err;
@@ -193,7 +163,7 @@ START_TEST(bad_png_files_get_clear_errors)
     image_free(&img);
     unsigned char *good;
     size_t n = imgtest_read_bytes(good_path, &good);
-    ck_assert(crc32_of(good + 12, 17) == ((uint32_t)good[29] << 24 |
+    ck_assert(imgtest_png_crc32(good + 12, 17) == ((uint32_t)good[29] << 24 |
                                           (uint32_t)good[30] << 16 |
                                           (uint32_t)good[31] << 8 | good[32]));
     unsigned char *bad = malloc(n);
@@ -221,32 +191,32 @@ START_TEST(bad_png_files_get_clear_errors)
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, "CRC");
     /* a lying header with a valid CRC: 400 x 40 claimed, 40 x 40 stored */
     memcpy(bad, good, n);
-    patch_ihdr(bad, 400, 40);
+    imgtest_png_patch_ihdr(bad, 400, 40);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, NULL);
     /* lying by far: 8000 x 8000 (within the limit of pixels read) from a
      * few hundred bytes, refused before the 370 MB allocation */
-    patch_ihdr(bad, 8000, 8000);
+    imgtest_png_patch_ihdr(bad, 8000, 8000);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, "cannot hold");
     /* 16384 x 16384, as a 783 KB file can claim and deflate can just
      * about fill: beyond the limit of pixels read, refused before libpng
      * decodes a row */
-    patch_ihdr(bad, 16384, 16384);
+    imgtest_png_patch_ihdr(bad, 16384, 16384);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_RANGE,
                            "exceeds the limit of 67108864 pixels");
-    patch_ihdr(bad, 20000, 20000); /* 4e8 pixels: beyond IMAGE_MAX_PIXELS */
+    imgtest_png_patch_ihdr(bad, 20000, 20000); /* 4e8 pixels: beyond IMAGE_MAX_PIXELS */
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_RANGE, "limit");
     /* absurd: 2^31 - 1 a side (libpng's own limit), and our limit */
-    patch_ihdr(bad, 0x7fffffffu, 0x7fffffffu);
+    imgtest_png_patch_ihdr(bad, 0x7fffffffu, 0x7fffffffu);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, NULL);
-    patch_ihdr(bad, IMAGE_MAX_DIM + 1, 1);
+    imgtest_png_patch_ihdr(bad, IMAGE_MAX_DIM + 1, 1);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, "limit");
-    patch_ihdr(bad, 0, 40);
+    imgtest_png_patch_ihdr(bad, 0, 40);
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, NULL);
     cases += 7;
@@ -263,7 +233,7 @@ START_TEST(bad_png_files_get_clear_errors)
         bad[idat + 4 + i] ^= 0xa5;
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, NULL);
-    put_be32(bad + idat + 4 + len, crc32_of(bad + idat, 4 + len));
+    imgtest_put_be32(bad + idat + 4 + len, imgtest_png_crc32(bad + idat, 4 + len));
     imgtest_write_bytes(path, bad, n);
     imgtest_check_bad_file(read_png, path, SVET_ERR_PARSE, NULL);
     cases += 2;

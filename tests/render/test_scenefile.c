@@ -228,7 +228,7 @@ START_TEST(a_byte_order_mark_at_the_start_is_skipped)
               SVET_ERR_PARSE, "t.scn:2:1: unknown keyword '???sphere': "
               "expected one of camera, render, output, tonemap, material, "
               "light, environment, sphere, plane, disk, parallelogram, "
-              "triangle, box, cylinder, cone, mesh");
+              "triangle, box, cylinder, cone, mesh, texture");
 }
 END_TEST
 
@@ -947,7 +947,7 @@ static const struct {
     { "\n  teapot\n", SVET_ERR_PARSE,
       "t.scn:2:3: unknown keyword 'teapot': expected one of camera, render, "
       "output, tonemap, material, light, environment, sphere, plane, disk, "
-      "parallelogram, triangle, box, cylinder, cone, mesh" },
+      "parallelogram, triangle, box, cylinder, cone, mesh, texture" },
     { M "sphere centre 0 0 0 radus 1 material m\n", SVET_ERR_PARSE,
       "t.scn:2:21: unknown parameter of sphere 'radus' (did you mean "
       "'radius'?)" },
@@ -1154,8 +1154,8 @@ static const struct {
       SVET_ERR_RANGE, "t.scn:1:1: camera target - position overflows "
       REAL_NAME ": bring them closer" },
     /* later chapters */
-    { "texture checker\n", SVET_ERR_UNSUPPORTED,
-      "t.scn:1:1: 'texture' is not supported yet: ch. 10 (textures)" },
+    { "sky clear\n", SVET_ERR_UNSUPPORTED,
+      "t.scn:1:1: 'sky' is not supported yet: ch. 12 (the atmosphere)" },
     { "include other.scn\n", SVET_ERR_UNSUPPORTED,
       "t.scn:1:1: 'include' is not supported yet: no chapter: one scene is "
       "one file" },
@@ -1221,7 +1221,7 @@ START_TEST(long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks)
               "'zzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzz...': expected one "
               "of camera, render, output, tonemap, material, light, "
               "environment, sphere, plane, disk, parallelogram, triangle, "
-              "box, cylinder, cone, mesh");
+              "box, cylinder, cone, mesh, texture");
     parse_err("camer\xc3\xa9 1\n", SVET_ERR_PARSE,
               "t.scn:1:1: unknown keyword 'camer?" "?' (did you mean "
               "'camera'?)");

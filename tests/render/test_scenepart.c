@@ -146,7 +146,7 @@ static const scene_statement_t glow_statements[] = {
     { NULL, NULL }
 };
 static const scene_part_t glow_part = { "glow", glow_statements,
-                                        glow_methods, glow_finish };
+                                        glow_methods, glow_finish, NULL };
 static const scene_part_t *const parts[] = { &glow_part, NULL };
 static const scene_features_t features = { .parts = parts };
 

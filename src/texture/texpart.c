@@ -1,0 +1,497 @@
+/*
+ * texpart.c - the textures of ch. 10 in the scene file and the renderer
+ * (texpart.h): `texture NAME KIND KEYS`, names of textures in place of a
+ * material's values, `bump NAME strength S`, and the per-hit shading hook
+ * (scene_t.shade) that reads them.
+ * Tests: tests/texture/test_texpart.c
+ */
+#include "texture/texpart.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/imageio.h"
+#include "materials/material.h"
+#include "texture/texture.h"
+
+#define TEXPART_MAX_TEXTURES 4096
+#define PI_D 3.14159265358979323846
+
+/* A named texture. */
+typedef struct {
+    char name[SCENE_MAX_NAME + 1];
+    texture_t tex;
+} named_texture_t;
+
+/* What a textured material reads at a hit: the textures standing for its
+ * parameters (NULL: the material's own value). cobject.h's COBJECT.texture
+ * points at one. */
+struct texture {
+    const material_t *base;                        /* the scene's material */
+    const texture_t *param[SCENE_PARAM_BUMP + 1];  /* by scene_param_t */
+    int index[SCENE_PARAM_BUMP + 1]; /* the same as indices into the
+                                        part's textures, -1: none (the
+                                        pointers are set by finish, once
+                                        the list has stopped growing) */
+    real strength;                                 /* the bump's scale */
+    bool reparam;   /* some parameter other than the bump is textured */
+    real spread;    /* the camera's angle per pixel, radians (footprint) */
+};
+typedef struct texture binding_t;
+
+typedef struct {
+    named_texture_t *tex;  /* every texture, in order */
+    int ntex;
+    binding_t *bind;       /* every textured material */
+    int nbind;
+} texpart_data_t;
+
+static void data_free(void *p)
+{
+    texpart_data_t *d = p;
+    for (int i = 0; i < d->ntex; i++)
+        texture_free(&d->tex[i].tex);
+    free(d->tex);
+    free(d->bind);
+    free(d);
+}
+
+static texpart_data_t *data_of(scenefile_ctx *c)
+{
+    scene_t *s = scenefile_scene(c);
+    texpart_data_t *d = scene_part_data(s, "texture");
+    if (d)
+        return d;
+    d = calloc(1, sizeof *d);
+    svet_error e;
+    if (!d || scene_set_part_data(s, "texture", d, data_free, &e))
+        return NULL;
+    return d;
+}
+
+/* --- `texture NAME KIND KEYS` -------------------------------------------- */
+
+static const char *const kinds[] = {
+    "image", "checker", "noise", "fbm", "turbulence", "marble", "wood",
+    "granite", "waves", "ripples", "bricks", "orange_peel", "dents", NULL
+};
+enum { K_IMAGE, K_CHECKER, K_NOISE, K_FBM, K_TURBULENCE, K_MARBLE, K_WOOD,
+       K_GRANITE, K_WAVES, K_RIPPLES, K_BRICKS, K_ORANGE_PEEL, K_DENTS,
+       K_N };
+
+static const char *const filters[] = { "nearest", "bilinear", "trilinear",
+                                       NULL };
+static const char *const wraps[] = { "repeat", "clamp", "mirror", NULL };
+
+enum { T_FILE, T_FILTER, T_WRAP, T_DATA, T_A, T_B, T_SCALE, T_SOLID,
+       T_OCTAVES, T_LACUNARITY, T_GAIN, T_AMPLITUDE, T_RINGS, T_FREQUENCY,
+       T_ANGLE, T_DAMPING, T_N };
+static const spec_t texture_spec[T_N] = {
+    [T_FILE] = { "file", V_STRING, 0, 0, 0, NULL },
+    [T_FILTER] = { "filter", V_WORD, 0, 0, 0, filters },
+    [T_WRAP] = { "wrap", V_WORD, 0, 0, 0, wraps },
+    [T_DATA] = { "data", V_FLAG, 0, 0, 0, NULL },
+    [T_A] = { "a", V_COLOUR, 0, 0, 0, NULL },
+    [T_B] = { "b", V_COLOUR, 0, 0, 0, NULL },
+    [T_SCALE] = { "scale", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [T_SOLID] = { "solid", V_FLAG, 0, 0, 0, NULL },
+    [T_OCTAVES] = { "octaves", V_INT, 0, 1, NOISE_MAX_OCTAVES, NULL },
+    [T_LACUNARITY] = { "lacunarity", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [T_GAIN] = { "gain", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [T_AMPLITUDE] = { "amplitude", V_NUM, F_NONNEG, 0, 0, NULL },
+    [T_RINGS] = { "rings", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [T_FREQUENCY] = { "frequency", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [T_ANGLE] = { "angle", V_NUM, 0, 0, 0, NULL },
+    [T_DAMPING] = { "damping", V_NUM, F_NONNEG, 0, 0, NULL },
+};
+
+/* Which keys each kind takes (bit i: key i). */
+#define B(k) (1u << (k))
+#define SOLID_KEYS (B(T_A) | B(T_B) | B(T_SCALE) | B(T_OCTAVES) | \
+                    B(T_LACUNARITY) | B(T_GAIN))
+#define PATTERN_KEYS (B(T_A) | B(T_B) | B(T_SCALE) | B(T_FREQUENCY))
+static const unsigned kind_keys[K_N] = {
+    [K_IMAGE] = B(T_FILE) | B(T_FILTER) | B(T_WRAP) | B(T_DATA) |
+                B(T_SCALE),
+    [K_CHECKER] = B(T_A) | B(T_B) | B(T_SCALE) | B(T_SOLID),
+    [K_NOISE] = B(T_A) | B(T_B) | B(T_SCALE),
+    [K_FBM] = SOLID_KEYS,
+    [K_TURBULENCE] = SOLID_KEYS,
+    [K_MARBLE] = SOLID_KEYS | B(T_AMPLITUDE),
+    [K_WOOD] = SOLID_KEYS | B(T_AMPLITUDE) | B(T_RINGS),
+    [K_GRANITE] = SOLID_KEYS,
+    [K_WAVES] = PATTERN_KEYS | B(T_ANGLE),
+    [K_RIPPLES] = PATTERN_KEYS | B(T_DAMPING),
+    [K_BRICKS] = B(T_A) | B(T_B) | B(T_SCALE),
+    [K_ORANGE_PEEL] = PATTERN_KEYS,
+    [K_DENTS] = PATTERN_KEYS,
+};
+
+/* Read the image of an `image` texture into t's mip map. */
+static svet_status load_image(scenefile_ctx *c, texture_t *t, const val_t *v)
+{
+    svet_error e;
+    char *path = scenefile_path(c, &v[T_FILE].word, &e);
+    if (!path)
+        return scenefile_fail(c, v[T_FILE].col, e.status, "%s", e.msg);
+    image_t img;
+    memset(&img, 0, sizeof img);
+    /* a colour stored as sRGB codes (PNG, PPM) is decoded to linear; a
+     * data image (heights) is read as stored */
+    svet_status st = imageio_read(path, &img, !v[T_DATA].on, NULL, &e);
+    free(path);
+    if (st)
+        return scenefile_fail(c, v[T_FILE].word.col, st, "texture file: %s",
+                              e.msg);
+    /* three channels: an alpha is dropped; a non-finite texel (an EXR may
+     * hold NaN) is refused, the mip map's means would spread it */
+    const int n = img.width * img.height;
+    float *rgb = malloc((size_t)n * 3 * sizeof *rgb);
+    if (!rgb) {
+        image_free(&img);
+        return scenefile_fail(c, v[T_FILE].col, SVET_ERR_NOMEM,
+                              "out of memory");
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            float x = img.px[(size_t)i * (size_t)img.channels + (size_t)k];
+            if (!isfinite(x)) {
+                int w = img.width;
+                free(rgb);
+                image_free(&img);
+                return scenefile_fail(c, v[T_FILE].word.col, SVET_ERR_RANGE,
+                                      "texture file: the texel (%d, %d) is "
+                                      "not a finite number", i % w, i / w);
+            }
+            rgb[(size_t)i * 3 + (size_t)k] = x;
+        }
+    mipmap_wrap_t wrap = v[T_WRAP].set ? (mipmap_wrap_t)v[T_WRAP].i
+                                       : MIPMAP_REPEAT;
+    st = mipmap_build(&t->mip, rgb, img.width, img.height, 3, wrap, &e);
+    free(rgb);
+    image_free(&img);
+    if (st)
+        return scenefile_fail(c, v[T_FILE].col, st, "texture file: %s",
+                              e.msg);
+    t->filter = v[T_FILTER].set ? (mipmap_filter_t)v[T_FILTER].i
+                                : MIPMAP_TRILINEAR;
+    return SVET_OK;
+}
+
+static svet_status texture_statement(scenefile_ctx *c)
+{
+    char name[SCENE_MAX_NAME + 1], show[SCENE_MAX_NAME + 1];
+    int col = 1;
+    svet_status st = scenefile_name(c, "texture", name, &col);
+    if (st)
+        return st;
+    texpart_data_t *d = data_of(c);
+    if (!d)
+        return scenefile_fail(c, col, SVET_ERR_NOMEM, "out of memory");
+    for (int i = 0; i < d->ntex; i++)
+        if (!strcmp(d->tex[i].name, name))
+            return scenefile_fail(c, col, SVET_ERR_PARSE,
+                                  "texture '%s' is already defined", name);
+    int n;
+    const tok_t *t = scenefile_tokens(c, &n);
+    int kind = -1;
+    for (int i = 0; n > 0 && i < K_N; i++)
+        if (scenefile_tok_is(&t[0], kinds[i]))
+            kind = i;
+    if (kind < 0) {
+        scenefile_tok_copy(n > 0 ? &t[0] : t, show, sizeof show);
+        return scenefile_fail(c, n > 0 ? t[0].col : scenefile_eol_col(c),
+                              SVET_ERR_PARSE,
+                              "texture '%s' expects a kind: image, checker, "
+                              "noise, fbm, turbulence, marble, wood, granite,"
+                              " waves, ripples, bricks, orange_peel or "
+                              "dents%s%s%s", name, n > 0 ? ", not '" : "",
+                              n > 0 ? show : "", n > 0 ? "'" : "");
+    }
+    scenefile_skip(c, 1);
+    val_t v[T_N];
+    char stmt[96];
+    snprintf(stmt, sizeof stmt, "texture %s", kinds[kind]);
+    st = scenefile_keys(c, stmt, texture_spec, T_N, v, false);
+    if (st)
+        return st;
+    for (int k = 0; k < T_N; k++)
+        if (v[k].set && !(kind_keys[kind] & B(k)))
+            return scenefile_fail(c, v[k].col, SVET_ERR_PARSE,
+                                  "a texture of kind %s takes no '%s'",
+                                  kinds[kind], texture_spec[k].key);
+    if (kind == K_IMAGE && !v[T_FILE].set)
+        return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_PARSE,
+                              "texture image needs 'file' (a PNG or EXR "
+                              "image)");
+    if (d->ntex == TEXPART_MAX_TEXTURES)
+        return scenefile_fail(c, col, SVET_ERR_RANGE,
+                              "more than %d textures", TEXPART_MAX_TEXTURES);
+    named_texture_t *nt = realloc(d->tex, (size_t)(d->ntex + 1) * sizeof *nt);
+    if (!nt)
+        return scenefile_fail(c, col, SVET_ERR_NOMEM, "out of memory");
+    d->tex = nt;
+    nt = &d->tex[d->ntex];
+    memset(nt, 0, sizeof *nt);
+    snprintf(nt->name, sizeof nt->name, "%s", name);
+    texture_t *tx = &nt->tex;
+    tx->a = v[T_A].set ? rad_make(v[T_A].v[0], v[T_A].v[1], v[T_A].v[2])
+                       : rad_grey(0);
+    tx->b = v[T_B].set ? rad_make(v[T_B].v[0], v[T_B].v[1], v[T_B].v[2])
+                       : rad_grey(1);
+    tx->scale = v[T_SCALE].set ? v[T_SCALE].v[0] : 1;
+    switch (kind) {
+    case K_IMAGE:
+        tx->kind = TEXTURE_IMAGE;
+        st = load_image(c, tx, v);
+        if (st)
+            return st;
+        break;
+    case K_CHECKER:
+        tx->kind = TEXTURE_CHECKER;
+        if (!v[T_SOLID].on)
+            break;
+        /* fall through - the 3D checker is a solid */
+    case K_NOISE: case K_FBM: case K_TURBULENCE: case K_MARBLE: case K_WOOD:
+    case K_GRANITE: {
+        static const solid_kind_t sk[K_N] = {
+            [K_CHECKER] = SOLID_CHECKER, [K_NOISE] = SOLID_NOISE,
+            [K_FBM] = SOLID_FRACTAL, [K_TURBULENCE] = SOLID_TURBULENCE,
+            [K_MARBLE] = SOLID_MARBLE, [K_WOOD] = SOLID_WOOD,
+            [K_GRANITE] = SOLID_GRANITE
+        };
+        tx->kind = TEXTURE_SOLID;
+        tx->solid = solid_default(sk[kind], tx->a, tx->b);
+        tx->solid.scale = tx->scale;
+        tx->scale = 1;
+        if (v[T_OCTAVES].set)
+            tx->solid.octaves.octaves = (int)v[T_OCTAVES].i;
+        if (v[T_LACUNARITY].set)
+            tx->solid.octaves.lacunarity = v[T_LACUNARITY].v[0];
+        if (v[T_GAIN].set)
+            tx->solid.octaves.gain = v[T_GAIN].v[0];
+        if (v[T_AMPLITUDE].set)
+            tx->solid.amplitude = v[T_AMPLITUDE].v[0];
+        if (v[T_RINGS].set)
+            tx->solid.rings = v[T_RINGS].v[0];
+        break;
+    }
+    default: {
+        static const bumpgen_kind_t bk[K_N] = {
+            [K_WAVES] = BUMPGEN_WAVES, [K_RIPPLES] = BUMPGEN_RIPPLES,
+            [K_BRICKS] = BUMPGEN_BRICKS, [K_ORANGE_PEEL] = BUMPGEN_ORANGE_PEEL,
+            [K_DENTS] = BUMPGEN_DENTS
+        };
+        tx->kind = TEXTURE_BUMPGEN;
+        tx->bump = bumpgen_default(bk[kind]);
+        if (v[T_FREQUENCY].set)
+            tx->bump.frequency = v[T_FREQUENCY].v[0];
+        if (v[T_ANGLE].set) /* degrees in the scene, radians in bumpgen */
+            tx->bump.angle = v[T_ANGLE].v[0] * REAL_PI / 180;
+        if (v[T_DAMPING].set)
+            tx->bump.damping = v[T_DAMPING].v[0];
+        break;
+    }
+    }
+    d->ntex++;
+    return SVET_OK;
+}
+
+/* --- names in place of a material's values -------------------------------- */
+
+static svet_status material_names(scenefile_ctx *c, const char *material,
+                                  const material_t *m,
+                                  const scene_named_t *names, int n)
+{
+    texpart_data_t *d = data_of(c);
+    if (!d)
+        return scenefile_fail(c, names[0].name.col, SVET_ERR_NOMEM,
+                              "out of memory");
+    binding_t b;
+    memset(&b, 0, sizeof b);
+    b.base = m;
+    for (int k = 0; k <= SCENE_PARAM_BUMP; k++)
+        b.index[k] = -1;
+    for (int i = 0; i < n; i++) {
+        char name[SCENE_MAX_NAME + 1];
+        scenefile_tok_copy(&names[i].name, name, sizeof name);
+        int found = -1;
+        for (int k = 0; k < d->ntex && found < 0; k++)
+            if (!strcmp(d->tex[k].name, name))
+                found = k;
+        if (found < 0)
+            return scenefile_fail(c, names[i].name.col, SVET_ERR_PARSE,
+                                  "material '%s': '%s' is neither a number "
+                                  "nor a texture defined above", material,
+                                  name);
+        b.index[names[i].param] = found;
+        if (names[i].param == SCENE_PARAM_BUMP)
+            b.strength = names[i].strength;
+        else
+            b.reparam = true;
+    }
+    if (!b.reparam && b.strength == 0) {
+        /* a bump of strength 0 changes nothing: the material is shaded
+         * as if it had none, and costs nothing */
+        return SVET_OK;
+    }
+    binding_t *nb = realloc(d->bind, (size_t)(d->nbind + 1) * sizeof *nb);
+    if (!nb)
+        return scenefile_fail(c, names[0].name.col, SVET_ERR_NOMEM,
+                              "out of memory");
+    d->bind = nb;
+    d->bind[d->nbind++] = b;
+    return SVET_OK;
+}
+
+/* --- the shading at a hit ------------------------------------------------- */
+
+/* The width, in (s, t) units, of the pixel's footprint at the camera ray's
+ * hit: a ray cone of the camera's angle per pixel (Amanatides 1984; as
+ * Akenine-Moller et al. 2019 use it for texture level of detail), spread
+ * over distance r_dist and stretched by 1 / |cos| on the surface, divided
+ * by the shorter tangent so that the width follows the major axis of the
+ * footprint as a mip map's isotropic level must (Williams 1983). Later
+ * bounces read the finest level. */
+static real footprint(const binding_t *b, const PATHPOINT *pp, int depth)
+{
+    if (depth > 0 || !(b->spread > 0))
+        return 0;
+    real c = fabs(SVECTOR3(pp->out, pp->ng));
+    real w = pp->r_dist * b->spread / real_max(c, REAL_C(1e-3));
+    real ls = vec_length(pp->dpds), lt = vec_length(pp->dpdt);
+    real l = real_min(ls, lt);
+    return l > 0 && isfinite(w / l) ? w / l : 0;
+}
+
+static RADIANCE clamp01(RADIANCE c)
+{
+    return rad_make(real_min(real_max(c.r, REAL_C(0.0)), REAL_C(1.0)),
+                    real_min(real_max(c.g, REAL_C(0.0)), REAL_C(1.0)),
+                    real_min(real_max(c.b, REAL_C(0.0)), REAL_C(1.0)));
+}
+
+/* The material's parameters with the textured ones read at q. Colours are
+ * clamped to [0, 1] and, where the components' sum exceeds 1 in a
+ * channel, all reflectances scaled down together so that material_init's
+ * energy bound holds; numbers are a texture's first channel, clamped to
+ * the ranges of brdf.h. */
+static void textured_params(const binding_t *b, const texture_point_t *q,
+                            material_params *p)
+{
+    *p = b->base->params;
+    RADIANCE *rho[SCENE_PARAM_BUMP] = {
+        [SCENE_PARAM_RHO_D] = &p->rho_d, [SCENE_PARAM_RHO_S] = &p->rho_s,
+        [SCENE_PARAM_RHO_G] = &p->rho_g, [SCENE_PARAM_RHO_T] = &p->rho_t,
+        [SCENE_PARAM_RHO_DT] = &p->rho_dt
+    };
+    for (int k = 0; k < SCENE_PARAM_BUMP; k++) {
+        const texture_t *t = b->param[k];
+        if (!t)
+            continue;
+        RADIANCE c = texture_eval(t, q);
+        if (rho[k]) {
+            *rho[k] = clamp01(c);
+            continue;
+        }
+        real x = c.r;
+        if (k == SCENE_PARAM_E)
+            p->e = real_min(real_max(x, REAL_C(0.0)), BRDF_PHONG_E_MAX);
+        else {
+            x = real_min(real_max(x, BRDF_WARD_ALPHA_MIN), BRDF_WARD_ALPHA_MAX);
+            if (k != SCENE_PARAM_ALPHA_Y)
+                p->alpha_x = x;
+            if (k != SCENE_PARAM_ALPHA_X)
+                p->alpha_y = x;
+        }
+    }
+    RADIANCE sum = rad_add(rad_add(rad_add(p->rho_d, p->rho_s),
+                                   rad_add(p->rho_g, p->rho_t)), p->rho_dt);
+    real most = rad_max(sum);
+    if (most > 1) {
+        real f = (1 - 8 * REAL_EPSILON) / most;
+        p->rho_d = rad_scale(p->rho_d, f);
+        p->rho_s = rad_scale(p->rho_s, f);
+        p->rho_g = rad_scale(p->rho_g, f);
+        p->rho_t = rad_scale(p->rho_t, f);
+        p->rho_dt = rad_scale(p->rho_dt, f);
+    }
+}
+
+static const material_t *shade(const scene_t *s, const COBJECT *obj,
+                               const ray_t *r, int depth, PATHPOINT *pp,
+                               material_t *scratch)
+{
+    (void)s;
+    (void)r;
+    const binding_t *b = obj->texture;
+    texture_point_t q;
+    texture_point_of(&q, pp, footprint(b, pp, depth));
+    const material_t *m = b->base;
+    if (b->reparam) {
+        material_params p;
+        textured_params(b, &q, &p);
+        svet_error e;
+        if (material_init(scratch, &p, &e) == SVET_OK)
+            m = scratch;
+    }
+    const texture_t *h = b->param[SCENE_PARAM_BUMP];
+    if (h && b->strength != 0) {
+        real hs, ht;
+        texture_height(h, &q, &hs, &ht);
+        texture_bump(pp, b->strength * hs, b->strength * ht);
+    }
+    return m;
+}
+
+/* --- the whole scene ------------------------------------------------------ */
+
+/* The camera's angle per pixel along the axis its field of view spans. */
+static real pixel_spread(const scene_camera_t *cam)
+{
+    double w = cam->width, h = cam->height;
+    double px = cam->fov_axis == SCENE_FOV_X   ? w
+                : cam->fov_axis == SCENE_FOV_Y ? h
+                                               : sqrt(w * w + h * h);
+    return (real)(2 * tan(0.5 * (double)cam->fov * PI_D / 180) / px);
+}
+
+static svet_status finish(scenefile_ctx *c)
+{
+    scene_t *s = scenefile_scene(c);
+    texpart_data_t *d = scene_part_data(s, "texture");
+    if (!d)
+        return SVET_OK;
+    if (d->nbind == 0)
+        return SVET_OK;
+    real spread = pixel_spread(&s->camera);
+    for (int k = 0; k < d->nbind; k++) {
+        binding_t *b = &d->bind[k];
+        b->spread = spread;
+        for (int j = 0; j <= SCENE_PARAM_BUMP; j++)
+            b->param[j] = b->index[j] >= 0 ? &d->tex[b->index[j]].tex : NULL;
+    }
+    /* every object of a textured material reads its binding; the rest
+     * keep texture NULL and the integrator passes them by */
+    for (int i = 0; i < s->nobjects; i++)
+        for (int k = 0; k < d->nbind; k++)
+            if (s->objects[i]->material == d->bind[k].base)
+                s->objects[i]->texture = &d->bind[k];
+    s->shade = shade;
+    return SVET_OK;
+}
+
+static const scene_statement_t statements[] = {
+    { "texture", texture_statement },
+    { NULL, NULL }
+};
+
+const scene_part_t texpart_part = {
+    .name = "texture",
+    .statements = statements,
+    .methods = NULL,
+    .finish = finish,
+    .material_names = material_names,
+};
