@@ -289,7 +289,7 @@ static int chromaticity_diagram(const char *dir)
     line(&p, px_x(0), px_y(0), px_x(REAL_C(0.8)), px_y(0), 0.6, WHITE);
     line(&p, px_x(0), px_y(0), px_x(0), px_y(REAL_C(0.9)), 0.6, WHITE);
     for (int k = 0; k <= 8; k++) {
-        char lab[8];
+        char lab[16];
         snprintf(lab, sizeof lab, "0.%d", k);
         line(&p, px_x((real)k / 10), px_y(0), px_x((real)k / 10), px_y(0) + 6, 0.6, WHITE);
         line(&p, px_x(0), px_y((real)k / 10), px_x(0) - 6, px_y((real)k / 10), 0.6, WHITE);
@@ -312,7 +312,7 @@ static int chromaticity_diagram(const char *dir)
         colour_xy_t c = spectrum_locus_xy((real)marks[k]);
         /* label outward from the white point E */
         double dx = (double)c.x - 1.0 / 3, dy = (double)c.y - 1.0 / 3, n = hypot(dx, dy);
-        char lab[8];
+        char lab[16];
         snprintf(lab, sizeof lab, "%d", marks[k]);
         dot(&p, px_x(c.x), px_y(c.y), 3, WHITE);
         text(&p, (int)(px_x(c.x) + 18 * dx / n) - 10, (int)(px_y(c.y) - 18 * dy / n) - 5,
@@ -337,7 +337,7 @@ static int chromaticity_diagram(const char *dir)
     static const int temps[] = { 1000, 1500, 2000, 3000, 4000, 6000, 10000 };
     for (size_t k = 0; k < sizeof temps / sizeof temps[0]; k++) {
         colour_xy_t c = spectrum_blackbody_xy((real)temps[k]);
-        char lab[8];
+        char lab[16];
         snprintf(lab, sizeof lab, "%dK", temps[k]);
         line(&p, px_x(c.x), px_y(c.y), px_x(c.x) + 5, px_y(c.y) + 9, 0.8, BLACK);
         if (temps[k] <= 3000 || temps[k] == 10000)
@@ -377,7 +377,7 @@ static int blackbody_ramp(const char *dir)
     }
     for (int T = 1000; T <= 12000; T += 1000) {
         int x = 20 + (T - 1000) / 10;
-        char lab[8];
+        char lab[16];
         line(&p, x, 114, x, 120, 0.5, WHITE);
         snprintf(lab, sizeof lab, "%d", T);
         text(&p, x - (int)strlen(lab) * 4, 124, 2, lab, WHITE);
