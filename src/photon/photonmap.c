@@ -22,8 +22,11 @@ svet_status photonmap_check_count(size_t count, svet_error *err)
 {
     if (count == 0 || count > PHOTONMAP_MAX_PHOTONS)
         return svet_error_set(err, SVET_ERR_RANGE,
-                              "a photon map of %zu photons: the count must be "
-                              "1 to %zu", count, PHOTONMAP_MAX_PHOTONS);
+                              "a photon map of %zu photons (%.3g GB): the "
+                              "count must be 1 to %zu", count,
+                              (double)count * (double)(2 * sizeof(photon_t)) /
+                                  1e9,
+                              PHOTONMAP_MAX_PHOTONS);
     size_t need = photonmap_bytes(count);
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     if (pages > 0 && page > 0 &&
