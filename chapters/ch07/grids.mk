@@ -5,4 +5,4 @@ ch07_grids_MODULES := accel grid grid_build primset mesh meshgen triangle shape 
 ch07_grids_LIBS := -lm
 # what it must not link (make check-links): its scenes are meshes alone,
 # so no parallelogram, transform, batched brute force or renderer
-ch07_grids_FORBID := parallelogram xform batch render integrator tracer
+ch07_grids_FORBID := parallelogram xform batch render integrator tracer photon
