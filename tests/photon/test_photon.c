@@ -43,6 +43,14 @@ static const char box_scene[] =
     "box min -1 -1 -1 max 1 1 1 material wall\n"
     "light point position 0.1 -0.2 0.3 intensity 1\n";
 
+/* the box scene read and ready to trace photons in */
+static void box_render(scene_t *s, render_t *r)
+{
+    svet_error e;
+    parse_ok(s, box_scene);
+    ck_assert_msg(render_init(r, s, &e) == SVET_OK, "%s", e.msg);
+}
+
 START_TEST(power_balance_in_a_closed_box)
 {
     /* Every photon lands on a wall, and goes on with chance rho keeping
@@ -53,10 +61,9 @@ START_TEST(power_balance_in_a_closed_box)
      * variance rho / (1 - rho)^2: the mean's relative standard deviation
      * is sqrt(rho / N); the tolerance is 4 of those. */
     scene_t s;
-    parse_ok(&s, box_scene);
     render_t r;
     svet_error e;
-    ck_assert_int_eq(render_init(&r, &s, &e), SVET_OK);
+    box_render(&s, &r);
     const uint64_t n = 40000;
     photonmap_t m;
     ck_assert_int_eq(photon_trace(&r, n, PHOTON_GLOBAL, 0, 0, &m, &e),
@@ -91,10 +98,9 @@ END_TEST
 START_TEST(maps_are_the_same_for_any_thread_count)
 {
     scene_t s;
-    parse_ok(&s, box_scene);
     render_t r;
     svet_error e;
-    ck_assert_int_eq(render_init(&r, &s, &e), SVET_OK);
+    box_render(&s, &r);
     photonmap_t a, b;
     ck_assert_int_eq(photon_trace(&r, 30000, PHOTON_GLOBAL, 0, 1, &a, &e),
                      SVET_OK);
