@@ -377,12 +377,19 @@ fuzz-all:
 # against those references with both builds and writes docs/tradeoffs.md
 # (tools/tradeoffs.sh, under 30 minutes on 2 cores).
 .PHONY: reference tradeoffs count-render count-grid ab-grid ab-render ab-plain \
-        bitcheck fuzz-all
+        bitcheck fuzz-all tradeoffs-photon
 reference:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet \
 	    build/float/tests/test_reference
 	sh tools/reference.sh build/float/svet
 	build/float/tests/test_reference
+
+# `make tradeoffs-photon`: the photon maps' settings against the path
+# tracer on scenes/caustic.scn, and exact Fresnel against Schlick's
+# (tools/tradeoffs-photon.sh; writes docs/tradeoffs-photon.md, about 10
+# minutes on 2 cores).
+tradeoffs-photon: build/float/svet
+	sh tools/tradeoffs-photon.sh
 
 # `make count-render`: instructions per camera sample (callgrind), the
 # load-independent figure of bench/results/render.md.

@@ -183,6 +183,10 @@ $load1 at the end: **on a shared machine the times are noisy** (a load
 above the core count slows every series, not always equally); a quiet
 machine gives the same tables with smaller times.
 
+The photon maps of ch. 8 (their counts, k, radius and gather rays, and
+progressive photon mapping) against the path tracer on \`caustic.scn\` are
+measured apart, by \`make tradeoffs-photon\`: \`docs/tradeoffs-photon.md\`.
+
 ## Summary: efficiency against the baseline
 
 Each cell is a method's efficiency 1 / (variance x time) divided by the

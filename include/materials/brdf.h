@@ -81,6 +81,10 @@ typedef struct {
     real alpha_y;   /* ... and along v; alpha_x == alpha_y is (1.9) */
     real eta;       /* mirror, specular transmission: n_inside / n_outside,
                        the inside being the -z side; 1 = no refraction */
+    bool exact;     /* mirror, specular transmission: the angular curve is
+                       Fresnel's exact dielectric reflectance
+                       (brdf_fresnel_exact_factor) instead of Schlick's
+                       (1 - cos)^5; false is the book's (1.7) */
 } brdf_t;
 
 /* A sampled direction. */
@@ -183,6 +187,32 @@ RADIANCE brdf_schlick(RADIANCE rho0, RADIANCE rho90, real c);
  * same value results from both ends of a refracted pair, so rho_t(theta)
  * is symmetric in wi and wo. This function can't fail. */
 real brdf_fresnel_cos(real cos_o, real eta);
+
+/* Fresnel's reflectance of a smooth dielectric interface for unpolarised
+ * light (Born & Wolf, Principles of Optics, sec. 1.5.2; Hecht, Optics,
+ * sec. 4.6): light arrives at cos theta_i = cos_i from the +z side when
+ * cos_i >= 0 (from index 1 into eta) and from the -z side otherwise (from
+ * eta into 1). With cos_t the cosine of the refracted ray (1.12),
+ *   r_s = (n1 cos_i - n2 cos_t) / (n1 cos_i + n2 cos_t),
+ *   r_p = (n2 cos_i - n1 cos_t) / (n2 cos_i + n1 cos_t),
+ * *rs = r_s^2 and *rp = r_p^2 (either may be NULL) are the reflectances
+ * of the two polarisations, and the result is (r_s^2 + r_p^2) / 2; 1 under
+ * total internal reflection. eta > 0. This function can't fail. */
+real brdf_fresnel_dielectric(real cos_i, real eta, real *rs, real *rp);
+
+/* The angular curve that replaces Schlick's (1 - c)^5 when b->exact: for
+ * the cosine c in the thinner medium (brdf_fresnel_cos) at an interface
+ * of index ratio n = max(eta, 1/eta), w(c) = (F(c) - F(1)) / (1 - F(1)),
+ * F = brdf_fresnel_dielectric from the thinner side: 0 at normal
+ * incidence, 1 at grazing and under total internal reflection, as (1 -
+ * c)^5 is. Then rho_s(theta) = rho_s(0) + (rho90 - rho_s(0)) w and
+ * rho_t(theta) = rho_t(0) (1 - w), which for rho_s(0) = F(1), rho90 = 1
+ * and rho_t(0) = 1 - F(1) are F and 1 - F exactly. A mirror without an
+ * index (eta = 1, a metal) takes n per channel from its own rho_s(0),
+ * n = (1 + sqrt(rho_s(0))) / (1 - sqrt(rho_s(0))) (the dielectric of the
+ * same normal reflectance), so its curve is that dielectric's F; rho_s(0)
+ * = 0 or 1 gives w = 0. This function can't fail. */
+RADIANCE brdf_fresnel_exact_factor(const brdf_t *b, real c);
 
 /* A short name of a kind ("lambert", "mirror", ...). */
 const char *brdf_kind_name(brdf_kind kind);

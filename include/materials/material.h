@@ -54,6 +54,10 @@ typedef struct {
     RADIANCE rho_dt;    /* f_t^d: diffuse transmission */
     real eta;           /* n_inside / n_outside (n2/n1 for light arriving
                            from outside, the +n side); 1 for no refraction */
+    bool fresnel_exact; /* the mirror's and the transmission's angular
+                           curve: Fresnel's exact one (brdf.h's
+                           brdf_fresnel_exact_factor) instead of the book's
+                           Schlick (1.7); default false */
 } material_params;
 
 #define MATERIAL_MAX_COMPONENTS 5

@@ -45,6 +45,12 @@ typedef struct {
  * queries' heaps), and no more than the machine's memory. */
 #define PHOTONMAP_MAX_PHOTONS ((size_t)INT32_MAX - 1)
 
+/* Whether a map of `count` photons can be made: SVET_OK, or the failure
+ * photonmap_init gives before it allocates (SVET_ERR_RANGE for 0 or above
+ * PHOTONMAP_MAX_PHOTONS, SVET_ERR_NOMEM beyond the physical memory), with
+ * the bytes it would need in the message. Allocates nothing. */
+svet_status photonmap_check_count(size_t count, svet_error *err);
+
 /* An empty map with room for `count` photons, allocated at once. Fails
  * before allocating, with the bytes it would need in the message, when
  * count is 0 or above PHOTONMAP_MAX_PHOTONS (SVET_ERR_RANGE) or the map
@@ -99,6 +105,14 @@ typedef struct {
      * one or a corner, lie off it); 0 keeps every photon */
     real disc;
 } photonmap_query_t;
+
+/* The weight a photon at squared distance d2 gets in an estimate of
+ * radius^2 r2 > 0 under q's filter (Jensen 2001, eqs. 7.6, 7.7), and the
+ * area the weighted sum is divided by: pi r2 times the filter's mean
+ * weight over the disc, so that a uniform density comes out unscaled.
+ * These functions can't fail. */
+real photonmap_filter_weight(const photonmap_query_t *q, real d2, real r2);
+real photonmap_filter_area(const photonmap_query_t *q, real r2);
 
 /* The irradiance at x on a surface of normal n (unit) from the map, by
  * the density estimate E = sum w_p dPhi_p / (pi r^2) over the k nearest

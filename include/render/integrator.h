@@ -59,6 +59,17 @@ RADIANCE integrator_li_hit(const integrator_t *it, const ray_t *r, bool found,
                            const hit_t *hit, const COBJECT *obj, pcg32_t *g,
                            integrator_stats_t *st);
 
+/* The path tracer's next-event estimation at a surface point pp of
+ * material m, seen along wo (local frame): one light chosen by power,
+ * sampled once, its shadow ray traced, weighted against BSDF sampling by
+ * the power heuristic when mis (else weight 1: light sampling alone, for
+ * a method that does not count emitters its BSDF samples hit; the photon
+ * maps of ch. 8). Draws 3 numbers from g; black without lights. This
+ * function can't fail. */
+RADIANCE integrator_direct(const integrator_t *it, const PATHPOINT *pp,
+                           const struct material *m, const VECTOR3 wo,
+                           bool mis, pcg32_t *g, integrator_stats_t *st);
+
 /* The power heuristic with beta = 2 for two strategies with densities a
  * (the one used) and b: a^2 / (a^2 + b^2), computed without overflow;
  * 0 when a is 0. */

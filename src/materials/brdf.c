@@ -181,6 +181,59 @@ real brdf_fresnel_cos(real cos_o, real eta)
     return sqrt(c1_sq);
 }
 
+real brdf_fresnel_dielectric(real cos_i, real eta, real *rs, real *rp)
+{
+    real n1 = cos_i >= 0 ? 1 : eta, n2 = cos_i >= 0 ? eta : 1;
+    real ci = fmin(fabs(cos_i), REAL_C(1.0));
+    real ct2 = refracted_cos2(ci, n1, n2); /* cos^2 theta_t, (1.12) */
+    real s2 = 1, p2 = 1;                   /* total internal reflection */
+    if (ct2 > 0) {
+        real ct = sqrt(ct2);
+        real r_s = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+        real r_p = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct);
+        s2 = r_s * r_s;
+        p2 = r_p * r_p;
+    }
+    if (rs)
+        *rs = s2;
+    if (rp)
+        *rp = p2;
+    return (s2 + p2) / 2;
+}
+
+/* w(c) of brdf_fresnel_exact_factor for the index ratio n > 0 (n = 1:
+ * no interface, w = 0) */
+static real exact_curve(real c, real n)
+{
+    if (!(n > 1))
+        n = n > 0 && n < 1 ? 1 / n : 1;
+    if (n == 1)
+        return 0;
+    real f0 = (n - 1) / (n + 1);
+    f0 *= f0;
+    real f = brdf_fresnel_dielectric(c, n, NULL, NULL);
+    real w = (f - f0) / (1 - f0);
+    return fmin(fmax(w, REAL_C(0.0)), REAL_C(1.0));
+}
+
+/* the index of the dielectric whose normal reflectance is r0 */
+static real index_of(real r0)
+{
+    if (!(r0 > 0 && r0 < 1))
+        return 1;
+    real s = sqrt(r0);
+    return (1 + s) / (1 - s);
+}
+
+RADIANCE brdf_fresnel_exact_factor(const brdf_t *b, real c)
+{
+    if (b->kind == BRDF_MIRROR && b->eta == 1)
+        return rad_make(exact_curve(c, index_of(b->rho.r)),
+                        exact_curve(c, index_of(b->rho.g)),
+                        exact_curve(c, index_of(b->rho.b)));
+    return rad_grey(exact_curve(c, b->eta));
+}
+
 /* --- geometry shared by the lobes -------------------------------------- */
 
 /* wi and wo on opposite sides of the surface, neither in the tangent
@@ -457,10 +510,22 @@ static bool ward_sample(const brdf_t *b, const VECTOR3 wo, const real u[2],
  * through the surface: rho_t(theta) depends on the pair only through the
  * cosine in the thinner medium (brdf_fresnel_cos).
  */
+/* rho_s(theta) seen from wo: Schlick's (1.7), or its exact curve */
+static RADIANCE mirror_rho(const brdf_t *b, real cos_o)
+{
+    real c = brdf_fresnel_cos(cos_o, b->eta);
+    if (!b->exact)
+        return brdf_schlick(b->rho, b->rho90, c);
+    RADIANCE w = brdf_fresnel_exact_factor(b, c);
+    return rad_make(b->rho.r + (b->rho90.r - b->rho.r) * w.r,
+                    b->rho.g + (b->rho90.g - b->rho.g) * w.g,
+                    b->rho.b + (b->rho90.b - b->rho.b) * w.b);
+}
+
 static bool mirror_sample(const brdf_t *b, const VECTOR3 wo, brdf_sample_t *s)
 {
     vec_set(s->wi, -wo[X], -wo[Y], wo[Z]); /* eq. (1.4) about n = z */
-    s->weight = brdf_schlick(b->rho, b->rho90, brdf_fresnel_cos(wo[Z], b->eta));
+    s->weight = mirror_rho(b, wo[Z]);
     s->pdf = 1;
     s->delta = true;
     return !rad_is_black(s->weight);
@@ -474,6 +539,11 @@ static RADIANCE transmittance(const brdf_t *b, real cos_o)
     real c = brdf_fresnel_cos(cos_o, b->eta);
     if (c == 0)
         return black; /* total internal reflection: the BTDF is zero */
+    if (b->exact) {
+        RADIANCE w = brdf_fresnel_exact_factor(b, c);
+        return rad_make(b->rho.r * (1 - w.r), b->rho.g * (1 - w.g),
+                        b->rho.b * (1 - w.b));
+    }
     return rad_scale(b->rho, 1 - brdf_schlick_factor(c));
 }
 
@@ -579,7 +649,7 @@ RADIANCE brdf_nominal(const brdf_t *b, const VECTOR3 wo)
 {
     switch (b->kind) {
     case BRDF_MIRROR:
-        return brdf_schlick(b->rho, b->rho90, brdf_fresnel_cos(wo[Z], b->eta));
+        return mirror_rho(b, wo[Z]);
     case BRDF_SPECULAR_TRANSMISSION:
         return transmittance(b, wo[Z]);
     default:

@@ -19,6 +19,7 @@ void material_params_default(material_params *p)
     p->e = 10; /* ch. 1: "e = 8...20" */
     p->alpha_x = p->alpha_y = REAL_C(0.1);
     p->eta = 1;
+    p->fresnel_exact = false;
 }
 
 /* The sum of all reflectances may not exceed 1 in any channel; rounding of
@@ -108,6 +109,7 @@ svet_status material_init(material_t *m, const material_params *p,
                        fmax(1 - rest.g, p->rho_s.g),
                        fmax(1 - rest.b, p->rho_s.b));
 
+    s.exact = t.exact = p->fresnel_exact;
     m->params = *p;
     add(m, &d);
     if (interface)

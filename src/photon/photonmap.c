@@ -18,13 +18,15 @@ size_t photonmap_bytes(size_t count)
     return (2 * count + 1) * sizeof(photon_t);
 }
 
-svet_status photonmap_init(photonmap_t *m, size_t count, svet_error *err)
+svet_status photonmap_check_count(size_t count, svet_error *err)
 {
-    memset(m, 0, sizeof *m);
     if (count == 0 || count > PHOTONMAP_MAX_PHOTONS)
         return svet_error_set(err, SVET_ERR_RANGE,
-                              "a photon map of %zu photons: the count must be "
-                              "1 to %zu", count, PHOTONMAP_MAX_PHOTONS);
+                              "a photon map of %zu photons (%.3g GB): the "
+                              "count must be 1 to %zu", count,
+                              (double)count * (double)(2 * sizeof(photon_t)) /
+                                  1e9,
+                              PHOTONMAP_MAX_PHOTONS);
     size_t need = photonmap_bytes(count);
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
     if (pages > 0 && page > 0 &&
@@ -34,6 +36,16 @@ svet_status photonmap_init(photonmap_t *m, size_t count, svet_error *err)
                               "than this machine's %.3g GB of memory", count,
                               (double)need / 1e9,
                               (double)pages * (double)page / 1e9);
+    return SVET_OK;
+}
+
+svet_status photonmap_init(photonmap_t *m, size_t count, svet_error *err)
+{
+    memset(m, 0, sizeof *m);
+    svet_status st = photonmap_check_count(count, err);
+    if (st != SVET_OK)
+        return st;
+    size_t need = photonmap_bytes(count);
     m->ph = malloc((count + 1) * sizeof(photon_t));
     if (!m->ph)
         return svet_error_set(err, SVET_ERR_NOMEM,
@@ -327,6 +339,36 @@ int photonmap_nearest(const photonmap_t *m, const VECTOR3 x, int k,
 
 #define PHOTONMAP_STACK_K 512
 
+/* Pavicic's Gaussian (Jensen 2001, eq. 7.7) */
+static const real gauss_alpha = REAL_C(0.918), gauss_beta = REAL_C(1.953);
+
+real photonmap_filter_weight(const photonmap_query_t *q, real d2, real r2)
+{
+    if (q->filter == PHOTONMAP_FILTER_CONE)
+        return 1 - sqrt(d2) / (q->cone_k * sqrt(r2));
+    if (q->filter == PHOTONMAP_FILTER_GAUSSIAN)
+        return gauss_alpha * (1 - (1 - exp(-gauss_beta * d2 / (2 * r2))) /
+                                      (1 - exp(-gauss_beta)));
+    return 1;
+}
+
+/* The disc's area times the filter's mean weight over it: the cone's
+ * weights average 1 - 2 / (3 k) (Jensen 2001, eq. 7.6); the Gaussian's,
+ * with u = d^2 / r^2 uniform on the disc,
+ * alpha (1 - (1 - (2 / beta)(1 - e^(-beta / 2))) / (1 - e^(-beta))),
+ * about 0.531 */
+real photonmap_filter_area(const photonmap_query_t *q, real r2)
+{
+    real norm = REAL_PI * r2;
+    if (q->filter == PHOTONMAP_FILTER_CONE)
+        norm *= 1 - 2 / (3 * q->cone_k);
+    else if (q->filter == PHOTONMAP_FILTER_GAUSSIAN)
+        norm *= gauss_alpha *
+                (1 - (1 - (2 / gauss_beta) * (1 - exp(-gauss_beta / 2))) /
+                         (1 - exp(-gauss_beta)));
+    return norm;
+}
+
 RADIANCE photonmap_irradiance(const photonmap_t *m, const VECTOR3 x,
                               const VECTOR3 n, const photonmap_query_t *q)
 {
@@ -348,8 +390,6 @@ RADIANCE photonmap_irradiance(const photonmap_t *m, const VECTOR3 x,
     RADIANCE e = rad_grey(0);
     if (found > 0 && r2 > 0) {
         real r = sqrt(r2);
-        /* Pavicic's Gaussian (Jensen 2001, eq. 7.7) */
-        const real alpha = REAL_C(0.918), beta = REAL_C(1.953);
         for (int i = 0; i < found; i++) {
             const photon_t *p = &m->ph[idx[i]];
             VECTOR3 dir, off = { (real)p->pos[0] - x[X], (real)p->pos[1] - x[Y],
@@ -359,29 +399,12 @@ RADIANCE photonmap_irradiance(const photonmap_t *m, const VECTOR3 x,
                 continue; /* arrived from behind the surface */
             if (q->disc > 0 && fabs(SVECTOR3(off, n)) > q->disc * r)
                 continue; /* off the surface's plane: another surface */
-            real w = 1;
-            if (q->filter == PHOTONMAP_FILTER_CONE)
-                w = 1 - sqrt(d2[i]) / (q->cone_k * r);
-            else if (q->filter == PHOTONMAP_FILTER_GAUSSIAN)
-                w = alpha * (1 - (1 - exp(-beta * d2[i] / (2 * r2))) /
-                                     (1 - exp(-beta)));
+            real w = photonmap_filter_weight(q, d2[i], r2);
             e = rad_add(e, rad_scale(rad_make((real)p->power[0],
                                               (real)p->power[1],
                                               (real)p->power[2]), w));
         }
-        /* divided by the disc's area times the filter's mean weight over
-         * it, so that a uniform density comes out unscaled: the cone's
-         * weights average 1 - 2 / (3 k) (Jensen 2001, eq. 7.6); the
-         * Gaussian's, with u = d^2 / r^2 uniform on the disc,
-         * alpha (1 - (1 - (2 / beta)(1 - e^(-beta / 2))) / (1 - e^(-beta))),
-         * about 0.531 */
-        real norm = REAL_PI * r2;
-        if (q->filter == PHOTONMAP_FILTER_CONE)
-            norm *= 1 - 2 / (3 * q->cone_k);
-        else if (q->filter == PHOTONMAP_FILTER_GAUSSIAN)
-            norm *= alpha * (1 - (1 - (2 / beta) * (1 - exp(-beta / 2))) /
-                                     (1 - exp(-beta)));
-        e = rad_scale(e, 1 / norm);
+        e = rad_scale(e, 1 / photonmap_filter_area(q, r2));
     }
     if (idx != idx_small) {
         free(idx);

@@ -110,6 +110,17 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     return rad_scale(rad_mul(f, ls.Li), scale);
 }
 
+RADIANCE integrator_direct(const integrator_t *it, const PATHPOINT *pp,
+                           const struct material *m, const VECTOR3 wo,
+                           bool mis, pcg32_t *g, integrator_stats_t *st)
+{
+    if (!it->lights) {
+        (void)pcg32_real(g); (void)pcg32_real(g); (void)pcg32_real(g);
+        return rad_grey(0);
+    }
+    return direct_light(it, pp, m, m->transmits, wo, mis, g, st);
+}
+
 /* The camera ray's first hit, as the caller found it
  * (integrator_li_hit()). */
 typedef struct {

@@ -1249,9 +1249,13 @@ enum { M_RHO, M_E, M_ALPHA, M_ALPHA_X, M_ALPHA_Y, M_BOUNDED, M_ETA, M_TINT,
 static const spec_t lambert_spec[] = {
     { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
 };
+/* `fresnel schlick|exact` on the smooth interface's components: the
+ * book's Schlick (1.7), or Fresnel's exact reflectance (brdf.h) */
+static const char *const fresnels[] = { "schlick", "exact", NULL };
 static const spec_t mirror_spec[] = {
     { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
     { "eta", V_NUM, F_POSITIVE, 0, 0, NULL },
+    { "fresnel", V_WORD, 0, 0, 0, fresnels },
 };
 static const spec_t phong_spec[] = {
     { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
@@ -1267,6 +1271,7 @@ static const spec_t ward_spec[] = {
 static const spec_t transmission_spec[] = {
     { "rho", V_COLOUR, F_REQUIRED | F_NAMED, 0, 0, NULL },
     { "eta", V_NUM, F_POSITIVE, 0, 0, NULL },
+    { "fresnel", V_WORD, 0, 0, 0, fresnels },
 };
 static const spec_t bump_spec[] = {
     { "strength", V_NUM, 0, 0, 0, NULL },
@@ -1294,6 +1299,7 @@ static svet_status note_named(ctx_t *c, val_t *v, int nv,
 static const spec_t glass_spec[] = {
     { "eta", V_NUM, F_REQUIRED | F_POSITIVE, 0, 0, NULL },
     { "tint", V_COLOUR, 0, 0, 0, NULL },
+    { "fresnel", V_WORD, 0, 0, 0, fresnels },
 };
 
 static RADIANCE colour_of(const val_t *v)
@@ -1380,11 +1386,13 @@ static svet_status component(ctx_t *c, material_params *p, int seen[C_N],
     case C_TRANSMISSION:
         st = parse_keys(c, what, kind == C_MIRROR ? mirror_spec
                                                   : transmission_spec,
-                        2, v, true);
+                        3, v, true);
         if (!st)
             st = note_named(c, v, 1, params);
         if (st)
             break;
+        if (v[2].set && v[2].i == 1)
+            p->fresnel_exact = true;
         if (kind == C_MIRROR)
             p->rho_s = colour_of(&v[0]);
         else
@@ -1438,9 +1446,11 @@ static svet_status component(ctx_t *c, material_params *p, int seen[C_N],
             p->rho_dt = colour_of(&v[0]);
         break;
     default: { /* C_GLASS */
-        st = parse_keys(c, what, glass_spec, 2, v, true);
+        st = parse_keys(c, what, glass_spec, 3, v, true);
         if (st)
             break;
+        if (v[2].set && v[2].i == 1)
+            p->fresnel_exact = true;
         eta = v[0].v[0];
         /* Fresnel's reflectance at normal incidence, ((eta-1)/(eta+1))^2
          * (Schlick 1994, the rho_s(0) of eq. (1.7)); what is not

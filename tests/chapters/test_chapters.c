@@ -20,6 +20,7 @@
 static const char *const PROGS[] = {
     "ch01_brdf", "ch01_geometry", "ch02_colour", "ch03_estimator",
     "ch04_montecarlo", "ch05_cases", "ch06_display", "ch07_grids",
+    "ch08_photons",
     "ch10_textures",
 };
 #define NPROGS ((int)(sizeof PROGS / sizeof PROGS[0]))

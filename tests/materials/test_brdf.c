@@ -848,6 +848,120 @@ START_TEST(constructors_reject_what_is_not_physical)
 }
 END_TEST
 
+/* --- Fresnel's exact reflectance ------------------------------------------ */
+
+/* The unpolarised reflectance in the form of Cook & Torrance 1982, eq. (7),
+ * from the thinner side at cos c into index n: with g^2 = n^2 - 1 + c^2,
+ * F = (g-c)^2 / (2 (g+c)^2) (1 + ((c(g+c) - 1) / (c(g-c) + 1))^2): a
+ * closed form written differently from brdf.c's r_s and r_p, in long
+ * double. */
+static long double cook_torrance_f(long double c, long double n)
+{
+    long double g = sqrtl(n * n - 1 + c * c);
+    long double a = (g - c) / (g + c), b = (c * (g + c) - 1) / (c * (g - c) + 1);
+    return 0.5L * a * a * (1 + b * b);
+}
+
+START_TEST(fresnel_exact_matches_its_closed_forms)
+{
+    const real etas[] = { REAL_C(1.33), REAL_C(1.5), REAL_C(2.4) };
+    long n = 0;
+    for (int e = 0; e < LEN(etas); e++) {
+        long double eta = etas[e];
+        /* normal incidence: ((n - 1) / (n + 1))^2 from both sides, both
+         * polarisations */
+        long double f0 = (eta - 1) / (eta + 1);
+        f0 *= f0;
+        real rs, rp;
+        ck_assert_rel(brdf_fresnel_dielectric(1, etas[e], &rs, &rp), f0,
+                      16 * EPS, 0);
+        ck_assert_rel(rs, f0, 16 * EPS, 0);
+        ck_assert_rel(rp, f0, 16 * EPS, 0);
+        ck_assert_rel(brdf_fresnel_dielectric(-1, etas[e], NULL, NULL), f0,
+                      16 * EPS, 0);
+        /* the whole curve from outside against Cook & Torrance's form */
+        for (int i = 1; i <= 100; i++, n++) {
+            real c = (real)i / 100;
+            ck_assert_rel(brdf_fresnel_dielectric(c, etas[e], NULL, NULL),
+                          cook_torrance_f(c, eta), 256 * EPS, 8 * EPS);
+        }
+        /* Brewster's angle tan theta_B = n: the p component vanishes,
+         * the s one is sin^2(theta_i - theta_t) / sin^2(theta_i + theta_t) */
+        long double tb = atanl(eta), tt = atanl(1 / eta);
+        brdf_fresnel_dielectric((real)cosl(tb), etas[e], &rs, &rp);
+        ck_assert_msg((double)rp < 64 * EPS * EPS + 1e-12, "r_p^2 %g",
+                      (double)rp);
+        long double s_ref = powl(sinl(tb - tt), 2);
+        ck_assert_rel(rs, s_ref, 1e4 * EPS, 0);
+        /* and from inside at its own Brewster angle, tan = 1/n */
+        brdf_fresnel_dielectric(-(real)cosl(tt), etas[e], &rs, &rp);
+        ck_assert((double)rp < 1e-6);
+        /* total internal reflection beyond the critical angle, sin = 1/n,
+         * from inside; just inside it, less than 1 */
+        long double cc = sqrtl(1 - 1 / (eta * eta));
+        for (int i = 1; i <= 50; i++, n++) {
+            real c = (real)(cc * (long double)i / 51);
+            ck_assert(brdf_fresnel_dielectric(-c, etas[e], &rs, &rp) == 1);
+            ck_assert(rs == 1 && rp == 1);
+        }
+        ck_assert(brdf_fresnel_dielectric(-(real)(cc + 0.01L), etas[e], NULL,
+                                          NULL) < 1);
+        n += 6;
+    }
+    test_report_cases("fresnel_exact_matches_its_closed_forms", n);
+}
+END_TEST
+
+START_TEST(fresnel_exact_glass_reflects_and_transmits_all)
+{
+    /* glass of rho_s(0) = F(0), rho_t(0) = 1 - F(0) with the exact curve:
+     * rho_s(theta) = F and rho_s(theta) + rho_t(theta) = 1 at every angle
+     * from both sides (energy), F under total internal reflection */
+    const real eta = REAL_C(1.5);
+    real f0 = (eta - 1) / (eta + 1);
+    f0 *= f0;
+    brdf_t m, t;
+    ck_assert_int_eq(brdf_mirror(&m, rad_grey(f0), eta, NULL), SVET_OK);
+    ck_assert_int_eq(brdf_specular_transmission(&t, rad_grey(1 - f0), eta,
+                                                NULL), SVET_OK);
+    m.exact = t.exact = true;
+    long n = 0;
+    for (int i = -99; i <= 99; i++, n++) {
+        if (i == 0)
+            continue;
+        VECTOR3 wo;
+        dir(wo, (real)i / 100, REAL_C(0.3));
+        RADIANCE r = brdf_nominal(&m, wo), tr = brdf_nominal(&t, wo);
+        ck_assert_rel(r.r + tr.r, 1, 64 * EPS, 0);
+        real f = brdf_fresnel_dielectric(wo[Z], eta, NULL, NULL);
+        ck_assert_rel(r.r, f, 256 * EPS, 8 * EPS);
+    }
+    /* the default stays Schlick's: a different number at 60 degrees */
+    VECTOR3 wo;
+    dir(wo, REAL_C(0.5), 0);
+    m.exact = false;
+    real schlick = brdf_nominal(&m, wo).r;
+    ck_assert_rel(schlick, f0 + (1 - f0) / 32, 16 * EPS, 0);
+    m.exact = true;
+    ck_assert(fabs((double)(brdf_nominal(&m, wo).r - schlick)) > 1e-3);
+    /* a metal mirror (eta = 1) follows the dielectric of its rho_s(0):
+     * rho_s(0) at normal incidence, 1 at grazing */
+    brdf_t metal;
+    ck_assert_int_eq(brdf_mirror(&metal, rad_make(REAL_C(0.9), REAL_C(0.5),
+                                                  0), 1, NULL), SVET_OK);
+    metal.exact = true;
+    dir(wo, 1, 0);
+    RADIANCE r0 = brdf_nominal(&metal, wo);
+    ck_assert_rel(r0.r, 0.9, 16 * EPS, 0);
+    ck_assert_rel(r0.g, 0.5, 16 * EPS, 0);
+    ck_assert(r0.b == 0);
+    dir(wo, REAL_C(1e-6), 0);
+    RADIANCE r90 = brdf_nominal(&metal, wo);
+    ck_assert((double)r90.r > 0.999 && (double)r90.g > 0.99 && r90.b == 0);
+    test_report_cases("fresnel_exact_glass_reflects_and_transmits_all", n + 6);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("brdf (" REAL_NAME ")");
@@ -871,6 +985,8 @@ Suite *test_suite(void)
     tcase_add_test(t, no_nan_or_inf_over_a_dense_sweep);
     tcase_add_test(t, each_lobe_samples_wi_with_its_pdf);
     tcase_add_test(t, a_wrong_pdf_fails_the_chi2_test);
+    tcase_add_test(t, fresnel_exact_matches_its_closed_forms);
+    tcase_add_test(t, fresnel_exact_glass_reflects_and_transmits_all);
     suite_add_tcase(s, t);
     return s;
 }

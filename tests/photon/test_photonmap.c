@@ -353,6 +353,8 @@ Suite *test_suite(void)
 {
     Suite *s = suite_create("photonmap (" REAL_NAME ")");
     TCase *tc = tcase_create("core");
+    /* wall-clock limit: the machine may be shared, check's 4 s is not enough */
+    tcase_set_timeout(tc, 600);
     tcase_add_test(tc, the_heap_is_a_kd_tree_and_the_same_for_any_thread_count);
     tcase_add_test(tc, nearest_photons_equal_brute_force_in_order);
     tcase_add_test(tc, density_estimate_on_a_uniformly_lit_plane);

@@ -228,7 +228,7 @@ START_TEST(a_byte_order_mark_at_the_start_is_skipped)
               SVET_ERR_PARSE, "t.scn:2:1: unknown keyword '???sphere': "
               "expected one of camera, render, output, tonemap, material, "
               "light, environment, sphere, plane, disk, parallelogram, "
-              "triangle, box, cylinder, cone, mesh, texture");
+              "triangle, box, cylinder, cone, mesh, photonmap, texture");
 }
 END_TEST
 
@@ -947,7 +947,7 @@ static const struct {
     { "\n  teapot\n", SVET_ERR_PARSE,
       "t.scn:2:3: unknown keyword 'teapot': expected one of camera, render, "
       "output, tonemap, material, light, environment, sphere, plane, disk, "
-      "parallelogram, triangle, box, cylinder, cone, mesh, texture" },
+      "parallelogram, triangle, box, cylinder, cone, mesh, photonmap, texture" },
     { M "sphere centre 0 0 0 radus 1 material m\n", SVET_ERR_PARSE,
       "t.scn:2:21: unknown parameter of sphere 'radus' (did you mean "
       "'radius'?)" },
@@ -1221,7 +1221,7 @@ START_TEST(long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks)
               "'zzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzz...': expected one "
               "of camera, render, output, tonemap, material, light, "
               "environment, sphere, plane, disk, parallelogram, triangle, "
-              "box, cylinder, cone, mesh, texture");
+              "box, cylinder, cone, mesh, photonmap, texture");
     parse_err("camer\xc3\xa9 1\n", SVET_ERR_PARSE,
               "t.scn:1:1: unknown keyword 'camer?" "?' (did you mean "
               "'camera'?)");
@@ -1512,6 +1512,26 @@ START_TEST(without_the_optional_parts_mesh_and_grids_are_refused)
 }
 END_TEST
 
+START_TEST(fresnel_key_chooses_schlick_or_exact)
+{
+    scene_t s;
+    parse_ok(&s, "material g glass eta 1.5 fresnel exact\n"
+                 "material h glass eta 1.5\n"
+                 "material m mirror rho 0.9 fresnel schlick\n"
+                 "material w mirror rho 0.04 eta 1.33 + transmission rho 0.96 "
+                 "eta 1.33 fresnel exact\n");
+    ck_assert(scene_find_material(&s, "g")->params.fresnel_exact);
+    ck_assert(scene_find_material(&s, "g")->comp[0].exact);
+    ck_assert(!scene_find_material(&s, "h")->params.fresnel_exact);
+    ck_assert(!scene_find_material(&s, "m")->params.fresnel_exact);
+    ck_assert(scene_find_material(&s, "w")->params.fresnel_exact);
+    scene_free(&s);
+    parse_err("material g glass eta 1.5 fresnel exakt\n", SVET_ERR_PARSE,
+              "t.scn:1:34: unknown value of 'fresnel' 'exakt' (did you mean "
+              "'exact'?)");
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("scenefile");
@@ -1558,6 +1578,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, overrides_set_one_value_each);
     tcase_add_test(tc, bad_overrides_are_refused_and_change_nothing);
     tcase_add_test(tc, without_the_optional_parts_mesh_and_grids_are_refused);
+    tcase_add_test(tc, fresnel_key_chooses_schlick_or_exact);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -1,0 +1,92 @@
+/*
+ * photon.h - the photon map method of ch. 8 (Jensen, "Global Illumination
+ * using Photon Maps", EGWR 1996; Jensen, "Realistic Image Synthesis Using
+ * Photon Mapping", 2001) as a part of the renderer (scenepart.h): the
+ * `photonmap` settings statement, the tracing of photons from the lights
+ * into a global and a caustic map (photonmap.h), the radiance estimate,
+ * and two rendering methods: `render integrator photon` (Jensen's two
+ * passes with final gathering) and `render integrator ppm` (Knaus &
+ * Zwicker, "Progressive Photon Mapping: A Probabilistic Approach", ACM TOG
+ * 30(3), 2011: a new map for every sample index, its radius shrinking).
+ * Tests: tests/photon/test_photon.c
+ */
+#ifndef SVET_PHOTON_H
+#define SVET_PHOTON_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core/error.h"
+#include "materials/cobject.h"
+#include "materials/material.h"
+#include "photon/photonmap.h"
+#include "render/scenepart.h"
+
+struct render;
+
+/* The `photonmap` statement's settings (scenes/README.md). */
+typedef struct {
+    uint64_t global;     /* photons emitted for the global map (ppm: for
+                            each sample index's map) */
+    uint64_t caustic;    /* photons emitted for the caustic map */
+    int k;               /* photons in an estimate (ppm: at most) */
+    real max_radius;     /* the largest search radius (photon) */
+    photonmap_filter_t filter;
+    int gather;          /* final-gather rays; 0: the global map seen
+                            directly (the fast preview) */
+    real alpha;          /* ppm: the radius's shrinking, 0 < alpha < 1 */
+    real radius;         /* ppm: r_1, the first sample index's radius */
+} photon_settings_t;
+
+/* The defaults: 100 000 global and caustic photons, k = 50, max_radius
+ * 0.1, no filter, 64 gather rays, alpha 0.7, radius 0.05. */
+void photon_settings_default(photon_settings_t *s);
+
+/* The largest k: the estimate's arrays live on the stack. */
+#define PHOTON_MAX_K 1024
+
+/* The part: the `photonmap` statement and the methods `photon` and
+ * `ppm`. allparts.c lists it. */
+extern const scene_part_t photon_part;
+extern const render_method_t photon_method, photon_ppm_method;
+
+/* The scene's settings (the defaults when it has no photonmap line). */
+void photon_settings_of(const scene_t *s, photon_settings_t *out);
+
+/* What photon tracing stores: the global map (every photon at a surface
+ * with a non-delta component, photons straight from the light included
+ * when direct), and the caustic map (those that came through delta
+ * bounces only, at least one: L S+ D). */
+typedef enum {
+    PHOTON_GLOBAL,        /* every hit, direct included */
+    PHOTON_INDIRECT,      /* every hit after at least one bounce */
+    PHOTON_CAUSTIC        /* L S+ D */
+} photon_kind_t;
+
+/* Emit `count` photons from the lights of r (render.h: its lights and
+ * tracer) and store those of `kind` in m, balanced. Photon i draws its
+ * numbers from rng_for_sample(seed ^ PHOTON_SEED_SALT, stream, i), so the
+ * map is the same for any thread count; `threads` (0: all) trace and
+ * balance. Each photon carries Phi_l / (p_l count), p_l the chance of
+ * light l (lightset_pick), so an estimate is unbiased in the count. The
+ * scene's max_depth bounds the bounces. Fails with SVET_ERR_NOMEM (or a
+ * map too large for memory, with its size); m is then empty. */
+#define PHOTON_SEED_SALT UINT64_C(0x70686f746f6e6d70)
+svet_status photon_trace(const struct render *r, uint64_t count,
+                         photon_kind_t kind, uint64_t stream, int threads,
+                         photonmap_t *m, svet_error *err);
+
+/* The radiance leaving pp toward wo (local frame of pp) estimated from m:
+ * L = sum_p w_p f(wi_p, wo) dPhi_p / A, over the k nearest photons within
+ * rmax, wi_p the photon's incoming direction, A = pi r^2 times the
+ * filter's mean weight (photonmap_filter_area), r the k-th photon's
+ * distance or rmax where fewer lie within it (Jensen 1996, eq. 9; Jensen
+ * 2001, eq. 7.4). Photons behind the surface get f = 0 from the
+ * material's own sidedness; those more than q->disc r off the plane of
+ * pp.ng are left out (another surface). q->k <= PHOTON_MAX_K. This
+ * function can't fail. */
+RADIANCE photon_radiance(const photonmap_t *m, const PATHPOINT *pp,
+                         const material_t *mat, const VECTOR3 wo,
+                         const photonmap_query_t *q);
+
+#endif

@@ -1,0 +1,625 @@
+/*
+ * photon.c - the photon map method of ch. 8 as a part of the renderer:
+ * the `photonmap` statement, photon emission and tracing (Jensen 2001,
+ * ch. 5), the radiance estimate (Jensen 1996, eq. 9), and the methods
+ * `photon` (direct light by ch. 5's light sampling, caustics from the
+ * caustic map, indirect diffuse light by final gathering from the global
+ * map; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011).
+ * Tests: tests/photon/test_photon.c
+ */
+#include "photon/photon.h"
+
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/frame.h"
+#include "core/sample.h"
+#include "render/integrator.h"
+#include "render/light.h"
+#include "render/render.h"
+
+/* --- settings: the `photonmap` statement -------------------------------- */
+
+void photon_settings_default(photon_settings_t *s)
+{
+    s->global = 100000;
+    s->caustic = 100000;
+    s->k = 50;
+    s->max_radius = REAL_C(0.1);
+    s->filter = PHOTONMAP_FILTER_NONE;
+    s->gather = 64;
+    s->alpha = REAL_C(0.7);
+    s->radius = REAL_C(0.05);
+}
+
+void photon_settings_of(const scene_t *s, photon_settings_t *out)
+{
+    const photon_settings_t *p = scene_part_data(s, "photon");
+    if (p)
+        *out = *p;
+    else
+        photon_settings_default(out);
+}
+
+static const char *const filters[] = { "none", "cone", "gaussian", NULL };
+enum { P_GLOBAL, P_CAUSTIC, P_K, P_MAXR, P_FILTER, P_GATHER, P_ALPHA,
+       P_RADIUS, P_N };
+static const spec_t photon_spec[P_N] = {
+    [P_GLOBAL] = { "global", V_U64, 0, 0, 0, NULL },
+    [P_CAUSTIC] = { "caustic", V_U64, 0, 0, 0, NULL },
+    [P_K] = { "k", V_INT, 0, 1, PHOTON_MAX_K, NULL },
+    [P_MAXR] = { "max_radius", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [P_FILTER] = { "filter", V_WORD, 0, 0, 0, filters },
+    [P_GATHER] = { "gather", V_INT, 0, 0, 65536, NULL },
+    [P_ALPHA] = { "alpha", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [P_RADIUS] = { "radius", V_NUM, F_POSITIVE, 0, 0, NULL },
+};
+
+/* a photon count: at least 1, and a map of that many must fit in memory
+ * (checked before anything is allocated) */
+static svet_status check_count(scenefile_ctx *c, const val_t *v,
+                               const char *key)
+{
+    if (v->u == 0)
+        return scenefile_fail(c, v->col, SVET_ERR_RANGE,
+                              "'%s' must be at least 1 photon", key);
+    svet_error e;
+    svet_status st = photonmap_check_count(v->u > SIZE_MAX ? SIZE_MAX
+                                                           : (size_t)v->u, &e);
+    if (st != SVET_OK)
+        return scenefile_fail(c, v->col, st, "'%s': %s", key, e.msg);
+    return SVET_OK;
+}
+
+static svet_status photon_statement(scenefile_ctx *c)
+{
+    val_t v[P_N];
+    svet_status st = scenefile_keys(c, "photonmap", photon_spec, P_N, v,
+                                    false);
+    if (st)
+        return st;
+    if (v[P_GLOBAL].set && (st = check_count(c, &v[P_GLOBAL], "global")))
+        return st;
+    if (v[P_CAUSTIC].set && (st = check_count(c, &v[P_CAUSTIC], "caustic")))
+        return st;
+    if (v[P_ALPHA].set && !(v[P_ALPHA].v[0] < 1))
+        return scenefile_fail(c, v[P_ALPHA].col, SVET_ERR_RANGE,
+                              "'alpha' = %g: must lie in (0, 1)",
+                              (double)v[P_ALPHA].v[0]);
+    /* the line updates the settings: `--set photonmap.k=20` reruns it */
+    scene_t *s = scenefile_scene(c);
+    photon_settings_t *p = scene_part_data(s, "photon");
+    if (!p) {
+        svet_error e;
+        p = malloc(sizeof *p);
+        if (!p)
+            return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
+                                  "out of memory");
+        photon_settings_default(p);
+        if (scene_set_part_data(s, "photon", p, free, &e))
+            return scenefile_fail(c, scenefile_stmt_col(c), e.status, "%s",
+                                  e.msg);
+    }
+    if (v[P_GLOBAL].set)
+        p->global = v[P_GLOBAL].u;
+    if (v[P_CAUSTIC].set)
+        p->caustic = v[P_CAUSTIC].u;
+    if (v[P_K].set)
+        p->k = (int)v[P_K].i;
+    if (v[P_MAXR].set)
+        p->max_radius = v[P_MAXR].v[0];
+    if (v[P_FILTER].set)
+        p->filter = (photonmap_filter_t)v[P_FILTER].i;
+    if (v[P_GATHER].set)
+        p->gather = (int)v[P_GATHER].i;
+    if (v[P_ALPHA].set)
+        p->alpha = v[P_ALPHA].v[0];
+    if (v[P_RADIUS].set)
+        p->radius = v[P_RADIUS].v[0];
+    return SVET_OK;
+}
+
+/* --- emission and tracing (Jensen 2001, ch. 5) -------------------------- */
+
+/* One stored photon before the map is built. */
+typedef struct {
+    VECTOR3 pos, dir;
+    RADIANCE power;
+} record_t;
+
+typedef struct {
+    record_t *r;
+    size_t n, cap;
+    bool failed;
+} records_t;
+
+static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
+                 RADIANCE power)
+{
+    if (b->failed)
+        return;
+    if (b->n == b->cap) {
+        size_t cap = b->cap ? 2 * b->cap : 1024;
+        record_t *r = realloc(b->r, cap * sizeof *r);
+        if (!r) {
+            b->failed = true;
+            return;
+        }
+        b->r = r;
+        b->cap = cap;
+    }
+    record_t *q = &b->r[b->n++];
+    vec_copy(q->pos, pos);
+    vec_copy(q->dir, dir);
+    q->power = power;
+}
+
+/* The photon's first ray and power from the light l chosen with chance
+ * pmf: a point light emits isotropically, Phi = 4 pi I; an area light
+ * from a point uniform by area, cosine-weighted about its normal (on a
+ * side chosen at random when it emits on both), Phi = sides pi L_e A
+ * (Jensen 2001, sec. 5.1.1). Returns false for an environment (which
+ * photon tracing does not emit: scenes/README.md) or a degenerate
+ * sample. */
+static bool emit(const light_t *l, real pmf, uint64_t count, pcg32_t *g,
+                 ray_t *ray, RADIANCE *power, const COBJECT **from)
+{
+    real u[2] = { pcg32_real(g), pcg32_real(g) };
+    real us = pcg32_real(g), ud[2] = { pcg32_real(g), pcg32_real(g) };
+    real share = 1 / (pmf * (real)count);
+    *from = NULL;
+    if (l->kind == LIGHT_POINT) {
+        VECTOR3 d;
+        sample_uniform_sphere(d, u);
+        vec_copy(ray->o, l->position);
+        vec_copy(ray->d, d);
+        *power = rad_scale(l->intensity, 4 * REAL_PI * share);
+        return true;
+    }
+    if (l->kind != LIGHT_AREA)
+        return false;
+    const COBJECT *obj = l->emission->obj;
+    cobject_sample_t cs;
+    obj->ops->sample(obj, u, &cs);
+    if (!(cs.pdf > 0))
+        return false;
+    VECTOR3 n, t1, t2, local, d;
+    vec_copy(n, cs.n);
+    real sides = 1;
+    if (l->emission->two_sided) {
+        sides = 2;
+        if (us < REAL_C(0.5))
+            vec_scale(n, n, -1);
+    }
+    frame_from_normal(t1, t2, n);
+    sample_cosine_hemisphere(local, ud);
+    frame_to_world(d, local, t1, t2, n);
+    ray_spawn(ray, cs.p, cs.p_error, cs.n, d);
+    *power = rad_scale(l->emission->radiance,
+                       sides * REAL_PI / cs.pdf * share);
+    *from = obj;
+    return true;
+}
+
+/* Trace photon `index`: bounce by the materials' own sampling, store
+ * where the kind asks. The material samples wi for a given wo; a photon
+ * needs the adjoint, a new direction for the one it came from. By
+ * reciprocity f(wi, wo) = f(wo, wi), so sampling with wo = the photon's
+ * incoming direction gives the outgoing one with the weight f |cos| / pdf
+ * the flux needs. Refraction's radiance scaling (eta^2) is not the flux's:
+ * svet transports basic radiance L / n^2 (brdf.c), in which the BTDF is
+ * symmetric and rho_t(theta) is the same both ways, so the photon's
+ * power is multiplied by rho_t(theta) alone, as flux is conserved across
+ * the interface (Veach 1997, sec. 5.2). Russian roulette by the weight's
+ * largest channel keeps the powers equal (Jensen 2001, sec. 5.2). */
+static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
+                      uint64_t stream, uint64_t index, records_t *out)
+{
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed ^ PHOTON_SEED_SALT, stream,
+                   index);
+    real pmf;
+    const light_t *l = lightset_pick(&r->lights, pcg32_real(&g), &pmf);
+    ray_t ray;
+    RADIANCE power;
+    const COBJECT *skip[2] = { NULL, NULL };
+    if (!l || !(pmf > 0) || !emit(l, pmf, count, &g, &ray, &power, &skip[0]))
+        return;
+    bool diffuse_seen = false;
+    const int max_depth = r->scene->render.max_depth;
+    for (int depth = 0; depth <= max_depth; depth++) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        if (!r->tracer.intersect(r->tracer.ctx, &ray, 0, (real)INFINITY, skip,
+                                 &h, &obj))
+            return;
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        const material_t *m = obj->material;
+        VECTOR3 dir;
+        vec_normalize(dir, ray.d);
+        if (!material_is_specular(m) && m->ncomp > 0) {
+            bool store = kind == PHOTON_GLOBAL ||
+                         (kind == PHOTON_INDIRECT && depth > 0) ||
+                         (kind == PHOTON_CAUSTIC && depth > 0 && !diffuse_seen);
+            if (store)
+                push(out, pp.cross_point, dir, power);
+        }
+        if (depth == max_depth)
+            return;
+        VECTOR3 wo, wi;
+        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
+        real u[3] = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
+        real urr = pcg32_real(&g);
+        brdf_sample_t bs;
+        if (!material_sample(m, wo, u, &bs))
+            return;
+        if (!bs.delta) {
+            diffuse_seen = true;
+            if (kind == PHOTON_CAUSTIC)
+                return; /* it can no longer make a caustic */
+        }
+        real q = real_min(rad_max(bs.weight), REAL_C(1.0));
+        if (!(urr < q))
+            return;
+        power = rad_scale(rad_mul(power, bs.weight), 1 / q);
+        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        skip[0] = obj;
+    }
+}
+
+/* photons per chunk: the unit of work of a thread; the records of the
+ * chunks are joined in chunk order, so the map does not depend on which
+ * thread traced which */
+#define CHUNK 4096
+
+svet_status photon_trace(const render_t *r, uint64_t count,
+                         photon_kind_t kind, uint64_t stream, int threads,
+                         photonmap_t *m, svet_error *err)
+{
+    memset(m, 0, sizeof *m);
+    m->balanced = true; /* an empty map answers every query with nothing */
+    if (count == 0 || r->lights.n == 0)
+        return SVET_OK;
+    uint64_t nchunks = (count + CHUNK - 1) / CHUNK;
+    if (nchunks > SIZE_MAX / sizeof(records_t))
+        return svet_error_set(err, SVET_ERR_NOMEM, "photon tracing: %llu "
+                              "photons are too many", (unsigned long long)count);
+    records_t *chunks = calloc((size_t)nchunks, sizeof *chunks);
+    if (!chunks)
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "photon tracing: out of memory");
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+    for (long long c = 0; c < (long long)nchunks; c++) {
+        uint64_t i0 = (uint64_t)c * CHUNK;
+        uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;
+        for (uint64_t i = i0; i < i1; i++)
+            trace_one(r, count, kind, stream, i, &chunks[c]);
+    }
+    size_t total = 0;
+    bool failed = false;
+    for (uint64_t c = 0; c < nchunks; c++) {
+        total += chunks[c].n;
+        failed = failed || chunks[c].failed;
+    }
+    svet_status st = SVET_OK;
+    if (failed)
+        st = svet_error_set(err, SVET_ERR_NOMEM,
+                            "photon tracing: out of memory");
+    else if (total > 0)
+        st = photonmap_init(m, total, err);
+    for (uint64_t c = 0; c < nchunks; c++) {
+        for (size_t i = 0; st == SVET_OK && i < chunks[c].n; i++) {
+            const record_t *q = &chunks[c].r[i];
+            photonmap_store(m, q->pos, q->power, q->dir, (uint8_t)kind);
+        }
+        free(chunks[c].r);
+    }
+    free(chunks);
+    if (st == SVET_OK && total > 0)
+        st = photonmap_balance(m, err);
+    if (st != SVET_OK) {
+        photonmap_free(m);
+        m->balanced = true;
+    }
+    return st;
+}
+
+/* --- the radiance estimate ---------------------------------------------- */
+
+RADIANCE photon_radiance(const photonmap_t *m, const PATHPOINT *pp,
+                         const material_t *mat, const VECTOR3 wo,
+                         const photonmap_query_t *q)
+{
+    int32_t idx[PHOTON_MAX_K];
+    real d2[PHOTON_MAX_K];
+    int k = q->k < PHOTON_MAX_K ? q->k : PHOTON_MAX_K;
+    int found = photonmap_nearest(m, pp->cross_point, k, q->rmax, idx, d2);
+    real r2 = found == k ? d2[found - 1] : q->rmax * q->rmax;
+    RADIANCE L = rad_grey(0);
+    if (found == 0 || !(r2 > 0))
+        return L;
+    real r = sqrt(r2);
+    for (int i = 0; i < found; i++) {
+        const photon_t *p = &m->ph[idx[i]];
+        VECTOR3 d, wi, wl;
+        VECTOR3 off = { (real)p->pos[0] - pp->cross_point[X],
+                        (real)p->pos[1] - pp->cross_point[Y],
+                        (real)p->pos[2] - pp->cross_point[Z] };
+        if (q->disc > 0 && fabs(SVECTOR3(off, pp->ng)) > q->disc * r)
+            continue; /* off the surface's plane: another surface */
+        photonmap_direction(p, d);
+        vec_scale(wi, d, -1); /* toward where the photon came from */
+        frame_to_local(wl, wi, pp->u, pp->v, pp->n);
+        RADIANCE f = material_eval(mat, wl, wo);
+        if (rad_is_black(f))
+            continue;
+        real w = photonmap_filter_weight(q, d2[i], r2);
+        RADIANCE phi = rad_make((real)p->power[0], (real)p->power[1],
+                                (real)p->power[2]);
+        L = rad_add(L, rad_scale(rad_mul(f, phi), w));
+    }
+    return rad_scale(L, 1 / photonmap_filter_area(q, r2));
+}
+
+/* --- the methods ---------------------------------------------------------- */
+
+typedef struct {
+    photon_settings_t set;
+    bool ppm;
+    photonmap_t global, caustic;   /* photon */
+    photonmap_t *maps;             /* ppm: one per sample index in [s0, s1) */
+    long s0, nmaps;
+} state_t;
+
+static void state_free(void *p)
+{
+    state_t *s = p;
+    if (!s)
+        return;
+    photonmap_free(&s->global);
+    photonmap_free(&s->caustic);
+    for (long i = 0; i < s->nmaps; i++)
+        photonmap_free(&s->maps[i]);
+    free(s->maps);
+    free(s);
+}
+
+static svet_status prepare(void **out, const render_t *r, int threads,
+                           bool ppm, svet_error *err)
+{
+    state_t *s = calloc(1, sizeof *s);
+    if (!s)
+        return svet_error_set(err, SVET_ERR_NOMEM, "photon: out of memory");
+    photon_settings_of(r->scene, &s->set);
+    s->ppm = ppm;
+    s->global.balanced = s->caustic.balanced = true;
+    svet_status st = SVET_OK;
+    if (!ppm) {
+        st = photon_trace(r, s->set.global, PHOTON_GLOBAL, 0, threads,
+                          &s->global, err);
+        if (st == SVET_OK)
+            st = photon_trace(r, s->set.caustic, PHOTON_CAUSTIC, 1, threads,
+                              &s->caustic, err);
+    }
+    if (st != SVET_OK) {
+        state_free(s);
+        return st;
+    }
+    *out = s;
+    return SVET_OK;
+}
+
+static svet_status prepare_photon(void **out, const render_t *r, int threads,
+                                  svet_error *err)
+{
+    return prepare(out, r, threads, false, err);
+}
+
+static svet_status prepare_ppm(void **out, const render_t *r, int threads,
+                               svet_error *err)
+{
+    return prepare(out, r, threads, true, err);
+}
+
+/* ppm: the maps of sample indices [s0, s1), map i from stream 2 + i, so
+ * that sample i sees the same map however the samples are split into
+ * passes (render.h) */
+static svet_status begin_ppm(void *state, const render_t *r, long s0, long s1,
+                             int threads, svet_error *err)
+{
+    state_t *s = state;
+    for (long i = 0; i < s->nmaps; i++)
+        photonmap_free(&s->maps[i]);
+    free(s->maps);
+    s->maps = NULL;
+    s->nmaps = 0;
+    long n = s1 - s0;
+    /* the maps of the pass live at once: refuse before tracing what
+     * would not fit (each photon stores at least once on average in a
+     * closed scene) */
+    size_t total = s->set.global > SIZE_MAX / (size_t)n
+                       ? SIZE_MAX : (size_t)n * (size_t)s->set.global;
+    svet_error e;
+    svet_status st = photonmap_check_count(total, &e);
+    if (st != SVET_OK)
+        return svet_error_set(err, st, "ppm: %ld maps of %llu photons, one "
+                              "for each sample index of the pass: %s (fewer "
+                              "samples a pass, `render passes`, or fewer "
+                              "photons)", n, (unsigned long long)s->set.global,
+                              e.msg);
+    s->maps = calloc((size_t)n, sizeof *s->maps);
+    if (!s->maps)
+        return svet_error_set(err, SVET_ERR_NOMEM, "ppm: out of memory");
+    s->s0 = s0;
+    s->nmaps = n;
+    for (long i = 0; i < n; i++) {
+        st = photon_trace(r, s->set.global, PHOTON_INDIRECT,
+                          2 + (uint64_t)(s0 + i), threads, &s->maps[i], err);
+        if (st != SVET_OK)
+            return st;
+    }
+    return SVET_OK;
+}
+
+static photonmap_query_t query_of(const photon_settings_t *set, real rmax)
+{
+    photonmap_query_t q = { set->k, rmax, set->filter, REAL_C(1.1),
+                            REAL_C(0.25) };
+    return q;
+}
+
+/* The global map's estimate where a final-gather ray from x lands:
+ * through delta bounces (a gather ray that leaves by glass still finds the
+ * diffuse light behind it) to the first surface with a non-delta part.
+ * Emission there is not counted: direct light is light sampling's, and
+ * light through delta bounces is the caustic map's. */
+static RADIANCE gather_lookup(const state_t *s, const render_t *r, ray_t ray,
+                              const COBJECT *from, pcg32_t *g,
+                              integrator_stats_t *st)
+{
+    RADIANCE beta = rad_grey(1);
+    const COBJECT *skip[2] = { from, NULL };
+    photonmap_query_t q = query_of(&s->set, s->set.max_radius);
+    for (int depth = 0; depth < 16; depth++) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        st->rays++;
+        if (!r->tracer.intersect(r->tracer.ctx, &ray, 0, (real)INFINITY, skip,
+                                 &h, &obj))
+            return rad_grey(0);
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        const material_t *m = obj->material;
+        VECTOR3 wo, wi;
+        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
+        if (!material_is_specular(m))
+            return rad_mul(beta, photon_radiance(&s->global, &pp, m, wo, &q));
+        real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
+        brdf_sample_t bs;
+        if (!material_sample(m, wo, u, &bs))
+            return rad_grey(0);
+        beta = rad_mul(beta, bs.weight);
+        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        skip[0] = obj;
+    }
+    return rad_grey(0);
+}
+
+/* The light leaving a surface with a non-delta part toward wo, by the
+ * method: photon with gathering: direct by light sampling + caustic map +
+ * final gathering from the global map (Jensen 2001, sec. 9.1); photon
+ * without: the global map alone; ppm: direct by light sampling + the
+ * sample's map of indirect photons at its radius. */
+static RADIANCE at_surface(const state_t *s, const render_t *r,
+                           const PATHPOINT *pp, const material_t *m,
+                           const VECTOR3 wo, long sample, pcg32_t *g,
+                           integrator_stats_t *st)
+{
+    if (s->ppm) {
+        RADIANCE L = integrator_direct(&r->integrator, pp, m, wo, false, g,
+                                       st);
+        long i = sample - s->s0;
+        if (i < 0 || i >= s->nmaps)
+            return L;
+        /* r_i = r_1 i^((alpha - 1) / 2), i counted from 1 (Knaus &
+         * Zwicker 2011, eq. 16 with the exponent of its sec. 4.3) */
+        real ri = s->set.radius *
+                  pow((real)(sample + 1), (s->set.alpha - 1) / 2);
+        photonmap_query_t q = query_of(&s->set, ri);
+        return rad_add(L, photon_radiance(&s->maps[i], pp, m, wo, &q));
+    }
+    photonmap_query_t q = query_of(&s->set, s->set.max_radius);
+    if (s->set.gather == 0)
+        return photon_radiance(&s->global, pp, m, wo, &q);
+    RADIANCE L = integrator_direct(&r->integrator, pp, m, wo, false, g, st);
+    L = rad_add(L, photon_radiance(&s->caustic, pp, m, wo, &q));
+    RADIANCE ind = rad_grey(0);
+    for (int j = 0; j < s->set.gather; j++) {
+        real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
+        brdf_sample_t bs;
+        /* the delta part is followed by the caller */
+        if (!material_sample(m, wo, u, &bs) || bs.delta)
+            continue;
+        VECTOR3 wi;
+        frame_to_world(wi, bs.wi, pp->u, pp->v, pp->n);
+        ray_t gr;
+        ray_spawn(&gr, pp->cross_point, pp->p_error, pp->ng, wi);
+        ind = rad_add(ind, rad_mul(bs.weight, gather_lookup(s, r, gr,
+                                                            pp->IntersectObj,
+                                                            g, st)));
+    }
+    return rad_add(L, rad_scale(ind, 1 / (real)s->set.gather));
+}
+
+/* The camera path: emitters seen directly or through delta bounces, delta
+ * bounces followed as the path tracer does (ch. 5), and at the first
+ * surface with a non-delta part the estimate of at_surface(); a delta
+ * part there (a varnish's mirror) continues the path. */
+static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
+                   long sample, pcg32_t *g, integrator_stats_t *st)
+{
+    const state_t *s = state;
+    const scene_t *sc = r->scene;
+    st->paths++;
+    RADIANCE L = rad_grey(0), beta = rad_grey(1);
+    ray_t ray = *camera;
+    const COBJECT *skip[2] = { NULL, NULL };
+    for (int depth = 0;; depth++) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        st->rays++;
+        if (!r->tracer.intersect(r->tracer.ctx, &ray, 0, (real)INFINITY, skip,
+                                 &h, &obj)) {
+            if (sc->has_environment)
+                L = rad_add(L, rad_mul(beta, sc->environment));
+            break;
+        }
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        if (obj->light)
+            L = rad_add(L, rad_mul(beta, light_emitted(obj->light, &pp)));
+        if (depth >= sc->render.max_depth)
+            break;
+        const material_t *m = obj->material;
+        VECTOR3 wo, wi;
+        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
+        bool diffuse = !material_is_specular(m) && m->ncomp > 0;
+        if (diffuse)
+            L = rad_add(L, rad_mul(beta, at_surface(s, r, &pp, m, wo, sample,
+                                                   g, st)));
+        real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
+        brdf_sample_t bs;
+        if (!material_sample(m, wo, u, &bs) || (diffuse && !bs.delta))
+            break;
+        beta = rad_mul(beta, bs.weight);
+        if (rad_is_black(beta))
+            break;
+        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        skip[0] = obj;
+    }
+    return L;
+}
+
+const render_method_t photon_method = {
+    "photon", "photon maps (ch. 8): global and caustic maps, final gathering",
+    prepare_photon, NULL, li, state_free
+};
+const render_method_t photon_ppm_method = {
+    "ppm", "progressive photon maps (Knaus & Zwicker 2011): a map per sample",
+    prepare_ppm, begin_ppm, li, state_free
+};
+
+static const render_method_t *const methods[] = { &photon_method,
+                                                  &photon_ppm_method, NULL };
+static const scene_statement_t statements[] = {
+    { "photonmap", photon_statement }, { NULL, NULL }
+};
+const scene_part_t photon_part = { .name = "photon",
+                                   .statements = statements,
+                                   .methods = methods };

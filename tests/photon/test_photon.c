@@ -1,0 +1,438 @@
+/*
+ * test_photon.c - the photon map method of ch. 8 (photon/photon.h): the
+ * power balance of a closed box against Phi / (A (1 - rho)); the density
+ * estimate on uniform photons against its exact mean k/(k-1) and standard
+ * deviation; maps and images the same bits for 1 and 2 threads and, for
+ * ppm, for any split into passes; photon and ppm renders of a caustic
+ * scene and the Cornell box against the path tracer's converged image;
+ * ppm's error falling as samples are added; the photonmap statement's
+ * messages.
+ */
+#include "testutil.h"
+#include "photon/photon.h"
+#include "render/allparts.h"
+#include "render/render.h"
+#include "render/scenefile.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static svet_status parse(scene_t *s, const char *text, svet_error *e)
+{
+    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
+                                scene_features_all(), e);
+}
+
+static void parse_ok(scene_t *s, const char *text)
+{
+    svet_error e;
+    svet_status st = parse(s, text, &e);
+    ck_assert_msg(st == SVET_OK, "%s", e.msg);
+}
+
+/* --- power balance ---------------------------------------------------------- */
+
+/* a closed unit-cube box of reflectance rho around a point light of power
+ * 4 pi I = 4 pi W */
+static const char box_scene[] =
+    "camera position 0 0 0 target 0 0 -1 up 0 1 0 width 4 height 4\n"
+    "render maxdepth 1000\n"
+    "material wall lambert rho 0.5\n"
+    "box min -1 -1 -1 max 1 1 1 material wall\n"
+    "light point position 0.1 -0.2 0.3 intensity 1\n";
+
+/* the box scene read and ready to trace photons in */
+static void box_render(scene_t *s, render_t *r)
+{
+    svet_error e;
+    parse_ok(s, box_scene);
+    ck_assert_msg(render_init(r, s, &e) == SVET_OK, "%s", e.msg);
+}
+
+START_TEST(power_balance_in_a_closed_box)
+{
+    /* Every photon lands on a wall, and goes on with chance rho keeping
+     * its power (grey walls: roulette by the reflectance, Jensen 2001
+     * sec. 5.2), so the flux stored is Phi (1 + rho + rho^2 + ...) =
+     * Phi / (1 - rho) in expectation and the mean irradiance of the walls
+     * Phi / (A (1 - rho)). A photon stores H times, H geometric with
+     * variance rho / (1 - rho)^2: the mean's relative standard deviation
+     * is sqrt(rho / N); the tolerance is 4 of those. */
+    scene_t s;
+    render_t r;
+    svet_error e;
+    box_render(&s, &r);
+    const uint64_t n = 40000;
+    photonmap_t m;
+    ck_assert_int_eq(photon_trace(&r, n, PHOTON_GLOBAL, 0, 0, &m, &e),
+                     SVET_OK);
+    double sum = 0;
+    for (size_t i = 1; i <= m.n; i++)
+        sum += (double)m.ph[i].power[1];
+    const double rho = 0.5, phi = 4 * 3.14159265358979323846, area = 24;
+    double exact = phi / (area * (1 - rho)), got = sum / area;
+    double tol = 4 * sqrt(rho / (double)n);
+    ck_assert_msg(fabs(got / exact - 1) < tol, "mean wall irradiance %g, "
+                  "exact %g (tolerance %g relative)", got, exact, tol);
+    /* the photons are stored where they land: on the walls */
+    for (size_t i = 1; i <= m.n; i++) {
+        float mx = 0;
+        for (int a = 0; a < 3; a++)
+            mx = fmaxf(mx, fabsf(m.ph[i].pos[a]));
+        ck_assert(fabsf(mx - 1) < 1e-4f);
+    }
+    /* and in a caustic map of a box without glass there is nothing */
+    photonmap_t c;
+    ck_assert_int_eq(photon_trace(&r, 1000, PHOTON_CAUSTIC, 1, 0, &c, &e),
+                     SVET_OK);
+    ck_assert_uint_eq(c.n, 0);
+    photonmap_free(&m);
+    photonmap_free(&c);
+    render_free(&r);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(maps_are_the_same_for_any_thread_count)
+{
+    scene_t s;
+    render_t r;
+    svet_error e;
+    box_render(&s, &r);
+    photonmap_t a, b;
+    ck_assert_int_eq(photon_trace(&r, 30000, PHOTON_GLOBAL, 0, 1, &a, &e),
+                     SVET_OK);
+    ck_assert_int_eq(photon_trace(&r, 30000, PHOTON_GLOBAL, 0, 2, &b, &e),
+                     SVET_OK);
+    ck_assert_uint_eq(a.n, b.n);
+    ck_assert(a.n > 30000);
+    ck_assert(memcmp(a.ph + 1, b.ph + 1, a.n * sizeof(photon_t)) == 0);
+    photonmap_free(&a);
+    photonmap_free(&b);
+    /* another stream is another map */
+    ck_assert_int_eq(photon_trace(&r, 1000, PHOTON_GLOBAL, 0, 2, &a, &e),
+                     SVET_OK);
+    ck_assert_int_eq(photon_trace(&r, 1000, PHOTON_GLOBAL, 7, 2, &b, &e),
+                     SVET_OK);
+    ck_assert(a.n != b.n ||
+              memcmp(a.ph + 1, b.ph + 1, a.n * sizeof(photon_t)) != 0);
+    photonmap_free(&a);
+    photonmap_free(&b);
+    render_free(&r);
+    scene_free(&s);
+}
+END_TEST
+
+/* --- the density estimate ------------------------------------------------- */
+
+START_TEST(density_estimate_on_uniform_photons_has_its_exact_mean)
+{
+    /* N photons uniform on the unit square at z = 0, each Phi / N: the
+     * irradiance is E = Phi. With r the distance of the k-th nearest, the
+     * photons are locally Poisson of density lambda = N, pi r^2 lambda is
+     * Gamma(k, 1), and the estimate k Phi / (N pi r^2) has mean E k/(k-1)
+     * and relative standard deviation k / ((k-1) sqrt(k-2)). The query
+     * points of a 30 x 30 grid lie far further apart than 2r, so their
+     * estimates are nearly independent: the mean of 900 has a relative
+     * standard deviation of 0.354 / 30 = 1.2 % for k = 10, and 4 of those
+     * is the tolerance (the uncorrected E lies 9 of them away). */
+    const size_t n = 200000;
+    const int k = 10;
+    photonmap_t m;
+    svet_error e;
+    ck_assert_int_eq(photonmap_init(&m, n, &e), SVET_OK);
+    pcg32_t g;
+    pcg32_seed(&g, 42, 7);
+    const real phi = 2;
+    VECTOR3 down = { 0, 0, -1 };
+    for (size_t i = 0; i < n; i++) {
+        VECTOR3 p = { pcg32_real(&g), pcg32_real(&g), 0 };
+        ck_assert(photonmap_store(&m, p, rad_grey(phi / (real)n), down, 0));
+    }
+    ck_assert_int_eq(photonmap_balance(&m, &e), SVET_OK);
+    photonmap_query_t q = { k, 1, PHOTONMAP_FILTER_NONE, REAL_C(1.1), 0 };
+    material_t lam;
+    ck_assert_int_eq(material_lambert(&lam, rad_grey(REAL_C(0.6)), &e),
+                     SVET_OK);
+    double sum = 0, sum2 = 0;
+    int nq = 0;
+    for (int i = 0; i < 30; i++)
+        for (int j = 0; j < 30; j++, nq++) {
+            VECTOR3 x = { (real)(0.05 + 0.03 * i), (real)(0.05 + 0.03 * j), 0 };
+            VECTOR3 nrm = { 0, 0, 1 };
+            RADIANCE est = photonmap_irradiance(&m, x, nrm, &q);
+            double v = (double)est.g / (double)phi;
+            sum += v;
+            sum2 += v * v;
+            /* photon_radiance of a Lambert surface is rho / pi times it */
+            PATHPOINT pp;
+            memset(&pp, 0, sizeof pp);
+            vec_copy(pp.cross_point, x);
+            vec_set(pp.u, 1, 0, 0);
+            vec_set(pp.v, 0, 1, 0);
+            vec_set(pp.n, 0, 0, 1);
+            vec_set(pp.ng, 0, 0, 1);
+            VECTOR3 wo = { 0, 0, 1 };
+            RADIANCE L = photon_radiance(&m, &pp, &lam, wo, &q);
+            ck_assert_rel(L.g, est.g * REAL_C(0.6) * REAL_INV_PI,
+                          64 * REAL_EPSILON, 0);
+        }
+    double mean = sum / nq, sd = sqrt(sum2 / nq - mean * mean);
+    double exact = (double)k / (k - 1);
+    double rel_sd = k / ((k - 1) * sqrt(k - 2.0));
+    double tol = 4 * rel_sd / sqrt((double)nq);
+    ck_assert_msg(fabs(mean / exact - 1) < tol, "mean %g, exact %g (tol %g)",
+                  mean, exact, tol);
+    ck_assert_msg(fabs(mean - 1) > tol, "the mean %g is not biased by k/(k-1)",
+                  mean);
+    /* the sample standard deviation of 900: within 20 % of its exact
+     * value (its own relative error is about sqrt((kurtosis - 1) / 4n),
+     * a few per cent for this skewed law) */
+    ck_assert_msg(fabs(sd / (exact * rel_sd) - 1) < 0.2, "sd %g, exact %g",
+                  sd, exact * rel_sd);
+    photonmap_free(&m);
+}
+END_TEST
+
+/* --- renders -------------------------------------------------------------- */
+
+/* caustic.scn at a small size */
+static const char caustic_scene[] =
+    "camera position 0 2.2 4.2 target 0 0.45 0 up 0 1 0 fov 38 fov_axis x "
+    "width 24 height 18\n"
+    "render maxdepth 10 seed 0\n"
+    "photonmap global 20000 caustic 60000 k 50 max_radius 0.1 gather 8 "
+    "radius 0.1 alpha 0.7\n"
+    "material glass glass eta 1.5\n"
+    "material white lambert rho 0.75\n"
+    "material grey lambert rho 0.5\n"
+    "parallelogram c0 -3 0 3 c1 3 0 3 c3 -3 0 -3 material white\n"
+    "parallelogram c0 -3 0 -3 c1 3 0 -3 c3 -3 3 -3 material grey\n"
+    "sphere centre 0 0.5 0 radius 0.5 material glass\n"
+    "disk centre -0.6 2.6 -0.6 normal 0 -1 0 radius 0.15 material white "
+    "emit 80\n";
+
+static void render_with(const char *text, const char *method, long spp,
+                        int threads, long passes, image_t *img)
+{
+    scene_t s;
+    parse_ok(&s, text);
+    svet_error e;
+    char set[64];
+    snprintf(set, sizeof set, "integrator=%s", method);
+    ck_assert_int_eq(scenefile_override(&s, set, &e), SVET_OK);
+    render_t r;
+    ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
+    for (long p = 1; p <= passes; p++)
+        ck_assert_int_eq(render_pass(&r, spp * p / passes, threads, NULL,
+                                     NULL), SVET_OK);
+    ck_assert_int_eq(render_image(&r, img, &e), SVET_OK);
+    render_free(&r);
+    scene_free(&s);
+}
+
+static double image_mean(const image_t *a)
+{
+    double s = 0;
+    size_t n = (size_t)a->width * (size_t)a->height * 3;
+    for (size_t i = 0; i < n; i++)
+        s += (double)a->px[i];
+    return s / (double)n;
+}
+
+/* root mean square difference of the means of bw x bh blocks of pixels,
+ * relative to b's mean; 1 x 1 blocks are the pixels */
+static double rel_rms(const image_t *a, const image_t *b, int bw, int bh)
+{
+    double s = 0;
+    int n = 0;
+    for (int y0 = 0; y0 + bh <= a->height; y0 += bh)
+        for (int x0 = 0; x0 + bw <= a->width; x0 += bw)
+            for (int c = 0; c < 3; c++, n++) {
+                double d = 0;
+                for (int y = y0; y < y0 + bh; y++)
+                    for (int x = x0; x < x0 + bw; x++)
+                        d += (double)image_at(a, x, y)[c] -
+                             (double)image_at(b, x, y)[c];
+                d /= bw * bh;
+                s += d * d;
+            }
+    return sqrt(s / n) / image_mean(b);
+}
+
+/* method's image of spp samples: one thread and one pass against two
+ * threads and `passes` passes, the same bits */
+static void same_bits(const char *method, long spp, long passes)
+{
+    image_t a, b;
+    render_with(caustic_scene, method, spp, 1, 1, &a);
+    render_with(caustic_scene, method, spp, 2, passes, &b);
+    ck_assert_msg(memcmp(a.px, b.px, (size_t)a.width * (size_t)a.height * 3 *
+                                         sizeof(float)) == 0,
+                  "%s: the images differ", method);
+    image_free(&a);
+    image_free(&b);
+}
+
+START_TEST(images_are_the_same_for_threads_and_passes)
+{
+    same_bits("photon", 2, 2);
+    /* ppm: sample i sees map i whichever pass it falls in */
+    same_bits("ppm", 4, 3);
+}
+END_TEST
+
+/* The path tracer's image of 4096 samples as the reference. The photon
+ * map's estimate blurs the caustic's focus over its radius (that bias
+ * goes to zero only with the radius), so the images are compared in
+ * blocks of 4 x 3 pixels, over which the blur moves little light: the
+ * image means must agree within 5 % and the blocks' RMS difference stay
+ * below 10 % of the mean (the reference's own, against 16384 samples, is
+ * about 3 %). ppm's per-pixel error must fall with the samples: it holds
+ * both the noise and the blur, and both shrink. */
+START_TEST(photon_and_ppm_converge_to_the_path_tracer)
+{
+    image_t ref, ph, pp[3];
+    render_with(caustic_scene, "path", 4096, 0, 1, &ref);
+    render_with(caustic_scene, "photon", 16, 0, 1, &ph);
+    double mref = image_mean(&ref);
+    ck_assert_msg(fabs(image_mean(&ph) / mref - 1) < 0.05,
+                  "photon mean %g, path %g", image_mean(&ph), mref);
+    double e_ph = rel_rms(&ph, &ref, 4, 3);
+    ck_assert_msg(e_ph < 0.10, "photon: relative RMS %g", e_ph);
+    const long spp[3] = { 4, 32, 256 };
+    double e[3];
+    for (int i = 0; i < 3; i++) {
+        render_with(caustic_scene, "ppm", spp[i], 0, i + 1, &pp[i]);
+        e[i] = rel_rms(&pp[i], &ref, 1, 1);
+    }
+    ck_assert_msg(fabs(image_mean(&pp[2]) / mref - 1) < 0.05,
+                  "ppm mean %g, path %g", image_mean(&pp[2]), mref);
+    ck_assert_msg(rel_rms(&pp[2], &ref, 4, 3) < 0.10, "ppm: block RMS %g",
+                  rel_rms(&pp[2], &ref, 4, 3));
+    /* the slope of log error against log samples, least squares */
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < 3; i++) {
+        double x = log((double)spp[i]), y = log(e[i]);
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    double slope = (3 * sxy - sx * sy) / (3 * sxx - sx * sx);
+    ck_assert_msg(slope < -0.1 && e[2] < e[1] && e[1] < e[0],
+                  "ppm: RMS %g, %g, %g at 4, 32, 256 samples: slope %g", e[0],
+                  e[1], e[2], slope);
+    image_free(&ref);
+    image_free(&ph);
+    for (int i = 0; i < 3; i++)
+        image_free(&pp[i]);
+}
+END_TEST
+
+/* The Cornell box (scenes/cbox.scn's numbers) at 16 x 16: the photon
+ * map with final gathering and ppm against the path tracer, in 8 x 4
+ * blocks, where the blur of the estimate moves little light and the
+ * light, a few pixels seen directly and noisy at a few samples, falls in
+ * one block. The light's few pixels carry the jitter's noise, the same
+ * numbers as the path tracer's at 64 samples (dimensions 0 and 1 of a
+ * sample are its position in the pixel): about 10 % block RMS at 64
+ * samples alone, so the blocks must agree within 15 %, the means within
+ * 5 %. */
+static char *cbox_text(void)
+{
+    static char text[8192];
+    FILE *f = fopen("scenes/cbox.scn", "r");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(text, 1, sizeof text - 200, f);
+    fclose(f);
+    text[n] = 0;
+    strcat(text, "camera width 16 height 16\n"
+                 "photonmap global 50000 caustic 1000 k 50 max_radius 0.2 "
+                 "gather 4 radius 0.1\n");
+    return text;
+}
+
+START_TEST(cornell_box_converges_to_the_path_tracer)
+{
+    const char *text = cbox_text();
+    image_t ref, ph, pp;
+    render_with(text, "path", 2048, 0, 1, &ref);
+    render_with(text, "photon", 64, 0, 1, &ph);
+    render_with(text, "ppm", 64, 0, 2, &pp);
+    double mref = image_mean(&ref);
+    ck_assert_msg(fabs(image_mean(&ph) / mref - 1) < 0.05,
+                  "photon mean %g, path %g", image_mean(&ph), mref);
+    ck_assert_msg(fabs(image_mean(&pp) / mref - 1) < 0.05,
+                  "ppm mean %g, path %g", image_mean(&pp), mref);
+    double e_ph = rel_rms(&ph, &ref, 8, 4), e_pp = rel_rms(&pp, &ref, 8, 4);
+    ck_assert_msg(e_ph < 0.15 && e_pp < 0.15, "block RMS photon %g, ppm %g",
+                  e_ph, e_pp);
+    image_free(&ref);
+    image_free(&ph);
+    image_free(&pp);
+}
+END_TEST
+
+/* --- the statement's messages --------------------------------------------- */
+
+static void refused(const char *line, const char *what)
+{
+    char text[512];
+    snprintf(text, sizeof text, "%s\n%s\n", box_scene, line);
+    scene_t s;
+    svet_error e;
+    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
+    ck_assert_msg(strstr(e.msg, "t.scn:7:") && strstr(e.msg, what),
+                  "%s: %s", line, e.msg);
+}
+
+START_TEST(photonmap_statement_messages)
+{
+    refused("photonmap global 0", "at least 1 photon");
+    refused("photonmap caustic 0", "at least 1 photon");
+    refused("photonmap k 0", "k");
+    refused("photonmap max_radius -1", "max_radius");
+    refused("photonmap radius 0", "radius");
+    refused("photonmap alpha 1.5", "alpha");
+    refused("photonmap global 100000000000000", "GB");
+    /* below the largest count, a map the memory cannot hold, when this
+     * machine's is below 2e9 photons' 112 GB */
+    svet_error big;
+    if (photonmap_check_count(2000000000, &big) == SVET_ERR_NOMEM)
+        refused("photonmap caustic 2000000000", "GB of memory");
+    refused("photonmap filter box", "filter");
+    refused("photonmap gathr 4", "did you mean 'gather'");
+    scene_t s;
+    parse_ok(&s, box_scene);
+    svet_error e;
+    ck_assert_int_eq(scenefile_override(&s, "photonmap.k=20", &e), SVET_OK);
+    ck_assert_int_eq(scenefile_override(&s, "photonmap.gather=0", &e),
+                     SVET_OK);
+    photon_settings_t set;
+    photon_settings_of(&s, &set);
+    ck_assert_int_eq(set.k, 20);
+    ck_assert_int_eq(set.gather, 0);
+    ck_assert_uint_eq(set.global, 100000);
+    ck_assert_int_ne(scenefile_override(&s, "photonmap.k=0", &e), SVET_OK);
+    scene_free(&s);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("photon (" REAL_NAME ")");
+    TCase *t = tcase_create("core");
+    tcase_set_timeout(t, 600);
+    tcase_add_test(t, photonmap_statement_messages);
+    tcase_add_test(t, power_balance_in_a_closed_box);
+    tcase_add_test(t, maps_are_the_same_for_any_thread_count);
+    tcase_add_test(t, density_estimate_on_uniform_photons_has_its_exact_mean);
+    tcase_add_test(t, images_are_the_same_for_threads_and_passes);
+    tcase_add_test(t, photon_and_ppm_converge_to_the_path_tracer);
+    tcase_add_test(t, cornell_box_converges_to_the_path_tracer);
+    suite_add_tcase(s, t);
+    return s;
+}
