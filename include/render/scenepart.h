@@ -1,14 +1,14 @@
 /*
- * scenepart.h - how a part of Part II (photon maps, the irradiance cache,
- * textures, media, ...) joins the scene file and the renderer without the
- * core naming it: its statements (`texture`, `medium`, `photonmap`), its
- * data kept in the scene, and its rendering methods (`render integrator
- * photon`). A program offers a part by listing it in scene_features_t.parts
- * (scene.h; allparts.c lists them all); a program that does not (ch. 5)
- * links none of its code, and its keywords are refused with the chapter
- * that brings them. The keys of a part's statements are read with the
- * scene file's own machinery (spec_t, scenefile_keys), so their messages
- * name file:line:column as the core's do.
+ * scenepart.h - how a part of Part II of the book (photon maps, ch. 8; the
+ * irradiance cache, ch. 9; textures, ch. 10; media, ch. 11) joins the scene
+ * file and the renderer without the core naming it: its statements
+ * (`texture`, `medium`, `photonmap`), its data kept in the scene, and its
+ * rendering methods (`render integrator photon`). A program offers a part by
+ * listing it in scene_features_t.parts (scene.h; allparts.c lists them all);
+ * a program that does not (ch. 5) links none of its code, and its keywords
+ * are refused with the chapter that brings them. The keys of a part's
+ * statements are read with the scene file's own machinery (spec_t,
+ * scenefile_keys), so their messages name file:line:column as the core's do.
  * Tests: tests/render/test_scenepart.c
  */
 #ifndef SVET_SCENEPART_H
