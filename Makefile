@@ -488,3 +488,4 @@ test-merge:
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
 	sh tests/cmd/test_merge.sh build/float/svet
 	sh tests/cmd/test_merge.sh build/double/svet
+	sh tests/cmd/test_render_parallel.sh build/float/svet
