@@ -40,6 +40,7 @@ typedef struct {
     long from, to;               /* --samples FROM:TO; to 0 when not given */
     int crop[4];                 /* --crop X0:X1,Y0:Y1 */
     bool cropped, part;          /* --crop given; --crop or --samples */
+    bool resume;                 /* --resume */
     cmd_scene_opts_t so;         /* --threads, --seed, --set */
 } cmd_render_args_t;
 /* A part of a split render (svet render --samples/--crop, svet merge):
@@ -58,6 +59,19 @@ typedef struct {
 svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
                               const cmd_scene_opts_t *so,
                               unsigned long long *id, svet_error *err);
+
+/* A part file read back (FILE.exr.part): its header, tone map, and 8
+ * doubles per pixel of the crop (sums, sums of squares, counts). */
+typedef struct {
+    cmd_part_t p;
+    int tm_op, tm_curve;
+    double tm[5];
+    double *v;
+} cmd_part_file_t;
+
+/* Read exr's part file into q (q->v malloc'ed: free it). Returns
+ * SVET_EXIT_OK, or SVET_EXIT_INPUT after printing why. */
+int cmd_part_read(const char *exr, cmd_part_file_t *q);
 
 /* The outputs of svet render and svet merge. */
 typedef struct {

@@ -57,14 +57,7 @@ void cmd_merge_help(FILE *f)
 "2: a part is missing or malformed; 3: an output could not be written.\n");
 }
 
-typedef struct {
-    cmd_part_t p;
-    int tm_op, tm_curve;
-    double tm[5];
-    double *v; /* 8 per pixel of the crop */
-} part_t;
-
-static int read_part(const char *exr, part_t *q)
+int cmd_part_read(const char *exr, cmd_part_file_t *q)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s.part", exr);
@@ -113,7 +106,7 @@ static int read_part(const char *exr, part_t *q)
 
 static int by_from(const void *a, const void *b)
 {
-    const part_t *const *x = a, *const *y = b;
+    const cmd_part_file_t *const *x = a, *const *y = b;
     return ((*x)->p.from > (*y)->p.from) - ((*x)->p.from < (*y)->p.from);
 }
 
@@ -145,8 +138,8 @@ int cmd_merge(int argc, char **argv)
     if (!exr || nin == 0)
         return cmd_error("merge", SVET_EXIT_USAGE,
                          "usage: svet merge PART.exr ... -o OUT.exr");
-    part_t *q = calloc((size_t)nin, sizeof *q);
-    part_t **order = calloc((size_t)nin, sizeof *order);
+    cmd_part_file_t *q = calloc((size_t)nin, sizeof *q);
+    cmd_part_file_t **order = calloc((size_t)nin, sizeof *order);
     char *png_alloc = NULL;
     render_t r;
     memset(&r, 0, sizeof r);
@@ -155,7 +148,7 @@ int cmd_merge(int argc, char **argv)
         goto done;
     }
     for (int k = 0; k < nin; k++) {
-        if ((rc = read_part(ins[k], &q[k])) != SVET_EXIT_OK)
+        if ((rc = cmd_part_read(ins[k], &q[k])) != SVET_EXIT_OK)
             goto done;
         order[k] = &q[k];
         q[k].p.path = ins[k];

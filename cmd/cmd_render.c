@@ -50,7 +50,10 @@ void cmd_render_help(FILE *f)
 "      --time-limit S      stop after the pass that passes S seconds\n"
 "      --passes N          split the samples into N passes (default: the\n"
 "                          scene's `passes`, or min(spp, 16) when it is 1)\n"
-"      --checkpoint        write the outputs after every pass\n"
+"      --checkpoint        write the outputs after every pass, and\n"
+"                          FILE.exr.part with the exact sums\n"
+"      --resume            continue from FILE.exr.part (a checkpoint of\n"
+"                          the same scene): the same bits as one render\n"
 "      --samples FROM:TO   only sample indices FROM..TO-1 of every pixel\n"
 "      --crop X0:X1,Y0:Y1  only the pixels X0..X1-1, Y0..Y1-1\n"
 "                          (either makes a part: FILE.exr.part beside the\n"
@@ -153,7 +156,7 @@ static void write_part(FILE *f, const render_t *r, const scene_t *s,
     fprintf(f, "svet-part 1\nidentity %016llx\nsize %d %d\nsamples %ld %ld\n"
                "crop %d %d %d %d\ntonemap %d %a %a %a %a %d %a\n",
             (unsigned long long)p->identity, p->width, p->height, p->from,
-            p->to, p->x0, p->x1, p->y0, p->y1, (int)t->op,
+            r->spp_done, p->x0, p->x1, p->y0, p->y1, (int)t->op,
             (double)t->exposure, (double)t->key, (double)t->white,
             (double)t->bias, (int)t->curve, (double)t->gamma);
     for (int y = p->y0; y < p->y1; y++)
@@ -255,6 +258,8 @@ int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
             o->quiet = true, takes = false;
         } else if (!strcmp(a, "--strict")) {
             o->so.strict = true, takes = false;
+        } else if (!strcmp(a, "--resume")) {
+            o->resume = o->checkpoint = true, takes = false;
         } else if (!strcmp(a, "--half")) {
             o->half = true, takes = false;
         } else if (a[0] == '-' && !v) {
@@ -371,7 +376,7 @@ int cmd_render(int argc, char **argv)
     }
     r_live = true;
     cmd_part_t part = { 0 };
-    if (o.part) {
+    if (o.part || o.checkpoint) {
         const int W = scene.camera.width, H = scene.camera.height;
         if (o.cropped && (o.crop[1] > W || o.crop[3] > H)) {
             fprintf(stderr, "svet render: --crop %d:%d,%d:%d: outside the "
@@ -405,6 +410,35 @@ int cmd_render(int argc, char **argv)
         r.spp_done = part.from; /* sample indices from FROM on */
         scene.render.spp = part.to;
     }
+    if (o.resume) {
+        cmd_part_file_t q;
+        memset(&q, 0, sizeof q);
+        rc = cmd_part_read(exr, &q);
+        if (rc == SVET_EXIT_OK &&
+            (q.p.identity != part.identity || q.p.from != part.from ||
+             q.p.x0 != part.x0 || q.p.x1 != part.x1 || q.p.y0 != part.y0 ||
+             q.p.y1 != part.y1 || q.p.to > part.to)) {
+            fprintf(stderr, "svet render: --resume: %s.part is of another "
+                            "scene, seed, setting, crop or sample range\n",
+                    exr);
+            rc = SVET_EXIT_USAGE;
+        }
+        if (rc == SVET_EXIT_OK)
+            for (int y = part.y0; y < part.y1; y++)
+                for (int x = part.x0; x < part.x1; x++) {
+                    size_t i = (size_t)y * (size_t)part.width + (size_t)x;
+                    const double *v = q.v + 8 * ((size_t)(y - part.y0) *
+                        (size_t)(part.x1 - part.x0) + (size_t)(x - part.x0));
+                    memcpy(r.acc.sum + 3 * i, v, 3 * sizeof *v);
+                    memcpy(r.sum2 + 3 * i, v + 3, 3 * sizeof *v);
+                    r.acc.count[i] = (uint64_t)v[6];
+                    r.acc.nonfinite[i] = (uint64_t)v[7];
+                }
+        free(q.v);
+        if (rc != SVET_EXIT_OK)
+            goto done;
+        r.spp_done = q.p.to;
+    }
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -419,11 +453,12 @@ int cmd_render(int argc, char **argv)
                  : (total - first < 16 ? total - first : 16);
     if (npass > total - first)
         npass = total - first;
-    outputs_t out = { exr, png, opt_var, o.half, o.part ? &part : NULL };
+    outputs_t out = { exr, png, opt_var, o.half,
+                      o.part || o.checkpoint ? &part : NULL };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
                       !o.quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
-    long written = first; /* the samples of the outputs on disk */
+    long written = o.resume ? -1 : first; /* the samples on disk */
     for (long k = 1; k <= npass; k++) {
         long end = first + (long)((double)(total - first) * (double)k /
                                   (double)npass);
@@ -458,7 +493,7 @@ int cmd_render(int argc, char **argv)
     double secs = cmd_now() - pr.t0;
     if (pr.tty)
         fputc('\n', stderr);
-    if (r.spp_done == first) {
+    if (r.spp_done == first && !o.resume) {
         /* stopped in the first pass: an image of no samples would only
          * replace a good earlier one */
         fprintf(stderr, "svet render: %s: interrupted before the first pass "

@@ -2,7 +2,8 @@
 # test_merge.sh - svet render --samples/--crop and svet merge (cmd/cmd_merge.c):
 # 1, 2, 3 and 7 parts by samples and 4 by crop merge to the single render's
 # EXR, PNG and variance bit for bit (an independent reference: the one-pass
-# render), and every refusal prints its message.
+# render), every refusal prints its message, and --resume after SIGINT,
+# SIGTERM or SIGKILL ends on the uninterrupted render's bits.
 # Usage: sh tests/cmd/test_merge.sh build/float/svet
 set -u
 S=${1:?usage: test_merge.sh SVET}
@@ -47,5 +48,19 @@ refuse "another setting" "different scenes, seeds or settings" merge $T/p2-0.exr
 refuse "a non-part" "cannot open" merge $T/full.exr -o $T/x.exr
 refuse "a bad range" "samples" render $A --samples 5:5 -o $T/x.exr
 refuse "a crop outside" "outside the 40x30 image" render $A --crop 0:41,0:5 -o $T/x.exr
+# --resume after a real signal: SIGINT, SIGTERM, and SIGKILL (the last
+# checkpoint's part file is what is left)
+R="scenes/cbox.scn --spp 64 --passes 32 --set width=64 --set height=48 -q --threads 1"
+$S render $R -o $T/rfull.exr || no "resume reference"
+for sig in INT TERM KILL; do
+    rm -f $T/r$sig.exr*
+    $S render $R --checkpoint -o $T/r$sig.exr & pid=$!
+    sleep 1; kill -$sig $pid; wait $pid
+    [ -f $T/r$sig.exr.part ] || { echo "note: SIG$sig came before the first checkpoint"; continue; }
+    $S render $R --resume -o $T/r$sig.exr || no "resume after SIG$sig"
+    cmp -s $T/rfull.exr $T/r$sig.exr || no "resume after SIG$sig: EXR differs"
+    cmp -s $T/rfull.png $T/r$sig.png || no "resume after SIG$sig: PNG differs"
+done
+refuse "resume of another seed" "another scene, seed" render $R --seed 3 --resume -o $T/rINT.exr
 [ $fail = 0 ] && echo "test_merge: all passed"
 exit $fail
