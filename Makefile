@@ -486,3 +486,13 @@ help:
 	@echo "chapters: $(CHAPTERS)"
 
 -include $(OBJS:.o=.d) $(TESTS:=.d) $(TESTSUP_OBJS:.o=.d)
+
+# `make test-merge`: split renders (--samples, --crop) merged by svet merge
+# to the single render's bits, float and double (tests/cmd/test_merge.sh).
+.PHONY: test-merge
+test-merge:
+	$(MAKE) REAL=float BUILD=build/float build/float/svet
+	$(MAKE) REAL=double BUILD=build/double build/double/svet
+	sh tests/cmd/test_merge.sh build/float/svet
+	sh tests/cmd/test_merge.sh build/double/svet
+	sh tests/cmd/test_render_parallel.sh build/float/svet

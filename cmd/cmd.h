@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "cmdutil.h"
+#include "render/render.h"
 #include "stats/converge.h"
 #include "stats/imgcompare.h"
 
@@ -36,11 +37,62 @@ typedef struct {
     long spp, passes;            /* --spp, --passes; -1 when not given */
     double time_limit;           /* --time-limit; -1 when not given */
     bool checkpoint, quiet, half;
+    long from, to;               /* --samples FROM:TO; to 0 when not given */
+    int crop[4];                 /* --crop X0:X1,Y0:Y1 */
+    bool cropped, part;          /* --crop given; --crop or --samples */
+    bool resume;                 /* --resume */
     cmd_scene_opts_t so;         /* --threads, --seed, --set */
 } cmd_render_args_t;
+/* A part of a split render (svet render --samples/--crop, svet merge):
+ * samples [from, to) of the pixels [x0, x1) x [y0, y1) of a width x height
+ * image, of the scene whose identity is `identity`, in the file path. */
+typedef struct {
+    const char *path;
+    unsigned long long identity;
+    int width, height, x0, x1, y0, y1;
+    long from, to;
+} cmd_part_t;
+
+/* The identity of a scene: FNV-1a (64 bits) of the scene file's bytes,
+ * its seed, size and --set overrides; parts of different identities are
+ * never merged. Fails with SVET_ERR_IO when the file cannot be read. */
+svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
+                              const cmd_scene_opts_t *so,
+                              unsigned long long *id, svet_error *err);
+
+/* A part file read back (FILE.exr.part): its header, tone map, and 8
+ * doubles per pixel of the crop (sums, sums of squares, counts). */
+typedef struct {
+    cmd_part_t p;
+    int tm_op, tm_curve;
+    double tm[5];
+    double *v;
+} cmd_part_file_t;
+
+/* Read exr's part file into q (q->v malloc'ed: free it). Returns
+ * SVET_EXIT_OK, or SVET_EXIT_INPUT after printing why. */
+int cmd_part_read(const char *exr, cmd_part_file_t *q);
+
+/* The outputs of svet render and svet merge. */
+typedef struct {
+    const char *exr, *png, *var;
+    bool half;
+    const cmd_part_t *part;      /* write a part file too, or NULL */
+} outputs_t;
+
+/* Write the EXR, the PNG, the variance (if o->var) and the part file (if
+ * o->part) of what r holds, as one set (fileio.h). r needs only its
+ * camera's size, acc and sum2; s only its tonemap. */
+svet_status cmd_render_write(const render_t *r, const scene_t *s,
+                             const outputs_t *o, svet_error *err);
+
 int cmd_render_parse(int argc, char **argv, cmd_render_args_t *a);
 int cmd_render(int argc, char **argv);
 void cmd_render_help(FILE *f);
+
+/* svet merge PART.exr ... -o OUT.exr: see cmd_merge_help (cmd/cmd_merge.c). */
+int cmd_merge(int argc, char **argv);
+void cmd_merge_help(FILE *f);
 
 /* svet diff A B [options]: see cmd_diff_help (cmd/cmd_diff.c). */
 typedef struct {

@@ -50,7 +50,14 @@ void cmd_render_help(FILE *f)
 "      --time-limit S      stop after the pass that passes S seconds\n"
 "      --passes N          split the samples into N passes (default: the\n"
 "                          scene's `passes`, or min(spp, 16) when it is 1)\n"
-"      --checkpoint        write the outputs after every pass\n"
+"      --checkpoint        write the outputs after every pass, and\n"
+"                          FILE.exr.part with the exact sums\n"
+"      --resume            continue from FILE.exr.part (a checkpoint of\n"
+"                          the same scene): the same bits as one render\n"
+"      --samples FROM:TO   only sample indices FROM..TO-1 of every pixel\n"
+"      --crop X0:X1,Y0:Y1  only the pixels X0..X1-1, Y0..Y1-1\n"
+"                          (either makes a part: FILE.exr.part beside the\n"
+"                          EXR holds its exact sums for svet merge)\n"
 "      --half              write the EXR as half floats (default: float)\n"
 "      --set KEY=VALUE     any scene setting, as scenefile_override() takes:\n"
 "                          maxdepth, integrator, roulette, accel, tonemap, ...\n"
@@ -134,17 +141,36 @@ static void ensure_dir(const char *path)
         return; /* the writer will report the real problem */
 }
 
-typedef struct {
-    const char *exr, *png, *var;
-    bool half;
-} outputs_t;
 
 /* Write the EXR, the PNG and (if asked) the variance image of what r holds
  * so far, as one set of outputs (fileio.h): each is written in full to a
  * temporary file before any replaces its target, so an interrupted or
  * failed write leaves the previous checkpoint's files, all of them. */
-static svet_status write_outputs(const render_t *r, const scene_t *s,
-                                 const outputs_t *o, svet_error *err)
+/* The part file beside a part's EXR (cmd.h: cmd_part_t): the exact
+ * per-pixel sums, sums of squares and counts of its crop, as hexadecimal
+ * floats, so that svet merge adds the same doubles. */
+static void write_part(FILE *f, const render_t *r, const scene_t *s,
+                       const cmd_part_t *p)
+{
+    const scene_tonemap_t *t = &s->render.tonemap;
+    fprintf(f, "svet-part 1\nidentity %016llx\nsize %d %d\nsamples %ld %ld\n"
+               "crop %d %d %d %d\ntonemap %d %a %a %a %a %d %a\n",
+            (unsigned long long)p->identity, p->width, p->height, p->from,
+            r->spp_done, p->x0, p->x1, p->y0, p->y1, (int)t->op,
+            (double)t->exposure, (double)t->key, (double)t->white,
+            (double)t->bias, (int)t->curve, (double)t->gamma);
+    for (int y = p->y0; y < p->y1; y++)
+        for (int x = p->x0; x < p->x1; x++) {
+            size_t i = (size_t)y * (size_t)p->width + (size_t)x;
+            const double *a = r->acc.sum + 3 * i, *q = r->sum2 + 3 * i;
+            fprintf(f, "%a %a %a %a %a %a %llu %llu\n", a[0], a[1], a[2],
+                    q[0], q[1], q[2], (unsigned long long)r->acc.count[i],
+                    (unsigned long long)r->acc.nonfinite[i]);
+        }
+}
+
+svet_status cmd_render_write(const render_t *r, const scene_t *s,
+                             const outputs_t *o, svet_error *err)
 {
     image_t img, ldr;
     memset(&ldr, 0, sizeof ldr);
@@ -188,6 +214,15 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
             image_free(&var);
         }
     }
+    if (st == SVET_OK && o->part) {
+        st = fileio_set_begin(&set, o->part->path, &f, err);
+        if (st == SVET_OK) {
+            write_part(f->f, r, s, o->part);
+            if (ferror(f->f))
+                st = svet_error_set(err, SVET_ERR_IO, "%s: write failed",
+                                    o->part->path);
+        }
+    }
     if (st == SVET_OK)
         st = fileio_set_commit(&set, err);
     else
@@ -200,7 +235,8 @@ static svet_status write_outputs(const render_t *r, const scene_t *s,
 /* The options that take a value, for cmd_missing_value(). */
 static const char *const valued[] = { "-o", "--output", "--png",
                                       "--variance", "--spp", "--passes",
-                                      "--time-limit", NULL };
+                                      "--time-limit", "--samples", "--crop",
+                                      NULL };
 
 int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
 {
@@ -222,6 +258,8 @@ int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
             o->quiet = true, takes = false;
         } else if (!strcmp(a, "--strict")) {
             o->so.strict = true, takes = false;
+        } else if (!strcmp(a, "--resume")) {
+            o->resume = o->checkpoint = true, takes = false;
         } else if (!strcmp(a, "--half")) {
             o->half = true, takes = false;
         } else if (a[0] == '-' && !v) {
@@ -241,6 +279,23 @@ int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
         } else if (!strcmp(a, "--passes")) {
             if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->passes))
                 return cmd_bad_value("render", a, v);
+        } else if (!strcmp(a, "--samples")) {
+            char *e1, *e2;
+            errno = 0;
+            long f = strtol(v, &e1, 10), t = *e1 == ':' ? strtol(e1 + 1, &e2,
+                                                                 10) : -1;
+            if (errno || *e1 != ':' || e2 == e1 + 1 || *e2 || f < 0 ||
+                t <= f || t > SCENE_MAX_SPP)
+                return cmd_bad_value("render", a, v);
+            o->from = f, o->to = t, o->part = true;
+        } else if (!strcmp(a, "--crop")) {
+            int c[4], n = -1;
+            if (sscanf(v, "%d:%d,%d:%d%n", &c[0], &c[1], &c[2], &c[3], &n) !=
+                    4 || n < 0 || v[n] || c[0] < 0 || c[1] <= c[0] ||
+                c[2] < 0 || c[3] <= c[2])
+                return cmd_bad_value("render", a, v);
+            memcpy(o->crop, c, sizeof c);
+            o->cropped = o->part = true;
         } else if (!strcmp(a, "--time-limit")) {
             if (!cmd_parse_double(v, &o->time_limit) || o->time_limit < 0 ||
                 o->time_limit > 1e9)
@@ -300,6 +355,7 @@ int cmd_render(int argc, char **argv)
                   : exr ? cmd_replace_ext(exr, ".png") : NULL;
     render_t r;
     bool r_live = false;
+    char *part_path = NULL;
     if (!exr || !png) {
         fprintf(stderr, "svet render: out of memory\n");
         rc = SVET_EXIT_OUTPUT;
@@ -319,6 +375,70 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
     r_live = true;
+    cmd_part_t part = { 0 };
+    if (o.part || o.checkpoint) {
+        const int W = scene.camera.width, H = scene.camera.height;
+        if (o.cropped && (o.crop[1] > W || o.crop[3] > H)) {
+            fprintf(stderr, "svet render: --crop %d:%d,%d:%d: outside the "
+                    "%dx%d image\n", o.crop[0], o.crop[1], o.crop[2],
+                    o.crop[3], W, H);
+            rc = SVET_EXIT_USAGE;
+            goto done;
+        }
+        part.width = W, part.height = H;
+        part.from = o.to > 0 ? o.from : 0;
+        part.to = o.to > 0 ? o.to : scene.render.spp;
+        part.x0 = o.cropped ? o.crop[0] : 0;
+        part.x1 = o.cropped ? o.crop[1] : W;
+        part.y0 = o.cropped ? o.crop[2] : 0;
+        part.y1 = o.cropped ? o.crop[3] : H;
+        if (cmd_part_identity(scene_path, &scene, &o.so, &part.identity,
+                              &err) != SVET_OK) {
+            fprintf(stderr, "svet render: %s\n", err.msg);
+            rc = SVET_EXIT_INPUT;
+            goto done;
+        }
+        part_path = malloc(strlen(exr) + 6);
+        if (!part_path) {
+            rc = SVET_EXIT_OUTPUT;
+            goto done;
+        }
+        sprintf(part_path, "%s.part", exr);
+        part.path = part_path;
+        r.crop_x0 = part.x0, r.crop_x1 = part.x1;
+        r.crop_y0 = part.y0, r.crop_y1 = part.y1;
+        r.spp_done = part.from; /* sample indices from FROM on */
+        scene.render.spp = part.to;
+    }
+    if (o.resume) {
+        cmd_part_file_t q;
+        memset(&q, 0, sizeof q);
+        rc = cmd_part_read(exr, &q);
+        if (rc == SVET_EXIT_OK &&
+            (q.p.identity != part.identity || q.p.from != part.from ||
+             q.p.x0 != part.x0 || q.p.x1 != part.x1 || q.p.y0 != part.y0 ||
+             q.p.y1 != part.y1 || q.p.to > part.to)) {
+            fprintf(stderr, "svet render: --resume: %s.part is of another "
+                            "scene, seed, setting, crop or sample range\n",
+                    exr);
+            rc = SVET_EXIT_USAGE;
+        }
+        if (rc == SVET_EXIT_OK)
+            for (int y = part.y0; y < part.y1; y++)
+                for (int x = part.x0; x < part.x1; x++) {
+                    size_t i = (size_t)y * (size_t)part.width + (size_t)x;
+                    const double *v = q.v + 8 * ((size_t)(y - part.y0) *
+                        (size_t)(part.x1 - part.x0) + (size_t)(x - part.x0));
+                    memcpy(r.acc.sum + 3 * i, v, 3 * sizeof *v);
+                    memcpy(r.sum2 + 3 * i, v + 3, 3 * sizeof *v);
+                    r.acc.count[i] = (uint64_t)v[6];
+                    r.acc.nonfinite[i] = (uint64_t)v[7];
+                }
+        free(q.v);
+        if (rc != SVET_EXIT_OK)
+            goto done;
+        r.spp_done = q.p.to;
+    }
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -328,18 +448,20 @@ int cmd_render(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
-    const long total = scene.render.spp;
+    const long total = scene.render.spp, first = r.spp_done;
     long npass = scene.render.passes > 1 ? scene.render.passes
-                                         : (total < 16 ? total : 16);
-    if (npass > total)
-        npass = total;
-    outputs_t out = { exr, png, opt_var, o.half };
+                 : (total - first < 16 ? total - first : 16);
+    if (npass > total - first)
+        npass = total - first;
+    outputs_t out = { exr, png, opt_var, o.half,
+                      o.part || o.checkpoint ? &part : NULL };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
                       !o.quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
-    long written = 0; /* the samples of the outputs on disk */
+    long written = o.resume ? -1 : first; /* the samples on disk */
     for (long k = 1; k <= npass; k++) {
-        long end = (long)((double)total * (double)k / (double)npass);
+        long end = first + (long)((double)(total - first) * (double)k /
+                                  (double)npass);
         pr.pass = k;
         pr.spp0 = r.spp_done;
         pr.spp1 = end;
@@ -360,7 +482,7 @@ int cmd_render(int argc, char **argv)
             cmd_now() - pr.t0 >= scene.render.time_limit)
             break;
         if (scene.render.checkpoint && k < npass) {
-            if (write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+            if (cmd_render_write(&r, &scene, &out, &err) != SVET_OK) {
                 fprintf(stderr, "\nsvet render: %s\n", err.msg);
                 rc = SVET_EXIT_OUTPUT;
                 goto done;
@@ -371,7 +493,7 @@ int cmd_render(int argc, char **argv)
     double secs = cmd_now() - pr.t0;
     if (pr.tty)
         fputc('\n', stderr);
-    if (r.spp_done == 0) {
+    if (r.spp_done == first && !o.resume) {
         /* stopped in the first pass: an image of no samples would only
          * replace a good earlier one */
         fprintf(stderr, "svet render: %s: interrupted before the first pass "
@@ -380,7 +502,7 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
     if (r.spp_done != written &&
-        write_outputs(&r, &scene, &out, &err) != SVET_OK) {
+        cmd_render_write(&r, &scene, &out, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s\n", err.msg);
         rc = SVET_EXIT_OUTPUT;
         goto done;
@@ -408,6 +530,7 @@ done:
         render_free(&r);
     free(exr);
     free(png);
+    free(part_path);
     scene_free(&scene);
     return rc;
 }

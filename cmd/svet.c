@@ -19,6 +19,8 @@ typedef struct {
 static const subcommand_t commands[] = {
     { "render", "render a scene file to a linear EXR and a tone-mapped PNG",
       cmd_render, cmd_render_help },
+    { "merge", "merge the parts of a split render (--samples, --crop) "
+               "into one image", cmd_merge, cmd_merge_help },
     { "diff", "compare two images (EXR, PFM, PNG, PPM): RMSE, relMSE, MAE, "
               "PSNR, max",
       cmd_diff, cmd_diff_help },

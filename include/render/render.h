@@ -68,6 +68,10 @@ typedef struct render {
     const struct render_method *method;
     void *method_state;
     svet_error error;       /* render_pass()'s failure, when it fails */
+    /* Only the pixels [crop_x0, crop_x1) x [crop_y0, crop_y1) are rendered
+     * when crop_x1 > 0 (svet render --crop, for a part of a split render:
+     * each pixel's samples are the same as in the whole image) */
+    int crop_x0, crop_x1, crop_y0, crop_y1;
 } render_t;
 
 /* Prepare to render scene s: the camera, the lights (only if the scene has

@@ -166,7 +166,11 @@ typedef struct {
  * every camera sample, from several threads at once. The image must
  * depend on the scene, the seed and the sample indices only: not on the
  * thread count, nor on how the samples are split into passes or parts
- * (svet merge). free is called only for a state prepare made. */
+ * (svet merge). A part of a split render (--samples FROM:TO, --crop)
+ * runs prepare in full: a pre-pass depends on the scene and the seed
+ * only, never on the part's sample range or crop, so that every part
+ * sees the same photon map or cache. begin_pass may then first be called
+ * with s0 = FROM > 0. free is called only for a state prepare made. */
 typedef struct render_method {
     const char *name;                /* "photon", "ppm", "irradiance" */
     const char *describe;            /* a line for the summary */

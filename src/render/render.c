@@ -243,6 +243,12 @@ static long pass(render_t *r, long spp_end, int threads,
         int x0 = (int)(t % tx) * RENDER_TILE, y0 = (int)(t / tx) * RENDER_TILE;
         int x1 = x0 + RENDER_TILE < W ? x0 + RENDER_TILE : W;
         int y1 = y0 + RENDER_TILE < H ? y0 + RENDER_TILE : H;
+        if (r->crop_x1 > 0) { /* the tile's part inside the crop */
+            x0 = x0 > r->crop_x0 ? x0 : r->crop_x0;
+            y0 = y0 > r->crop_y0 ? y0 : r->crop_y0;
+            x1 = x1 < r->crop_x1 ? x1 : r->crop_x1;
+            y1 = y1 < r->crop_y1 ? y1 : r->crop_y1;
+        }
         if (r->packets && r->intersect_packet)
             pixels_in_packets(r, x0, y0, x1, y1, s0, spp_end, &st);
         else

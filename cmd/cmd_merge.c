@@ -1,0 +1,252 @@
+/*
+ * cmd_merge.c - `svet merge PART.exr ... -o OUT.exr`: the parts of a render
+ * split by sample ranges (--samples) or by pixels (--crop) made into the
+ * image one render makes. Each part's FILE.exr.part holds its per-pixel
+ * double sums, sums of squares and counts; a pixel's parts are added in the
+ * order of their sample ranges (image.h says when that sum is the one-pass
+ * sum bit for bit: always for a pixel rendered by a single part).
+ * Tests: tests/cmd/test_merge.sh
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmd.h"
+#include "io/fileio.h"
+
+svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
+                              const cmd_scene_opts_t *so,
+                              unsigned long long *id, svet_error *err)
+{
+    FILE *f;
+    svet_status st = fileio_open_read(scene_path, &f, err);
+    if (st != SVET_OK)
+        return st;
+    unsigned long long h = 1469598103934665603ULL; /* FNV-1a offset basis */
+    int c;
+    while ((c = getc(f)) != EOF)
+        h = (h ^ (unsigned char)c) * 1099511628211ULL;
+    fclose(f);
+    char buf[128];
+    snprintf(buf, sizeof buf, "|seed %llu|size %d %d",
+             (unsigned long long)s->render.seed, s->camera.width,
+             s->camera.height);
+    for (const char *p = buf; *p; p++)
+        h = (h ^ (unsigned char)*p) * 1099511628211ULL;
+    for (int i = 0; i < so->nsets; i++)
+        for (const char *p = so->sets[i]; ; p++) {
+            h = (h ^ (unsigned char)*p) * 1099511628211ULL;
+            if (!*p)
+                break;
+        }
+    *id = h;
+    return SVET_OK;
+}
+
+void cmd_merge_help(FILE *f)
+{
+    fprintf(f,
+"usage: svet merge PART.exr ... -o OUT.exr [--variance VAR.exr] [--png P]\n"
+"\n"
+"Merge the parts of a split render (svet render --samples FROM:TO or\n"
+"--crop X0:X1,Y0:Y1, each with its PART.exr.part) into OUT.exr, its PNG\n"
+"and its variance. Refuses parts of different scenes, seeds, settings or\n"
+"sizes and overlapping sample ranges, and says which samples or pixels\n"
+"are missing. Exit 1: bad command line or parts that do not fit together;\n"
+"2: a part is missing or malformed; 3: an output could not be written.\n");
+}
+
+int cmd_part_read(const char *exr, cmd_part_file_t *q)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s.part", exr);
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "svet merge: %s: cannot open (made by svet render "
+                        "--samples or --crop?)\n", path);
+        return SVET_EXIT_INPUT;
+    }
+    cmd_part_t *p = &q->p;
+    int ver = 0;
+    if (fscanf(f, "svet-part %d identity %llx size %d %d samples %ld %ld "
+                  "crop %d %d %d %d tonemap %d %la %la %la %la %d %la",
+               &ver, &p->identity, &p->width, &p->height, &p->from, &p->to,
+               &p->x0, &p->x1, &p->y0, &p->y1, &q->tm_op, &q->tm[0],
+               &q->tm[1], &q->tm[2], &q->tm[3], &q->tm_curve,
+               &q->tm[4]) != 17 || ver != 1 || p->width <= 0 ||
+        p->height <= 0 || p->x0 < 0 || p->x1 > p->width || p->x0 >= p->x1 ||
+        p->y0 < 0 || p->y1 > p->height || p->y0 >= p->y1 || p->from < 0 ||
+        p->to <= p->from) {
+        fprintf(stderr, "svet merge: %s: not a part file\n", path);
+        fclose(f);
+        return SVET_EXIT_INPUT;
+    }
+    size_t n = (size_t)(p->x1 - p->x0) * (size_t)(p->y1 - p->y0);
+    q->v = malloc(8 * n * sizeof *q->v);
+    if (!q->v) {
+        fclose(f);
+        return SVET_EXIT_OUTPUT;
+    }
+    for (size_t i = 0; i < n; i++) {
+        unsigned long long c, nf;
+        double *v = q->v + 8 * i;
+        if (fscanf(f, "%la %la %la %la %la %la %llu %llu", &v[0], &v[1],
+                   &v[2], &v[3], &v[4], &v[5], &c, &nf) != 8) {
+            fprintf(stderr, "svet merge: %s: truncated at pixel %zu\n", path,
+                    i);
+            fclose(f);
+            return SVET_EXIT_INPUT;
+        }
+        v[6] = (double)c, v[7] = (double)nf;
+    }
+    fclose(f);
+    return SVET_EXIT_OK;
+}
+
+static int by_from(const void *a, const void *b)
+{
+    const cmd_part_file_t *const *x = a, *const *y = b;
+    return ((*x)->p.from > (*y)->p.from) - ((*x)->p.from < (*y)->p.from);
+}
+
+int cmd_merge(int argc, char **argv)
+{
+    const char *exr = NULL, *png = NULL, *var = NULL;
+    const char *ins[256];
+    int nin = 0, rc = SVET_EXIT_OK;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            cmd_merge_help(stdout);
+            return SVET_EXIT_OK;
+        } else if (!strcmp(a, "-o") || !strcmp(a, "--output") ||
+                   !strcmp(a, "--png") || !strcmp(a, "--variance")) {
+            if (!v || !*v)
+                return cmd_error("merge", SVET_EXIT_USAGE, "%s needs a file "
+                                 "name", a);
+            *(a[2] == 'p' ? &png : a[2] == 'v' ? &var : &exr) = v;
+            i++;
+        } else if (a[0] == '-') {
+            return cmd_unknown_option("merge", a);
+        } else if (nin < 256) {
+            ins[nin++] = a;
+        } else {
+            return cmd_error("merge", SVET_EXIT_USAGE, "at most 256 parts");
+        }
+    }
+    if (!exr || nin == 0)
+        return cmd_error("merge", SVET_EXIT_USAGE,
+                         "usage: svet merge PART.exr ... -o OUT.exr");
+    cmd_part_file_t *q = calloc((size_t)nin, sizeof *q);
+    cmd_part_file_t **order = calloc((size_t)nin, sizeof *order);
+    char *png_alloc = NULL;
+    render_t r;
+    memset(&r, 0, sizeof r);
+    if (!q || !order) {
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    for (int k = 0; k < nin; k++) {
+        if ((rc = cmd_part_read(ins[k], &q[k])) != SVET_EXIT_OK)
+            goto done;
+        order[k] = &q[k];
+        q[k].p.path = ins[k];
+        const cmd_part_t *a = &q[0].p, *b = &q[k].p;
+        if (b->identity != a->identity) {
+            rc = cmd_error("merge", SVET_EXIT_USAGE, "%s and %s: different "
+                           "scenes, seeds or settings", ins[0], ins[k]);
+            goto done;
+        }
+        if (b->width != a->width || b->height != a->height) {
+            rc = cmd_error("merge", SVET_EXIT_USAGE, "%s and %s: different "
+                           "sizes (%dx%d, %dx%d)", ins[0], ins[k], a->width,
+                           a->height, b->width, b->height);
+            goto done;
+        }
+    }
+    qsort(order, (size_t)nin, sizeof *order, by_from);
+    const int W = q[0].p.width, H = q[0].p.height;
+    svet_error err;
+    svet_error_clear(&err);
+    if (image_accum_alloc(&r.acc, W, H, &err) != SVET_OK ||
+        !(r.sum2 = calloc((size_t)W * (size_t)H * 3, sizeof *r.sum2))) {
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    r.camera.width = W, r.camera.height = H;
+    long spp = -1;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * (size_t)W + (size_t)x;
+            long next = 0;
+            for (int k = 0; k < nin; k++) {
+                const cmd_part_t *p = &order[k]->p;
+                if (x < p->x0 || x >= p->x1 || y < p->y0 || y >= p->y1)
+                    continue;
+                if (p->from < next) {
+                    rc = cmd_error("merge", SVET_EXIT_USAGE, "%s: samples "
+                                   "%ld:%ld of pixel (%d, %d) overlap "
+                                   "another part's", p->path ? p->path : "",
+                                   p->from, p->to, x, y);
+                    goto done;
+                }
+                if (p->from > next) {
+                    rc = cmd_error("merge", SVET_EXIT_USAGE, "samples %ld:%ld "
+                                   "of pixel (%d, %d) are missing", next,
+                                   p->from, x, y);
+                    goto done;
+                }
+                next = p->to;
+                const double *v = order[k]->v +
+                    8 * ((size_t)(y - p->y0) * (size_t)(p->x1 - p->x0) +
+                         (size_t)(x - p->x0));
+                for (int c = 0; c < 3; c++) {
+                    r.acc.sum[3 * i + c] += v[c];
+                    r.sum2[3 * i + c] += v[3 + c];
+                }
+                r.acc.count[i] += (uint64_t)v[6];
+                r.acc.nonfinite[i] += (uint64_t)v[7];
+            }
+            if (next == 0) {
+                rc = cmd_error("merge", SVET_EXIT_USAGE, "pixel (%d, %d) is "
+                               "in no part", x, y);
+                goto done;
+            }
+            if (spp < 0)
+                spp = next;
+            else if (next != spp) {
+                rc = cmd_error("merge", SVET_EXIT_USAGE, "samples %ld:%ld of "
+                               "pixel (%d, %d) are missing", next < spp ? next
+                               : spp, next < spp ? spp : next, x, y);
+                goto done;
+            }
+        }
+    scene_t s;
+    memset(&s, 0, sizeof s);
+    s.render.tonemap.op = (scene_tonemap_op)q[0].tm_op;
+    s.render.tonemap.exposure = (real)q[0].tm[0];
+    s.render.tonemap.key = (real)q[0].tm[1];
+    s.render.tonemap.white = (real)q[0].tm[2];
+    s.render.tonemap.bias = (real)q[0].tm[3];
+    s.render.tonemap.curve = (scene_tonemap_curve)q[0].tm_curve;
+    s.render.tonemap.gamma = (real)q[0].tm[4];
+    if (!png && !(png = png_alloc = cmd_replace_ext(exr, ".png"))) {
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    outputs_t out = { exr, png, var, false, NULL };
+    if (cmd_render_write(&r, &s, &out, &err) != SVET_OK) {
+        fprintf(stderr, "svet merge: %s\n", err.msg);
+        rc = SVET_EXIT_OUTPUT;
+    }
+done:
+    for (int k = 0; q && k < nin; k++)
+        free(q[k].v);
+    free(q);
+    free(order);
+    free(png_alloc);
+    image_accum_free(&r.acc);
+    free(r.sum2);
+    return rc;
+}

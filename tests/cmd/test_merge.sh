@@ -1,0 +1,66 @@
+#!/bin/sh
+# test_merge.sh - svet render --samples/--crop and svet merge (cmd/cmd_merge.c):
+# 1, 2, 3 and 7 parts by samples and 4 by crop merge to the single render's
+# EXR, PNG and variance bit for bit (an independent reference: the one-pass
+# render), every refusal prints its message, and --resume after SIGINT,
+# SIGTERM or SIGKILL ends on the uninterrupted render's bits.
+# Usage: sh tests/cmd/test_merge.sh build/float/svet
+set -u
+S=${1:?usage: test_merge.sh SVET}
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+A="scenes/cbox.scn --spp 14 --set width=40 --set height=30 -q --threads 2"
+fail=0
+no() { echo "FAIL: $*"; fail=1; }
+$S render $A -o $T/full.exr --variance $T/fullv.exr || no "single render"
+split() { # N: N sample ranges of 14
+    n=$1; list=""; i=0
+    while [ $i -lt $n ]; do
+        f=$((14 * i / n)); t=$((14 * (i + 1) / n))
+        $S render $A --samples $f:$t -o $T/p$n-$i.exr || no "part $f:$t"
+        list="$list $T/p$n-$i.exr"; i=$((i + 1))
+    done
+    $S merge $list -o $T/m$n.exr --variance $T/m${n}v.exr || no "merge $n"
+    for e in .exr .png v.exr; do
+        cmp -s $T/full$e $T/m$n$e || no "$n parts by samples: $e differs"
+    done
+}
+for n in 1 2 3 7; do split $n; done
+for c in 0:20,0:15 20:40,0:15 0:20,15:30 20:40,15:30; do
+    $S render $A --crop $c -o $T/c$c.exr --variance $T/cv$c.exr || no "crop $c"
+done
+$S merge $T/c0:20,0:15.exr $T/c20:40,0:15.exr $T/c0:20,15:30.exr \
+    $T/c20:40,15:30.exr -o $T/mc.exr --variance $T/mcv.exr || no "merge crop"
+cmp -s $T/full.exr $T/mc.exr || no "4 crops: EXR differs"
+cmp -s $T/full.png $T/mc.png || no "4 crops: PNG differs"
+cmp -s $T/fullv.exr $T/mcv.exr || no "4 crops: variance differs"
+refuse() { # WHAT MESSAGE ARGS...
+    what=$1; msg=$2; shift 2
+    if "$S" "$@" 2>$T/err; then no "$what accepted"; fi
+    grep -q "$msg" $T/err || no "$what: no '$msg' in: $(cat $T/err)"
+}
+refuse "a gap" "samples 4:9 of pixel (0, 0) are missing" merge $T/p3-0.exr $T/p3-2.exr -o $T/x.exr
+refuse "an overlap" "overlap another part" merge $T/p2-0.exr $T/p2-0.exr -o $T/x.exr
+refuse "a missing crop" "pixel (20, 0) is in no part" merge $T/c0:20,0:15.exr -o $T/x.exr
+$S render $A --seed 9 --samples 7:14 -o $T/seed.exr || no "seed part"
+refuse "another seed" "different scenes, seeds or settings" merge $T/p2-0.exr $T/seed.exr -o $T/x.exr
+$S render scenes/cbox.scn --spp 14 --set width=40 --set height=30 --set maxdepth=2 -q --samples 7:14 -o $T/set.exr || no "set part"
+refuse "another setting" "different scenes, seeds or settings" merge $T/p2-0.exr $T/set.exr -o $T/x.exr
+refuse "a non-part" "cannot open" merge $T/full.exr -o $T/x.exr
+refuse "a bad range" "samples" render $A --samples 5:5 -o $T/x.exr
+refuse "a crop outside" "outside the 40x30 image" render $A --crop 0:41,0:5 -o $T/x.exr
+# --resume after a real signal: SIGINT, SIGTERM, and SIGKILL (the last
+# checkpoint's part file is what is left)
+R="scenes/cbox.scn --spp 64 --passes 32 --set width=64 --set height=48 -q --threads 1"
+$S render $R -o $T/rfull.exr || no "resume reference"
+for sig in INT TERM KILL; do
+    rm -f $T/r$sig.exr*
+    $S render $R --checkpoint -o $T/r$sig.exr & pid=$!
+    sleep 1; kill -$sig $pid; wait $pid
+    [ -f $T/r$sig.exr.part ] || { echo "note: SIG$sig came before the first checkpoint"; continue; }
+    $S render $R --resume -o $T/r$sig.exr || no "resume after SIG$sig"
+    cmp -s $T/rfull.exr $T/r$sig.exr || no "resume after SIG$sig: EXR differs"
+    cmp -s $T/rfull.png $T/r$sig.png || no "resume after SIG$sig: PNG differs"
+done
+refuse "resume of another seed" "another scene, seed" render $R --seed 3 --resume -o $T/rINT.exr
+[ $fail = 0 ] && echo "test_merge: all passed"
+exit $fail
