@@ -164,6 +164,8 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
 # scenes/). CK_FORK=no keeps sanitizer reports in the test's own process.
 test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
+	$(if $(SVET_MAIN),sh tests/cmd/test_merge.sh $(BUILD)/svet)
+	$(if $(SVET_MAIN),sh tests/cmd/test_render_parallel.sh $(BUILD)/svet)
 
 # `make test-images`: the suites that render or trace whole scenes (the
 # renderer, the references' Z-tests, the tracers, the grids, svet render),

@@ -50,13 +50,21 @@ refuse "a bad range" "samples" render $A --samples 5:5 -o $T/x.exr
 refuse "a crop outside" "outside the 40x30 image" render $A --crop 0:41,0:5 -o $T/x.exr
 # --resume after a real signal: SIGINT, SIGTERM, and SIGKILL (the last
 # checkpoint's part file is what is left)
-R="scenes/cbox.scn --spp 64 --passes 32 --set width=64 --set height=48 -q --threads 1"
+R="scenes/cbox.scn --spp 256 --passes 64 --set width=128 --set height=96 -q --threads 1"
 $S render $R -o $T/rfull.exr || no "resume reference"
 for sig in INT TERM KILL; do
     rm -f $T/r$sig.exr*
     $S render $R --checkpoint -o $T/r$sig.exr & pid=$!
-    sleep 1; kill -$sig $pid; wait $pid
-    [ -f $T/r$sig.exr.part ] || { echo "note: SIG$sig came before the first checkpoint"; continue; }
+    # the signal comes once the first checkpoint is on disk, while the
+    # render is still under way
+    i=0
+    while [ ! -f $T/r$sig.exr.part ] && [ $i -lt 200 ]; do
+        sleep 0.05; i=$((i + 1))
+    done
+    kill -$sig $pid 2>/dev/null || no "SIG$sig: the render ended before the signal"
+    wait $pid
+    [ -f $T/r$sig.exr.part ] || { no "SIG$sig: no checkpoint's part file"; continue; }
+    cmp -s $T/rfull.exr $T/r$sig.exr && no "SIG$sig: the interrupted render is already whole"
     $S render $R --resume -o $T/r$sig.exr || no "resume after SIG$sig"
     cmp -s $T/rfull.exr $T/r$sig.exr || no "resume after SIG$sig: EXR differs"
     cmp -s $T/rfull.png $T/r$sig.png || no "resume after SIG$sig: PNG differs"
