@@ -3,7 +3,8 @@
 # 1, 2, 3 and 7 parts by samples and 4 by crop merge to the single render's
 # EXR, PNG and variance bit for bit (an independent reference: the one-pass
 # render), every refusal prints its message, and --resume after SIGINT,
-# SIGTERM or SIGKILL ends on the uninterrupted render's bits.
+# SIGTERM or SIGKILL ends on the uninterrupted render's bits; the photon
+# and ppm methods merge too.
 # Usage: sh tests/cmd/test_merge.sh build/float/svet
 set -u
 S=${1:?usage: test_merge.sh SVET}
@@ -25,6 +26,16 @@ split() { # N: N sample ranges of 14
     done
 }
 for n in 1 2 3 7; do split $n; done
+# the Part II methods: every part runs the pre-pass from the scene and seed
+# (photon maps), ppm's map of each sample index follows the index
+for m in photon ppm; do
+    P="scenes/caustic.scn --spp 4 --set resolution=48x32 --set integrator=$m -q"
+    $S render $P -o $T/f$m.exr || no "$m: single render"
+    $S render $P --samples 0:1 -o $T/a$m.exr || no "$m: part 0:1"
+    $S render $P --samples 1:4 -o $T/b$m.exr || no "$m: part 1:4"
+    $S merge $T/a$m.exr $T/b$m.exr -o $T/m$m.exr || no "$m: merge"
+    cmp -s $T/f$m.exr $T/m$m.exr || no "$m: 2 parts by samples: EXR differs"
+done
 for c in 0:20,0:15 20:40,0:15 0:20,15:30 20:40,15:30; do
     $S render $A --crop $c -o $T/c$c.exr --variance $T/cv$c.exr || no "crop $c"
 done
