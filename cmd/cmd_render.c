@@ -21,6 +21,7 @@
 #include "io/pngio.h"
 #include "render/render.h"
 #include "render/scenefile.h"
+#include "render/scenepart.h"
 #include "colour/tonemap.h"
 
 static volatile sig_atomic_t stop_requested = 0;
@@ -512,10 +513,13 @@ int cmd_render(int argc, char **argv)
         double samples = (double)r.spp_done * (double)scene.camera.width *
                          (double)scene.camera.height;
         fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s: %.3g "
-                        "samples/s, %.3g rays/s; %s; wrote %s and %s%s%s\n",
+                        "samples/s, %.3g rays/s; %s%s%s; wrote %s and "
+                        "%s%s%s\n",
                 scene_path, scene.camera.width, scene.camera.height,
                 r.spp_done, secs, samples / secs,
-                (double)r.stats.rays / secs, r.accel_choice, exr, png,
+                (double)r.stats.rays / secs,
+                r.method ? r.method->describe : "", r.method ? "; " : "",
+                r.accel_choice, exr, png,
                 interrupted ? " (interrupted)" : "",
                 nonfinite ? " (some samples were NaN/Inf and were dropped)"
                           : "");

@@ -36,6 +36,8 @@ for m in photon ppm; do
     $S merge $T/a$m.exr $T/b$m.exr -o $T/m$m.exr || no "$m: merge"
     cmp -s $T/f$m.exr $T/m$m.exr || no "$m: 2 parts by samples: EXR differs"
 done
+$S render scenes/caustic.scn --spp 1 --set resolution=16x12 -o $T/d.exr 2>&1 |
+    grep -q "; photon maps (ch. 8): " || no "the summary names the method"
 for c in 0:20,0:15 20:40,0:15 0:20,15:30 20:40,15:30; do
     $S render $A --crop $c -o $T/c$c.exr --variance $T/cv$c.exr || no "crop $c"
 done
