@@ -8,6 +8,7 @@
  * Tests: tests/cmd/test_merge.sh
  */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,6 +86,7 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
     size_t n = (size_t)(p->x1 - p->x0) * (size_t)(p->y1 - p->y0);
     q->v = malloc(8 * n * sizeof *q->v);
     if (!q->v) {
+        fprintf(stderr, "svet merge: %s: out of memory\n", path);
         fclose(f);
         return SVET_EXIT_OUTPUT;
     }
@@ -98,6 +100,15 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
             fclose(f);
             return SVET_EXIT_INPUT;
         }
+        /* a render drops non-finite samples (it counts them in nf), so
+         * its sums are finite: anything else is a damaged file */
+        for (int k = 0; k < 6; k++)
+            if (!isfinite(v[k])) {
+                fprintf(stderr, "svet merge: %s: pixel %zu: a sum that is "
+                                "not finite\n", path, i);
+                fclose(f);
+                return SVET_EXIT_INPUT;
+            }
         v[6] = (double)c, v[7] = (double)nf;
     }
     fclose(f);

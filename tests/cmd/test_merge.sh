@@ -59,6 +59,10 @@ refuse "another seed" "different scenes, seeds or settings" merge $T/p2-0.exr $T
 $S render scenes/cbox.scn --spp 14 --set width=40 --set height=30 --set maxdepth=2 -q --samples 7:14 -o $T/set.exr || no "set part"
 refuse "another setting" "different scenes, seeds or settings" merge $T/p2-0.exr $T/set.exr -o $T/x.exr
 refuse "a non-part" "cannot open" merge $T/full.exr -o $T/x.exr
+sed '3,$s/0x[0-9a-fp.+-]*/nan/' $T/p2-1.exr.part > $T/nan.exr.part; cp $T/p2-1.exr $T/nan.exr
+refuse "a NaN sum" "a sum that is not finite" merge $T/p2-0.exr $T/nan.exr -o $T/x.exr
+head -c 300 $T/p2-1.exr.part > $T/cut.exr.part; cp $T/p2-1.exr $T/cut.exr
+refuse "a truncated part" "truncated at pixel" merge $T/p2-0.exr $T/cut.exr -o $T/x.exr
 refuse "a bad range" "samples" render $A --samples 5:5 -o $T/x.exr
 refuse "a crop outside" "outside the 40x30 image" render $A --crop 0:41,0:5 -o $T/x.exr
 # --resume after a real signal: SIGINT, SIGTERM, and SIGKILL (the last
