@@ -2,7 +2,8 @@
  * test_texpart.c - texpart.h, the textures in the scene file and the
  * renderer: every kind parses; bad input (an unknown kind or name, a key
  * the kind does not take, NaN, a missing, truncated, non-image or
- * decompression-bomb file) fails with file:line:col; a program without
+ * decompression-bomb file, an EXR of channels it does not know) fails
+ * with file:line:col and the reader's reason; a program without
  * the part refuses a texture's name; a zero bump and a constant texture
  * render the same bits as none; the grazing checkerboard at 1 spp is
  * nearer a supersampled reference with the trilinear mip map than with
@@ -158,6 +159,31 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n",
              nan_exr);
     refused(text, "t.scn:2:22:", "the texel (2, 1) is not a finite number");
+    /* an EXR whose channels are none the reader knows (U V W: neither R G
+     * B nor Y): the same file as an RGB one with its channel names
+     * renamed in the header's chlist, so that nothing else changes */
+    imgtest_hdr_image(&img, 4, 4, 3);
+    const char *uvw = imgtest_path("uvw.exr");
+    ck_assert_int_eq(exrio_write(uvw, &img, EXRIO_FLOAT, EXRIO_NONE, &e),
+                     SVET_OK);
+    image_free(&img);
+    n = imgtest_read_bytes(uvw, &bytes);
+    unsigned char *at = NULL;
+    for (size_t i = 0; i + 7 <= n && !at; i++)
+        if (memcmp(bytes + i, "chlist", 7) == 0)
+            at = bytes + i;
+    ck_assert_ptr_nonnull(at);
+    /* after "chlist\0" and the int32 size, each channel is its name, NUL
+     * and 16 bytes of type, linearity and sampling: "B" "G" "R" */
+    unsigned char *name = at + 7 + 4;
+    for (int k = 0; k < 3; k++, name += 2 + 16) {
+        ck_assert_int_eq(name[0], "BGR"[k]);
+        name[0] = (unsigned char)"UVW"[k];
+    }
+    imgtest_write_bytes(uvw, bytes, n);
+    free(bytes);
+    snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", uvw);
+    refused(text, "t.scn:2:22:", "the file has: U V W");
     /* and the whole one loads */
     snprintf(text, sizeof text,
              HEAD "texture t image file \"%s\" filter bilinear wrap mirror\n"
