@@ -76,7 +76,9 @@ void cmd_render_help(FILE *f)
 "missing or malformed; 3 an output could not be written; 4 interrupted\n"
 "(SIGINT/SIGTERM): the pass under way is abandoned and the outputs hold\n"
 "the passes completed, the same image as a render asked for that many\n"
-"samples (nothing is written when the first pass had not ended).\n"
+"samples (nothing is written when the first pass had not ended); 6 a\n"
+"pass failed (out of memory, or the rendering method's pass, e.g. ppm's\n"
+"photon maps): nothing more is written.\n"
 "\n"
 "Outputs are written in full to temporary files beside them\n"
 "(NAME.tmp-HOST-PID-N) and then renamed over the old ones together, so a\n"
@@ -483,8 +485,8 @@ int cmd_render(int argc, char **argv)
         bool abandoned;
         if (render_pass_until(&r, end, scene.render.threads, on_tile, &pr,
                               &stop_requested, &abandoned, &err) != SVET_OK) {
-            fprintf(stderr, "\nsvet render: %s\n", err.msg);
-            rc = SVET_EXIT_OUTPUT;
+            fprintf(stderr, "\nsvet render: %s: %s\n", scene_path, err.msg);
+            rc = SVET_EXIT_RENDER;
             goto done;
         }
         if (stop_requested) {
