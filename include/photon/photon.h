@@ -36,6 +36,9 @@ typedef struct {
                             directly (the fast preview) */
     real alpha;          /* ppm: the radius's shrinking, 0 < alpha < 1 */
     real radius;         /* ppm: r_1, the first sample index's radius */
+    int precompute;      /* photon: Christensen 1999's irradiance at every
+                            precompute-th global photon for the final
+                            gather's lookups; 0: the plain estimate */
 } photon_settings_t;
 
 /* The defaults: 100 000 global and caustic photons, k = 50, max_radius
@@ -75,6 +78,19 @@ typedef enum {
 svet_status photon_trace(const struct render *r, uint64_t count,
                          photon_kind_t kind, uint64_t stream, int threads,
                          photonmap_t *m, svet_error *err);
+
+/* photon_trace, and then Christensen 1999's precomputation: the
+ * irradiance by q (photonmap_irradiance) at the position of every
+ * `every`-th stored photon (in the order photon_trace stores them, so
+ * the same for any thread count), on the side of the surface the photon
+ * came from, into irr (photonmap_precompute). every = 0 leaves irr
+ * empty. Fails as photon_trace does; m and irr are then empty. */
+svet_status photon_trace_precomputed(const struct render *r, uint64_t count,
+                                     photon_kind_t kind, uint64_t stream,
+                                     int threads, size_t every,
+                                     const photonmap_query_t *q,
+                                     photonmap_t *m, photonmap_t *irr,
+                                     svet_error *err);
 
 /* The radiance leaving pp toward wo (local frame of pp) estimated from m:
  * L = sum_p w_p f(wi_p, wo) dPhi_p / A, over the k nearest photons within

@@ -124,4 +124,30 @@ real photonmap_filter_area(const photonmap_query_t *q, real r2);
 RADIANCE photonmap_irradiance(const photonmap_t *m, const VECTOR3 x,
                               const VECTOR3 n, const photonmap_query_t *q);
 
+/* Christensen 1999 ("Faster Photon Map Global Illumination", JGT 4(3)):
+ * the irradiance precomputed at n points of the map's surfaces (a subset
+ * of the photons' positions, pos[i] with the unit normal nrm[i] of the
+ * side the photons arrived from), each by photonmap_irradiance(m, pos[i],
+ * nrm[i], q), into out: a balanced map whose photon i holds the point,
+ * its irradiance as the power and its normal as the direction. Parallel
+ * over the points (`threads`, 0: all), each result stored by its index,
+ * so out is the same for any thread count. n = 0 gives an empty balanced
+ * map. Fails with SVET_ERR_NOMEM (or SVET_ERR_RANGE for an absurd n);
+ * out is then empty. */
+svet_status photonmap_precompute(const photonmap_t *m,
+                                 const photonmap_query_t *q,
+                                 const float (*pos)[3], const float (*nrm)[3],
+                                 size_t n, int threads, photonmap_t *out,
+                                 svet_error *err);
+
+/* The lookup of Christensen 1999: the precomputed irradiance of the
+ * nearest point of irr (photonmap_precompute) within rmax whose normal
+ * lies within about 25 degrees of n (dot >= 0.9: a point on another
+ * surface, or the other side of a thin one, does not answer). Returns
+ * false, leaving *e alone, when no such point is among the nearest
+ * PHOTONMAP_PRECOMPUTED_K. Can't fail. */
+#define PHOTONMAP_PRECOMPUTED_K 8
+bool photonmap_precomputed(const photonmap_t *irr, const VECTOR3 x,
+                           const VECTOR3 n, real rmax, RADIANCE *e);
+
 #endif

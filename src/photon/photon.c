@@ -33,6 +33,7 @@ void photon_settings_default(photon_settings_t *s)
     s->gather = 64;
     s->alpha = REAL_C(0.7);
     s->radius = REAL_C(0.05);
+    s->precompute = 0;
 }
 
 void photon_settings_of(const scene_t *s, photon_settings_t *out)
@@ -46,7 +47,7 @@ void photon_settings_of(const scene_t *s, photon_settings_t *out)
 
 static const char *const filters[] = { "none", "cone", "gaussian", NULL };
 enum { P_GLOBAL, P_CAUSTIC, P_K, P_MAXR, P_FILTER, P_GATHER, P_ALPHA,
-       P_RADIUS, P_N };
+       P_RADIUS, P_PRECOMPUTE, P_N };
 static const spec_t photon_spec[P_N] = {
     [P_GLOBAL] = { "global", V_U64, 0, 0, 0, NULL },
     [P_CAUSTIC] = { "caustic", V_U64, 0, 0, 0, NULL },
@@ -56,6 +57,7 @@ static const spec_t photon_spec[P_N] = {
     [P_GATHER] = { "gather", V_INT, 0, 0, 65536, NULL },
     [P_ALPHA] = { "alpha", V_NUM, F_POSITIVE, 0, 0, NULL },
     [P_RADIUS] = { "radius", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [P_PRECOMPUTE] = { "precompute", V_INT, 0, 0, 1 << 20, NULL },
 };
 
 /* a photon count: at least 1, and a map of that many must fit in memory
@@ -119,6 +121,8 @@ static svet_status photon_statement(scenefile_ctx *c)
         p->alpha = v[P_ALPHA].v[0];
     if (v[P_RADIUS].set)
         p->radius = v[P_RADIUS].v[0];
+    if (v[P_PRECOMPUTE].set)
+        p->precompute = (int)v[P_PRECOMPUTE].i;
     return SVET_OK;
 }
 
@@ -127,6 +131,7 @@ static svet_status photon_statement(scenefile_ctx *c)
 /* One stored photon before the map is built. */
 typedef struct {
     VECTOR3 pos, dir;
+    VECTOR3 n;        /* the surface's normal on the side it arrived from */
     RADIANCE power;
 } record_t;
 
@@ -137,7 +142,7 @@ typedef struct {
 } records_t;
 
 static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
-                 RADIANCE power)
+                 const VECTOR3 n, RADIANCE power)
 {
     if (b->failed)
         return;
@@ -154,6 +159,7 @@ static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
     record_t *q = &b->r[b->n++];
     vec_copy(q->pos, pos);
     vec_copy(q->dir, dir);
+    vec_copy(q->n, n);
     q->power = power;
 }
 
@@ -245,8 +251,11 @@ static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
             bool store = kind == PHOTON_GLOBAL ||
                          (kind == PHOTON_INDIRECT && depth > 0) ||
                          (kind == PHOTON_CAUSTIC && depth > 0 && !diffuse_seen);
-            if (store)
-                push(out, pp.cross_point, dir, power);
+            if (store) {
+                VECTOR3 n;
+                vec_scale(n, pp.n, SVECTOR3(pp.n, dir) > 0 ? -1 : 1);
+                push(out, pp.cross_point, dir, n, power);
+            }
         }
         if (depth == max_depth)
             return;
@@ -277,12 +286,20 @@ static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
  * thread traced which */
 #define CHUNK 4096
 
-svet_status photon_trace(const render_t *r, uint64_t count,
+/* photon_trace and photon_trace_precomputed: irr, when not NULL, gets the
+ * irradiance at every `every`-th stored photon in record order */
+static svet_status trace(const render_t *r, uint64_t count,
                          photon_kind_t kind, uint64_t stream, int threads,
-                         photonmap_t *m, svet_error *err)
+                         photonmap_t *m, size_t every,
+                         const photonmap_query_t *q, photonmap_t *irr,
+                         svet_error *err)
 {
     memset(m, 0, sizeof *m);
     m->balanced = true; /* an empty map answers every query with nothing */
+    if (irr) {
+        memset(irr, 0, sizeof *irr);
+        irr->balanced = true;
+    }
     if (count == 0 || r->lights.n == 0)
         return SVET_OK;
     uint64_t nchunks = (count + CHUNK - 1) / CHUNK;
@@ -312,26 +329,65 @@ svet_status photon_trace(const render_t *r, uint64_t count,
         failed = failed || chunks[c].failed;
     }
     svet_status st = SVET_OK;
+    /* the precomputation's points: every `every`-th record */
+    size_t npts = irr && every > 0 && total > 0 ? (total - 1) / every + 1 : 0;
+    float (*pts)[3] = NULL, (*nrm)[3] = NULL;
     if (failed)
         st = svet_error_set(err, SVET_ERR_NOMEM,
                             "photon tracing: out of memory");
     else if (total > 0)
         st = photonmap_init(m, total, err);
+    if (st == SVET_OK && npts > 0) {
+        pts = malloc(npts * sizeof *pts);
+        nrm = malloc(npts * sizeof *nrm);
+        if (!pts || !nrm)
+            st = svet_error_set(err, SVET_ERR_NOMEM,
+                                "photon tracing: out of memory");
+    }
+    size_t at = 0;
     for (uint64_t c = 0; c < nchunks; c++) {
-        for (size_t i = 0; st == SVET_OK && i < chunks[c].n; i++) {
-            const record_t *q = &chunks[c].r[i];
-            photonmap_store(m, q->pos, q->power, q->dir, (uint8_t)kind);
+        for (size_t i = 0; st == SVET_OK && i < chunks[c].n; i++, at++) {
+            const record_t *rec = &chunks[c].r[i];
+            photonmap_store(m, rec->pos, rec->power, rec->dir, (uint8_t)kind);
+            if (npts > 0 && at % every == 0)
+                for (int a = 0; a < 3; a++) {
+                    pts[at / every][a] = (float)rec->pos[a];
+                    nrm[at / every][a] = (float)rec->n[a];
+                }
         }
         free(chunks[c].r);
     }
     free(chunks);
     if (st == SVET_OK && total > 0)
         st = photonmap_balance(m, err);
+    if (st == SVET_OK && npts > 0)
+        st = photonmap_precompute(m, q, (const float (*)[3])pts,
+                                  (const float (*)[3])nrm, npts, threads, irr,
+                                  err);
+    free(pts);
+    free(nrm);
     if (st != SVET_OK) {
         photonmap_free(m);
         m->balanced = true;
     }
     return st;
+}
+
+svet_status photon_trace(const render_t *r, uint64_t count,
+                         photon_kind_t kind, uint64_t stream, int threads,
+                         photonmap_t *m, svet_error *err)
+{
+    return trace(r, count, kind, stream, threads, m, 0, NULL, NULL, err);
+}
+
+svet_status photon_trace_precomputed(const render_t *r, uint64_t count,
+                                     photon_kind_t kind, uint64_t stream,
+                                     int threads, size_t every,
+                                     const photonmap_query_t *q,
+                                     photonmap_t *m, photonmap_t *irr,
+                                     svet_error *err)
+{
+    return trace(r, count, kind, stream, threads, m, every, q, irr, err);
 }
 
 /* --- the radiance estimate ---------------------------------------------- */
@@ -377,6 +433,9 @@ typedef struct {
     photon_settings_t set;
     bool ppm;
     photonmap_t global, caustic;   /* photon */
+    photonmap_t irr;               /* photon: Christensen's precomputed
+                                      irradiance at every precompute-th
+                                      global photon */
     photonmap_t *maps;             /* ppm: one per sample index in [s0, s1) */
     long s0, nmaps;
 } state_t;
@@ -388,10 +447,18 @@ static void state_free(void *p)
         return;
     photonmap_free(&s->global);
     photonmap_free(&s->caustic);
+    photonmap_free(&s->irr);
     for (long i = 0; i < s->nmaps; i++)
         photonmap_free(&s->maps[i]);
     free(s->maps);
     free(s);
+}
+
+static photonmap_query_t query_of(const photon_settings_t *set, real rmax)
+{
+    photonmap_query_t q = { set->k, rmax, set->filter, REAL_C(1.1),
+                            REAL_C(0.25) };
+    return q;
 }
 
 static svet_status prepare(void **out, const render_t *r, int threads,
@@ -402,11 +469,16 @@ static svet_status prepare(void **out, const render_t *r, int threads,
         return svet_error_set(err, SVET_ERR_NOMEM, "photon: out of memory");
     photon_settings_of(r->scene, &s->set);
     s->ppm = ppm;
-    s->global.balanced = s->caustic.balanced = true;
+    s->global.balanced = s->caustic.balanced = s->irr.balanced = true;
     svet_status st = SVET_OK;
     if (!ppm) {
-        st = photon_trace(r, s->set.global, PHOTON_GLOBAL, 0, threads,
-                          &s->global, err);
+        photonmap_query_t q = query_of(&s->set, s->set.max_radius);
+        /* the preview (gather 0) looks the map up where the camera
+         * lands, not by gathering: it does not use the precomputation */
+        size_t every = s->set.gather > 0 ? (size_t)s->set.precompute : 0;
+        st = photon_trace_precomputed(r, s->set.global, PHOTON_GLOBAL, 0,
+                                      threads, every, &q, &s->global,
+                                      &s->irr, err);
         if (st == SVET_OK)
             st = photon_trace(r, s->set.caustic, PHOTON_CAUSTIC, 1, threads,
                               &s->caustic, err);
@@ -471,13 +543,6 @@ static svet_status begin_ppm(void *state, const render_t *r, long s0, long s1,
     return SVET_OK;
 }
 
-static photonmap_query_t query_of(const photon_settings_t *set, real rmax)
-{
-    photonmap_query_t q = { set->k, rmax, set->filter, REAL_C(1.1),
-                            REAL_C(0.25) };
-    return q;
-}
-
 /* The global map's estimate where a final-gather ray from x lands:
  * through delta bounces (a gather ray that leaves by glass still finds the
  * diffuse light behind it) to the first surface with a non-delta part.
@@ -502,8 +567,22 @@ static RADIANCE gather_lookup(const state_t *s, const render_t *r, ray_t ray,
         const material_t *m = obj->material;
         VECTOR3 wo, wi;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
-        if (!material_is_specular(m))
+        if (!material_is_specular(m)) {
+            /* Christensen 1999: the nearest precomputed irradiance on
+             * this side of the surface, times the reflectance toward wo
+             * (f(n, wo): rho / pi on a Lambert surface), else the plain
+             * estimate */
+            VECTOR3 n, nl;
+            RADIANCE e;
+            vec_scale(n, pp.n, SVECTOR3(pp.n, pp.out) < 0 ? -1 : 1);
+            if (s->irr.n > 0 &&
+                photonmap_precomputed(&s->irr, pp.cross_point, n, q.rmax,
+                                      &e)) {
+                frame_to_local(nl, n, pp.u, pp.v, pp.n);
+                return rad_mul(beta, rad_mul(e, material_eval(m, nl, wo)));
+            }
             return rad_mul(beta, photon_radiance(&s->global, &pp, m, wo, &q));
+        }
         real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
         brdf_sample_t bs;
         if (!material_sample(m, wo, u, &bs))

@@ -1,11 +1,13 @@
 /*
  * photonmap.c - the photon map of ch. 8: storing photons, balancing them
  * into a left-balanced kd-tree (Jensen 2001, app. B), the k nearest by a
- * max-heap, and the irradiance estimate with its filters.
+ * max-heap, the irradiance estimate with its filters, and the irradiance
+ * precomputed at a subset of the photons (Christensen 1999).
  * Tests: tests/photon/test_photonmap.c
  */
 #include "photon/photonmap.h"
 
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -411,4 +413,67 @@ RADIANCE photonmap_irradiance(const photonmap_t *m, const VECTOR3 x,
         free(d2);
     }
     return e;
+}
+
+/* --- the precomputed irradiance (Christensen 1999) ---------------------- */
+
+svet_status photonmap_precompute(const photonmap_t *m,
+                                 const photonmap_query_t *q,
+                                 const float (*pos)[3], const float (*nrm)[3],
+                                 size_t n, int threads, photonmap_t *out,
+                                 svet_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->balanced = true;
+    if (n == 0)
+        return SVET_OK;
+    if (n > SIZE_MAX / sizeof(RADIANCE))
+        return svet_error_set(err, SVET_ERR_RANGE, "precomputing the "
+                              "irradiance at %zu points: too many", n);
+    RADIANCE *e = malloc(n * sizeof *e);
+    if (!e)
+        return svet_error_set(err, SVET_ERR_NOMEM, "precomputing the "
+                              "irradiance at %zu points: out of memory", n);
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
+    for (long long i = 0; i < (long long)n; i++) {
+        VECTOR3 x = { pos[i][0], pos[i][1], pos[i][2] };
+        VECTOR3 nv = { nrm[i][0], nrm[i][1], nrm[i][2] };
+        e[i] = photonmap_irradiance(m, x, nv, q);
+    }
+    svet_status st = photonmap_init(out, n, err);
+    if (st == SVET_OK) {
+        for (size_t i = 0; i < n; i++) {
+            VECTOR3 x = { pos[i][0], pos[i][1], pos[i][2] };
+            VECTOR3 nv = { nrm[i][0], nrm[i][1], nrm[i][2] };
+            photonmap_store(out, x, e[i], nv, 0);
+        }
+        st = photonmap_balance(out, err);
+    }
+    free(e);
+    if (st != SVET_OK) {
+        photonmap_free(out);
+        out->balanced = true;
+    }
+    return st;
+}
+
+bool photonmap_precomputed(const photonmap_t *irr, const VECTOR3 x,
+                           const VECTOR3 n, real rmax, RADIANCE *e)
+{
+    int32_t idx[PHOTONMAP_PRECOMPUTED_K];
+    real d2[PHOTONMAP_PRECOMPUTED_K];
+    int found = photonmap_nearest(irr, x, PHOTONMAP_PRECOMPUTED_K, rmax, idx,
+                                  d2);
+    for (int i = 0; i < found; i++) {
+        const photon_t *p = &irr->ph[idx[i]];
+        VECTOR3 pn;
+        photonmap_direction(p, pn);
+        if (SVECTOR3(pn, n) >= REAL_C(0.9)) {
+            *e = rad_make((real)p->power[0], (real)p->power[1],
+                          (real)p->power[2]);
+            return true;
+        }
+    }
+    return false;
 }
