@@ -678,6 +678,7 @@ static const char *reserved_shape_key(const char *stmt, const tok_t *t)
         const char *key, *chapter;
     } keys[] = {
         { "medium", "ch. 11 (participating media)" },
+        { "bump", "ch. 10 (textures)" },
     };
     if (!is_shape_statement(stmt))
         return NULL;

@@ -988,7 +988,7 @@ static const struct {
       SVET_ERR_PARSE,
       "t.scn:2:41: unknown parameter of sphere 'wobble': expected one of "
       "centre, radius, material, emit, twosided, scale, rotate, "
-      "translate" },
+      "translate, bump, strength" },
     { M "sphere centre 0 0 0 material m\n", SVET_ERR_PARSE,
       "t.scn:2:1: sphere needs 'radius' (a number)" },
     { "sphere centre 0 0 0 radius 1\n", SVET_ERR_PARSE,

@@ -5,7 +5,8 @@
  * decompression-bomb file, an EXR of channels it does not know) fails
  * with file:line:col and the reader's reason; a program without
  * the part refuses a texture's name; a zero bump and a constant texture
- * render the same bits as none; the grazing checkerboard at 1 spp is
+ * render the same bits as none; a bump on a shape renders the same bits
+ * as on its material, and wins over the material's; the grazing checkerboard at 1 spp is
  * nearer a supersampled reference with the trilinear mip map than with
  * the nearest texel.
  */
@@ -260,6 +261,74 @@ START_TEST(a_zero_bump_and_a_constant_texture_render_the_same_bits)
 }
 END_TEST
 
+START_TEST(a_bumped_shape_shades_as_its_bumped_material)
+{
+    image_t mat, shp, both, none, plain;
+    /* the same waves on the plane: once as the material's component, once
+     * as the plane's key (the sphere keeps the unbumped material) */
+    render_text(LIT "texture w waves\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                "bump w strength 0.05\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material b\n", 1, &mat);
+    render_text(LIT "texture w waves\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material m bump w "
+                "strength 0.05\n", 1, &shp);
+    ck_assert(same_bits(&mat, &shp));
+    /* the shape's bump wins over its material's */
+    render_text(LIT "texture w waves\ntexture r ripples\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                "bump r strength 0.2\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material b bump w "
+                "strength 0.05\n", 1, &both);
+    ck_assert(same_bits(&mat, &both));
+    /* strength 0 on the shape takes the material's bump away */
+    render_text(LIT "texture r ripples\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                "bump r strength 0.2\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material b bump r "
+                "strength 0\n", 1, &none);
+    render_text(LIT "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                SCENE, 1, &plain);
+    ck_assert(same_bits(&none, &plain));
+    ck_assert(!same_bits(&mat, &plain));
+    image_free(&mat);
+    image_free(&shp);
+    image_free(&both);
+    image_free(&none);
+    image_free(&plain);
+    /* bad values */
+    refused(HEAD "material m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump nope\n",
+            "t.scn:3:46:", "'bump nope': no texture of that name");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m strength 2\n",
+            "t.scn:4:41:", "give 'bump NAME' with it");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump w strength nan\n",
+            "t.scn:4:", "");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump w strength\n",
+            "t.scn:4:", "");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump w bump w\n",
+            "t.scn:4:", "");
+    /* a program without textures names the chapter */
+    scene_t s;
+    svet_error e;
+    const char *t = HEAD "material m lambert rho 0.5\n"
+                    "sphere centre 0 0 0 radius 1 material m bump w\n";
+    ck_assert_int_eq(scenefile_parse_with(&s, t, strlen(t), "t.scn", NULL,
+                                          NULL, &e), SVET_ERR_UNSUPPORTED);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:41: 'bump' on a sphere is not "
+                                "supported by this program: ch. 10"),
+                  "%s", e.msg);
+}
+END_TEST
+
 /* The grazing checkerboard: a plane of a 256 x 256 checker image of 16
  * squares a side, seen at 5 degrees above its horizon, lit evenly by a
  * uniform environment (the image is the texture times 1/2 of it: no
@@ -334,6 +403,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_program_without_textures_refuses_their_names);
     tcase_add_test(tc, bad_texture_files_are_refused_with_the_readers_reason);
     tcase_add_test(tc, a_zero_bump_and_a_constant_texture_render_the_same_bits);
+    tcase_add_test(tc, a_bumped_shape_shades_as_its_bumped_material);
     tcase_add_test(tc, the_grazing_checkerboard_is_nearer_the_reference_trilinear);
     suite_add_tcase(s, tc);
     return s;
