@@ -2103,7 +2103,7 @@ static const struct {
     const char *name, *chapter;
 } reserved[] = {
     { "photonmap", "ch. 8 (photon maps)" },
-    { "irradiance_cache", "ch. 9 (irradiance caching)" },
+    { "irradiance", "ch. 9 (irradiance caching)" },
     { "texture", "ch. 10 (textures)" },
     { "medium", "ch. 11 (participating media)" },
     { "sky", "ch. 12 (the atmosphere)" },
