@@ -110,18 +110,18 @@ static void random_scene(scene_t_ *s, pcg32_t *g, int n, bool with_plane)
         COBJECT *o = NULL;
         switch (pcg32_bounded(g, 11)) {
         case 0:
-            ck_assert(meshgen_uv_sphere(&o, c, r, 6 + (int)pcg32_bounded(g, 30),
-                                        3 + (int)pcg32_bounded(g, 15),
+            ck_assert(meshgen_uv_sphere(&o, c, r, 6 + (int)pcg32_bounded(g, 12),
+                                        3 + (int)pcg32_bounded(g, 6),
                                         &e) == SVET_OK);
             break;
         case 1:
-            ck_assert(meshgen_torus(&o, c, r, r / 3, 8 + (int)pcg32_bounded(g, 20),
-                                    4 + (int)pcg32_bounded(g, 10),
+            ck_assert(meshgen_torus(&o, c, r, r / 3, 8 + (int)pcg32_bounded(g, 8),
+                                    4 + (int)pcg32_bounded(g, 4),
                                     &e) == SVET_OK);
             break;
         case 2:
             ck_assert(meshgen_terrain(&o, c, 2 * r, r / 2,
-                                      2 + (int)pcg32_bounded(g, 12),
+                                      2 + (int)pcg32_bounded(g, 6),
                                       pcg32_next(g), &e) == SVET_OK);
             break;
         case 3:
@@ -403,7 +403,7 @@ START_TEST(grids_answer_exactly_what_brute_force_answers)
         random_scene(&s, &g, 4 + (int)pcg32_bounded(&g, 60), sc % 4 == 0);
         bench_t b;
         build_all(&b, s.objs, s.n);
-        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 3000);
+        rays_of_every_kind(&b, (const COBJECT *const *)s.objs, s.n, &g, 2000);
         rays += b.rays;
         hits += b.hits;
         free_all(&b);
@@ -421,7 +421,7 @@ START_TEST(grids_agree_on_the_teapot_in_a_stadium)
 {
     meshgen_scene_t s;
     svet_error e;
-    ck_assert(meshgen_teapot_stadium(&s, 20000, &e) == SVET_OK);
+    ck_assert(meshgen_teapot_stadium(&s, 8000, &e) == SVET_OK);
     bench_t b;
     build_all(&b, s.objs, s.nobjs);
     accel_stats_t st;
@@ -430,7 +430,7 @@ START_TEST(grids_agree_on_the_teapot_in_a_stadium)
                   st.depth);
     pcg32_t g;
     pcg32_seed(&g, 5, 6);
-    for (int i = 0; i < 6000; i++) {
+    for (int i = 0; i < 3000; i++) {
         ray_t r;
         VECTOR3 t = { uni(&g, -1, 1), uni(&g, -1, 1), uni(&g, 0, 2) };
         if (i % 3 == 0) {
