@@ -157,7 +157,22 @@ $(TESTSUP): $(TESTSUP_OBJS)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-$(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(LIB)
+# With gcc's link-time optimisation the suites link the library as one
+# object, optimised across its modules once (`-r`), rather than each of
+# them re-optimising the whole library in its own link; else the archive.
+ifneq ($(strip $(LTO)),)
+ifeq ($(findstring clang,$(shell $(CC) --version 2>/dev/null)),)
+TESTLIB  := $(BUILD)/tests/libsvet-lto.o
+endif
+endif
+TESTLIB  ?= $(LIB)
+ifneq ($(TESTLIB),$(LIB))
+$(TESTLIB): $(OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -r -nostdlib -flinker-output=nolto-rel $^ -o $@
+endif
+
+$(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(TESTLIB)
 	$(CC) $(ALL_CFLAGS) $^ -o $@ $(CHECK_LIBS) $(LDLIBS)
 
 # Every suite runs from the top directory (they read tests/vectors/ and
