@@ -21,8 +21,12 @@ enum {
     SVET_EXIT_OUTPUT = 3,      /* an output could not be written */
     SVET_EXIT_INTERRUPTED = 4, /* stopped by SIGINT/SIGTERM; what was
                                   rendered so far was written */
-    SVET_EXIT_DIFFERENT = 5    /* svet diff --fail-above: the images
+    SVET_EXIT_DIFFERENT = 5,   /* svet diff --fail-above: the images
                                   differ by more than the threshold */
+    SVET_EXIT_RENDER = 6       /* svet render: a pass failed (out of
+                                  memory, or a rendering method's pass,
+                                  e.g. ppm's photon maps); nothing of
+                                  that pass was written */
 };
 
 /* What a cmd_*_parse() returns when the command line is good and the

@@ -10,6 +10,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <spawn.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -580,10 +581,116 @@ static const char *integrator_name(scene_integrator i)
     return "?";
 }
 
-static const char *const valued[] = {
-    "--ref", "--ref-var", "--out", "--label", "--plot-script", "--spp-list",
-    "--time-list", "--time", "--error", "--ztest", "--var", "--pvalue",
-    "--spp", "--ref-spp", "--metric", "--max-pixels", NULL };
+static int opt_label(void *args, const char *cmd, const char *opt,
+                     const char *v)
+{
+    (void)cmd, (void)opt;
+    if (!label_ok(v)) {
+        fprintf(stderr, "svet converge: --label '%s': use letters, digits "
+                        "and . _ = + - only\n", v);
+        return SVET_EXIT_USAGE;
+    }
+    ((cmd_converge_args_t *)args)->label = v;
+    return SVET_EXIT_OK;
+}
+
+/* --spp-list and --time-list, one of them once */
+static int opt_list(void *args, const char *cmd, const char *opt,
+                    const char *v)
+{
+    (void)cmd;
+    cmd_converge_args_t *o = args;
+    o->time_mode = !strcmp(opt, "--time-list");
+    if (o->have_list) {
+        fprintf(stderr, "svet converge: give one of --spp-list and "
+                        "--time-list, once\n");
+        return SVET_EXIT_USAGE;
+    }
+    if (!parse_list(v, o->list, &o->nlist, !o->time_mode) ||
+        (!o->time_mode && o->list[o->nlist - 1] > (double)SCENE_MAX_SPP)) {
+        fprintf(stderr, "svet converge: %s '%s': expected at most %d "
+                        "increasing positive %s, separated by commas\n", opt,
+                v, MAX_POINTS, o->time_mode ? "numbers" : "whole numbers");
+        return SVET_EXIT_USAGE;
+    }
+    o->have_list = true;
+    return SVET_EXIT_OK;
+}
+
+/* --time and --error: a positive number */
+static int opt_budget(void *args, const char *cmd, const char *opt,
+                      const char *v)
+{
+    cmd_converge_args_t *o = args;
+    double x;
+    if (!cmd_parse_double(v, &x) || !(x > 0))
+        return cmd_bad_value(cmd, opt, v);
+    *(!strcmp(opt, "--time") ? &o->T : &o->E) = x;
+    return SVET_EXIT_OK;
+}
+
+/* --spp and --ref-spp: a positive count, at most 1e12 */
+static int opt_count(void *args, const char *cmd, const char *opt,
+                     const char *v)
+{
+    cmd_converge_args_t *o = args;
+    double x;
+    if (!cmd_parse_double(v, &x) || !(x > 0) || x > 1e12)
+        return cmd_bad_value(cmd, opt, v);
+    *(!strcmp(opt, "--spp") ? &o->zspp : &o->ref_spp) = x;
+    return SVET_EXIT_OK;
+}
+
+static int opt_metric(void *args, const char *cmd, const char *opt,
+                      const char *v)
+{
+    cmd_converge_args_t *o = args;
+    if (!strcmp(v, "rel"))
+        o->metric = CONVERGE_REL;
+    else if (!strcmp(v, "abs"))
+        o->metric = CONVERGE_ABS;
+    else
+        return cmd_bad_value(cmd, opt, v);
+    return SVET_EXIT_OK;
+}
+
+static int file_arg(void *args, const char *cmd, const char *a)
+{
+    (void)cmd;
+    cmd_converge_args_t *o = args;
+    if (o->nfiles == CMD_CONVERGE_MAX_FILES) {
+        fprintf(stderr, "svet converge: at most %d files\n",
+                CMD_CONVERGE_MAX_FILES);
+        return SVET_EXIT_USAGE;
+    }
+    o->files[o->nfiles++] = a;
+    return SVET_EXIT_OK;
+}
+
+#define AT(f) offsetof(cmd_converge_args_t, f)
+static const cmd_option_t options[] = {
+    { "--no-plot", NULL, false, CMD_SET_TRUE, AT(no_plot), NULL },
+    { "--quiet", "-q", false, CMD_SET_TRUE, AT(quiet), NULL },
+    { "--report", NULL, false, CMD_SET_TRUE, AT(report), NULL },
+    { "--ref", NULL, true, CMD_SET_FILE, AT(ref), NULL },
+    { "--ref-var", NULL, true, CMD_SET_FILE, AT(ref_var), NULL },
+    { "--out", NULL, true, CMD_SET_FILE, AT(out_dir), NULL },
+    { "--label", NULL, true, CMD_CALL, 0, opt_label },
+    { "--plot-script", NULL, true, CMD_SET_FILE, AT(script), NULL },
+    { "--spp-list", NULL, true, CMD_CALL, 0, opt_list },
+    { "--time-list", NULL, true, CMD_CALL, 0, opt_list },
+    { "--time", NULL, true, CMD_CALL, 0, opt_budget },
+    { "--error", NULL, true, CMD_CALL, 0, opt_budget },
+    { "--ztest", NULL, true, CMD_SET_FILE, AT(ztest_img), NULL },
+    { "--var", NULL, true, CMD_SET_FILE, AT(ztest_var), NULL },
+    { "--pvalue", NULL, true, CMD_SET_FILE, AT(pvalue), NULL },
+    { "--spp", NULL, true, CMD_CALL, 0, opt_count },
+    { "--ref-spp", NULL, true, CMD_CALL, 0, opt_count },
+    { "--max-pixels", NULL, true, CMD_SET_TEXT, AT(max_pixels), NULL },
+    { "--metric", NULL, true, CMD_CALL, 0, opt_metric },
+    { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
+};
+#undef AT
 
 int cmd_converge_parse(int argc, char **argv, cmd_converge_args_t *o)
 {
@@ -592,106 +699,11 @@ int cmd_converge_parse(int argc, char **argv, cmd_converge_args_t *o)
     o->script = DEFAULT_SCRIPT;
     o->metric = CONVERGE_REL;
     cmd_scene_opts_init(&o->so);
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes = true;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            cmd_converge_help(stdout);
-            return SVET_EXIT_OK;
-        } else if (!strcmp(a, "--no-plot")) {
-            o->no_plot = true, takes = false;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            o->quiet = true, takes = false;
-        } else if (!strcmp(a, "--strict")) {
-            o->so.strict = true, takes = false;
-        } else if (!strcmp(a, "--report")) {
-            o->report = true, takes = false;
-        } else if (a[0] == '-' && !v) {
-            return cmd_missing_value("converge", a, valued);
-        } else if (!strcmp(a, "--ref")) {
-            if (!(o->ref = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--ref-var")) {
-            if (!(o->ref_var = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--out")) {
-            if (!(o->out_dir = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--label")) {
-            if (!label_ok(v)) {
-                fprintf(stderr, "svet converge: --label '%s': use letters, "
-                                "digits and . _ = + - only\n", v);
-                return SVET_EXIT_USAGE;
-            }
-            o->label = v;
-        } else if (!strcmp(a, "--plot-script")) {
-            if (!(o->script = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--spp-list") || !strcmp(a, "--time-list")) {
-            o->time_mode = !strcmp(a, "--time-list");
-            if (o->have_list) {
-                fprintf(stderr, "svet converge: give one of --spp-list and "
-                                "--time-list, once\n");
-                return SVET_EXIT_USAGE;
-            }
-            if (!parse_list(v, o->list, &o->nlist, !o->time_mode) ||
-                (!o->time_mode &&
-                 o->list[o->nlist - 1] > (double)SCENE_MAX_SPP)) {
-                fprintf(stderr, "svet converge: %s '%s': expected at most %d "
-                                "increasing positive %s, separated by "
-                                "commas\n", a, v, MAX_POINTS,
-                        o->time_mode ? "numbers" : "whole numbers");
-                return SVET_EXIT_USAGE;
-            }
-            o->have_list = true;
-        } else if (!strcmp(a, "--time") || !strcmp(a, "--error")) {
-            double x;
-            if (!cmd_parse_double(v, &x) || !(x > 0))
-                return cmd_bad_value("converge", a, v);
-            *(!strcmp(a, "--time") ? &o->T : &o->E) = x;
-        } else if (!strcmp(a, "--ztest")) {
-            if (!(o->ztest_img = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--var")) {
-            if (!(o->ztest_var = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--pvalue")) {
-            if (!(o->pvalue = cmd_file_name("converge", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--spp") || !strcmp(a, "--ref-spp")) {
-            double x;
-            if (!cmd_parse_double(v, &x) || !(x > 0) || x > 1e12)
-                return cmd_bad_value("converge", a, v);
-            *(!strcmp(a, "--spp") ? &o->zspp : &o->ref_spp) = x;
-        } else if (!strcmp(a, "--max-pixels")) {
-            o->max_pixels = v;
-        } else if (!strcmp(a, "--metric")) {
-            if (!strcmp(v, "rel"))
-                o->metric = CONVERGE_REL;
-            else if (!strcmp(v, "abs"))
-                o->metric = CONVERGE_ABS;
-            else
-                return cmd_bad_value("converge", a, v);
-        } else if (a[0] == '-') {
-            int k = cmd_scene_option("converge", a, v, &o->so);
-            if (k == CMD_OPT_BAD)
-                return SVET_EXIT_USAGE;
-            if (k == CMD_OPT_NONE)
-                return cmd_unknown_option("converge", a);
-        } else {
-            takes = false;
-            if (o->nfiles == CMD_CONVERGE_MAX_FILES) {
-                fprintf(stderr, "svet converge: at most %d files\n",
-                        CMD_CONVERGE_MAX_FILES);
-                return SVET_EXIT_USAGE;
-            }
-            o->files[o->nfiles++] = argv[i];
-        }
-        if (takes)
-            i++;
-    }
+    const cmd_parser_t p = { "converge", options, o, file_arg,
+                             cmd_converge_help, &o->so, false, NULL };
+    int rc = cmd_parse_options(&p, argc, argv);
+    if (rc != CMD_RUN)
+        return rc;
     if (o->ztest_img) {
         if (!o->ref || !(o->zspp > 0) || o->nfiles) {
             fprintf(stderr, "svet converge: --ztest IMAGE.exr needs --spp N "

@@ -6,6 +6,7 @@
  * start with '#'.
  * Tests: tests/cmd/test_svet.c
  */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -120,9 +121,102 @@ static int read_input(const char *path, image_t *img, imageio_format_t *f,
     return SVET_EXIT_OK;
 }
 
-static const char *const valued[] = { "--metric", "--error-image",
-                                      "--error", "--peak", "--eps",
-                                      "--fail-above", "--max-pixels", NULL };
+static int opt_metric(void *args, const char *cmd, const char *opt,
+                      const char *v)
+{
+    (void)cmd, (void)opt;
+    cmd_diff_args_t *o = args;
+    return parse_metrics(v, o->metrics, &o->nmetrics) ? SVET_EXIT_OK
+                                                       : SVET_EXIT_USAGE;
+}
+
+static int opt_error_image(void *args, const char *cmd, const char *opt,
+                           const char *v)
+{
+    (void)cmd, (void)opt;
+    imageio_format_t f = imageio_format_from_name(v);
+    if (f != IMAGEIO_EXR && f != IMAGEIO_PFM) {
+        fprintf(stderr, "svet diff: the error image is linear: name it .exr "
+                        "or .pfm, not '%s'\n", v);
+        return SVET_EXIT_USAGE;
+    }
+    ((cmd_diff_args_t *)args)->err_path = v;
+    return SVET_EXIT_OK;
+}
+
+static int opt_error(void *args, const char *cmd, const char *opt,
+                     const char *v)
+{
+    (void)cmd, (void)opt;
+    cmd_diff_args_t *o = args;
+    if (!strcmp(v, "abs"))
+        o->kind = IMGCOMPARE_ABS;
+    else if (!strcmp(v, "rel"))
+        o->kind = IMGCOMPARE_REL;
+    else if (!strcmp(v, "squared"))
+        o->kind = IMGCOMPARE_SQUARED;
+    else {
+        fprintf(stderr, "svet diff: --error %s: abs, rel or squared\n", v);
+        return SVET_EXIT_USAGE;
+    }
+    return SVET_EXIT_OK;
+}
+
+/* --peak and --eps: a positive number */
+static int opt_positive(void *args, const char *cmd, const char *opt,
+                        const char *v)
+{
+    (void)cmd;
+    cmd_diff_args_t *o = args;
+    bool peak = !strcmp(opt, "--peak");
+    double *x = peak ? &o->peak : &o->eps;
+    if (!cmd_parse_double(v, x) || *x <= 0) {
+        fprintf(stderr, "svet diff: %s %s: a positive number\n", opt, v);
+        return SVET_EXIT_USAGE;
+    }
+    if (peak)
+        o->have_peak = true;
+    return SVET_EXIT_OK;
+}
+
+static int opt_fail_above(void *args, const char *cmd, const char *opt,
+                          const char *v)
+{
+    (void)cmd, (void)opt;
+    cmd_diff_args_t *o = args;
+    if (!cmd_parse_double(v, &o->fail_above)) {
+        fprintf(stderr, "svet diff: --fail-above %s: a number\n", v);
+        return SVET_EXIT_USAGE;
+    }
+    o->have_fail = true;
+    return SVET_EXIT_OK;
+}
+
+/* A or B; "-" too, a file of that name */
+static int image_arg(void *args, const char *cmd, const char *a)
+{
+    (void)cmd;
+    cmd_diff_args_t *o = args;
+    if (o->paths[1]) {
+        fprintf(stderr, "svet diff: one image too many: '%s' (svet diff "
+                        "--help)\n", a);
+        return SVET_EXIT_USAGE;
+    }
+    o->paths[o->paths[0] ? 1 : 0] = a;
+    return SVET_EXIT_OK;
+}
+
+static const cmd_option_t options[] = {
+    { "--metric", NULL, true, CMD_CALL, 0, opt_metric },
+    { "--error-image", NULL, true, CMD_CALL, 0, opt_error_image },
+    { "--error", NULL, true, CMD_CALL, 0, opt_error },
+    { "--peak", NULL, true, CMD_CALL, 0, opt_positive },
+    { "--eps", NULL, true, CMD_CALL, 0, opt_positive },
+    { "--max-pixels", NULL, true, CMD_SET_TEXT,
+      offsetof(cmd_diff_args_t, max_pixels), NULL },
+    { "--fail-above", NULL, true, CMD_CALL, 0, opt_fail_above },
+    { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
+};
 
 int cmd_diff_parse(int argc, char **argv, cmd_diff_args_t *o)
 {
@@ -132,76 +226,12 @@ int cmd_diff_parse(int argc, char **argv, cmd_diff_args_t *o)
     o->nmetrics = M_COUNT;
     o->kind = IMGCOMPARE_ABS;
     o->eps = IMGCOMPARE_EPS;
-    int npaths = 0;
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            cmd_diff_help(stdout);
-            return SVET_EXIT_OK;
-        }
-        if (a[0] != '-' || a[1] == '\0') {
-            if (npaths == 2) {
-                fprintf(stderr, "svet diff: one image too many: '%s' (svet "
-                                "diff --help)\n", a);
-                return SVET_EXIT_USAGE;
-            }
-            o->paths[npaths++] = a;
-            continue;
-        }
-        if (!v)
-            return cmd_missing_value("diff", a, valued);
-        i++;
-        if (!strcmp(a, "--metric")) {
-            if (!parse_metrics(v, o->metrics, &o->nmetrics))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--error-image")) {
-            imageio_format_t f = imageio_format_from_name(v);
-            if (f != IMAGEIO_EXR && f != IMAGEIO_PFM) {
-                fprintf(stderr, "svet diff: the error image is linear: "
-                                "name it .exr or .pfm, not '%s'\n", v);
-                return SVET_EXIT_USAGE;
-            }
-            o->err_path = v;
-        } else if (!strcmp(a, "--error")) {
-            if (!strcmp(v, "abs"))
-                o->kind = IMGCOMPARE_ABS;
-            else if (!strcmp(v, "rel"))
-                o->kind = IMGCOMPARE_REL;
-            else if (!strcmp(v, "squared"))
-                o->kind = IMGCOMPARE_SQUARED;
-            else {
-                fprintf(stderr, "svet diff: --error %s: abs, rel or "
-                                "squared\n", v);
-                return SVET_EXIT_USAGE;
-            }
-        } else if (!strcmp(a, "--peak")) {
-            if (!cmd_parse_double(v, &o->peak) || o->peak <= 0) {
-                fprintf(stderr, "svet diff: --peak %s: a positive number\n",
-                        v);
-                return SVET_EXIT_USAGE;
-            }
-            o->have_peak = true;
-        } else if (!strcmp(a, "--eps")) {
-            if (!cmd_parse_double(v, &o->eps) || o->eps <= 0) {
-                fprintf(stderr, "svet diff: --eps %s: a positive number\n",
-                        v);
-                return SVET_EXIT_USAGE;
-            }
-        } else if (!strcmp(a, "--max-pixels")) {
-            o->max_pixels = v;
-        } else if (!strcmp(a, "--fail-above")) {
-            if (!cmd_parse_double(v, &o->fail_above)) {
-                fprintf(stderr, "svet diff: --fail-above %s: a number\n", v);
-                return SVET_EXIT_USAGE;
-            }
-            o->have_fail = true;
-        } else {
-            return cmd_unknown_option("diff", a);
-        }
-    }
-    if (npaths != 2) {
+    const cmd_parser_t p = { "diff", options, o, image_arg, cmd_diff_help,
+                             NULL, true, NULL };
+    int rc = cmd_parse_options(&p, argc, argv);
+    if (rc != CMD_RUN)
+        return rc;
+    if (!o->paths[1]) {
         fprintf(stderr, "svet diff: two images are needed: svet diff A B "
                         "(svet diff --help)\n");
         return SVET_EXIT_USAGE;

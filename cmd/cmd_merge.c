@@ -121,31 +121,53 @@ static int by_from(const void *a, const void *b)
     return ((*x)->p.from > (*y)->p.from) - ((*x)->p.from < (*y)->p.from);
 }
 
+typedef struct {
+    const char *exr, *png, *var;
+    const char *ins[256];
+    int nin;
+} merge_args_t;
+
+/* -o, --png, --variance: a file name, not empty */
+static int opt_file(void *args, const char *cmd, const char *opt,
+                    const char *v)
+{
+    merge_args_t *o = args;
+    if (!*v)
+        return cmd_error(cmd, SVET_EXIT_USAGE, "%s needs a file name", opt);
+    *(opt[2] == 'p' ? &o->png : opt[2] == 'v' ? &o->var : &o->exr) = v;
+    return SVET_EXIT_OK;
+}
+
+static int part_arg(void *args, const char *cmd, const char *a)
+{
+    merge_args_t *o = args;
+    if (o->nin == 256)
+        return cmd_error(cmd, SVET_EXIT_USAGE, "at most 256 parts");
+    o->ins[o->nin++] = a;
+    return SVET_EXIT_OK;
+}
+
+static const cmd_option_t options[] = {
+    { "--output", "-o", true, CMD_CALL, 0, opt_file },
+    { "--png", NULL, true, CMD_CALL, 0, opt_file },
+    { "--variance", NULL, true, CMD_CALL, 0, opt_file },
+    { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
+};
+
 int cmd_merge(int argc, char **argv)
 {
-    const char *exr = NULL, *png = NULL, *var = NULL;
-    const char *ins[256];
-    int nin = 0, rc = SVET_EXIT_OK;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            cmd_merge_help(stdout);
-            return SVET_EXIT_OK;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output") ||
-                   !strcmp(a, "--png") || !strcmp(a, "--variance")) {
-            if (!v || !*v)
-                return cmd_error("merge", SVET_EXIT_USAGE, "%s needs a file "
-                                 "name", a);
-            *(a[2] == 'p' ? &png : a[2] == 'v' ? &var : &exr) = v;
-            i++;
-        } else if (a[0] == '-') {
-            return cmd_unknown_option("merge", a);
-        } else if (nin < 256) {
-            ins[nin++] = a;
-        } else {
-            return cmd_error("merge", SVET_EXIT_USAGE, "at most 256 parts");
-        }
-    }
+    merge_args_t m;
+    memset(&m, 0, sizeof m);
+    const cmd_parser_t parser = { "merge", options, &m, part_arg,
+                                  cmd_merge_help, NULL, false,
+                                  "a file name" };
+    int rc = cmd_parse_options(&parser, argc, argv);
+    if (rc != CMD_RUN)
+        return rc;
+    rc = SVET_EXIT_OK;
+    const char *exr = m.exr, *png = m.png, *var = m.var;
+    const char *const *ins = m.ins;
+    const int nin = m.nin;
     if (!exr || nin == 0)
         return cmd_error("merge", SVET_EXIT_USAGE,
                          "usage: svet merge PART.exr ... -o OUT.exr");

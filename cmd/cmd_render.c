@@ -8,6 +8,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <stddef.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,7 +76,9 @@ void cmd_render_help(FILE *f)
 "missing or malformed; 3 an output could not be written; 4 interrupted\n"
 "(SIGINT/SIGTERM): the pass under way is abandoned and the outputs hold\n"
 "the passes completed, the same image as a render asked for that many\n"
-"samples (nothing is written when the first pass had not ended).\n"
+"samples (nothing is written when the first pass had not ended); 6 a\n"
+"pass failed (out of memory, or the rendering method's pass, e.g. ppm's\n"
+"photon maps): nothing more is written.\n"
 "\n"
 "Outputs are written in full to temporary files beside them\n"
 "(NAME.tmp-HOST-PID-N) and then renamed over the old ones together, so a\n"
@@ -233,11 +236,89 @@ svet_status cmd_render_write(const render_t *r, const scene_t *s,
     return st;
 }
 
-/* The options that take a value, for cmd_missing_value(). */
-static const char *const valued[] = { "-o", "--output", "--png",
-                                      "--variance", "--spp", "--passes",
-                                      "--time-limit", "--samples", "--crop",
-                                      NULL };
+static int opt_resume(void *args, const char *cmd, const char *opt,
+                      const char *v)
+{
+    (void)cmd, (void)opt, (void)v;
+    cmd_render_args_t *o = args;
+    o->resume = o->checkpoint = true;
+    return SVET_EXIT_OK;
+}
+
+static int opt_count(void *args, const char *cmd, const char *opt,
+                     const char *v)
+{
+    cmd_render_args_t *o = args;
+    if (!cmd_parse_long(v, 1, SCENE_MAX_SPP,
+                        !strcmp(opt, "--spp") ? &o->spp : &o->passes))
+        return cmd_bad_value(cmd, opt, v);
+    return SVET_EXIT_OK;
+}
+
+static int opt_samples(void *args, const char *cmd, const char *opt,
+                       const char *v)
+{
+    cmd_render_args_t *o = args;
+    char *e1, *e2;
+    errno = 0;
+    long f = strtol(v, &e1, 10), t = *e1 == ':' ? strtol(e1 + 1, &e2, 10) : -1;
+    if (errno || *e1 != ':' || e2 == e1 + 1 || *e2 || f < 0 || t <= f ||
+        t > SCENE_MAX_SPP)
+        return cmd_bad_value(cmd, opt, v);
+    o->from = f, o->to = t, o->part = true;
+    return SVET_EXIT_OK;
+}
+
+static int opt_crop(void *args, const char *cmd, const char *opt,
+                    const char *v)
+{
+    cmd_render_args_t *o = args;
+    int c[4], n = -1;
+    if (sscanf(v, "%d:%d,%d:%d%n", &c[0], &c[1], &c[2], &c[3], &n) != 4 ||
+        n < 0 || v[n] || c[0] < 0 || c[1] <= c[0] || c[2] < 0 || c[3] <= c[2])
+        return cmd_bad_value(cmd, opt, v);
+    memcpy(o->crop, c, sizeof c);
+    o->cropped = o->part = true;
+    return SVET_EXIT_OK;
+}
+
+static int opt_time_limit(void *args, const char *cmd, const char *opt,
+                          const char *v)
+{
+    cmd_render_args_t *o = args;
+    if (!cmd_parse_double(v, &o->time_limit) || o->time_limit < 0 ||
+        o->time_limit > 1e9)
+        return cmd_bad_value(cmd, opt, v);
+    return SVET_EXIT_OK;
+}
+
+static int scene_arg(void *args, const char *cmd, const char *a)
+{
+    cmd_render_args_t *o = args;
+    if (o->scene)
+        return cmd_error(cmd, SVET_EXIT_USAGE, "one scene at a time ('%s' "
+                         "and '%s')", o->scene, a);
+    o->scene = a;
+    return SVET_EXIT_OK;
+}
+
+#define AT(f) offsetof(cmd_render_args_t, f)
+static const cmd_option_t options[] = {
+    { "--checkpoint", NULL, false, CMD_SET_TRUE, AT(checkpoint), NULL },
+    { "--quiet", "-q", false, CMD_SET_TRUE, AT(quiet), NULL },
+    { "--resume", NULL, false, CMD_CALL, 0, opt_resume },
+    { "--half", NULL, false, CMD_SET_TRUE, AT(half), NULL },
+    { "--output", "-o", true, CMD_SET_FILE, AT(exr), NULL },
+    { "--png", NULL, true, CMD_SET_FILE, AT(png), NULL },
+    { "--variance", NULL, true, CMD_SET_FILE, AT(var), NULL },
+    { "--spp", NULL, true, CMD_CALL, 0, opt_count },
+    { "--passes", NULL, true, CMD_CALL, 0, opt_count },
+    { "--samples", NULL, true, CMD_CALL, 0, opt_samples },
+    { "--crop", NULL, true, CMD_CALL, 0, opt_crop },
+    { "--time-limit", NULL, true, CMD_CALL, 0, opt_time_limit },
+    { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
+};
+#undef AT
 
 int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
 {
@@ -245,78 +326,11 @@ int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
     o->spp = o->passes = -1;
     o->time_limit = -1;
     cmd_scene_opts_init(&o->so);
-
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes = true;
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            cmd_render_help(stdout);
-            return SVET_EXIT_OK;
-        } else if (!strcmp(a, "--checkpoint")) {
-            o->checkpoint = true, takes = false;
-        } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
-            o->quiet = true, takes = false;
-        } else if (!strcmp(a, "--strict")) {
-            o->so.strict = true, takes = false;
-        } else if (!strcmp(a, "--resume")) {
-            o->resume = o->checkpoint = true, takes = false;
-        } else if (!strcmp(a, "--half")) {
-            o->half = true, takes = false;
-        } else if (a[0] == '-' && !v) {
-            return cmd_missing_value("render", a, valued);
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (!(o->exr = cmd_file_name("render", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--png")) {
-            if (!(o->png = cmd_file_name("render", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--variance")) {
-            if (!(o->var = cmd_file_name("render", a, v)))
-                return SVET_EXIT_USAGE;
-        } else if (!strcmp(a, "--spp")) {
-            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->spp))
-                return cmd_bad_value("render", a, v);
-        } else if (!strcmp(a, "--passes")) {
-            if (!cmd_parse_long(v, 1, SCENE_MAX_SPP, &o->passes))
-                return cmd_bad_value("render", a, v);
-        } else if (!strcmp(a, "--samples")) {
-            char *e1, *e2;
-            errno = 0;
-            long f = strtol(v, &e1, 10), t = *e1 == ':' ? strtol(e1 + 1, &e2,
-                                                                 10) : -1;
-            if (errno || *e1 != ':' || e2 == e1 + 1 || *e2 || f < 0 ||
-                t <= f || t > SCENE_MAX_SPP)
-                return cmd_bad_value("render", a, v);
-            o->from = f, o->to = t, o->part = true;
-        } else if (!strcmp(a, "--crop")) {
-            int c[4], n = -1;
-            if (sscanf(v, "%d:%d,%d:%d%n", &c[0], &c[1], &c[2], &c[3], &n) !=
-                    4 || n < 0 || v[n] || c[0] < 0 || c[1] <= c[0] ||
-                c[2] < 0 || c[3] <= c[2])
-                return cmd_bad_value("render", a, v);
-            memcpy(o->crop, c, sizeof c);
-            o->cropped = o->part = true;
-        } else if (!strcmp(a, "--time-limit")) {
-            if (!cmd_parse_double(v, &o->time_limit) || o->time_limit < 0 ||
-                o->time_limit > 1e9)
-                return cmd_bad_value("render", a, v);
-        } else if (a[0] == '-') {
-            int k = cmd_scene_option("render", a, v, &o->so);
-            if (k == CMD_OPT_BAD)
-                return SVET_EXIT_USAGE;
-            if (k == CMD_OPT_NONE)
-                return cmd_unknown_option("render", a);
-        } else {
-            if (o->scene)
-                return cmd_error("render", SVET_EXIT_USAGE, "one scene at a "
-                                 "time ('%s' and '%s')", o->scene, a);
-            o->scene = a;
-            takes = false;
-        }
-        if (takes)
-            i++;
-    }
+    const cmd_parser_t p = { "render", options, o, scene_arg,
+                             cmd_render_help, &o->so, false, NULL };
+    int rc = cmd_parse_options(&p, argc, argv);
+    if (rc != CMD_RUN)
+        return rc;
     if (!o->scene)
         return cmd_error("render", SVET_EXIT_USAGE,
                          "no scene file (svet render --help)");
@@ -471,8 +485,8 @@ int cmd_render(int argc, char **argv)
         bool abandoned;
         if (render_pass_until(&r, end, scene.render.threads, on_tile, &pr,
                               &stop_requested, &abandoned, &err) != SVET_OK) {
-            fprintf(stderr, "\nsvet render: %s\n", err.msg);
-            rc = SVET_EXIT_OUTPUT;
+            fprintf(stderr, "\nsvet render: %s: %s\n", scene_path, err.msg);
+            rc = SVET_EXIT_RENDER;
             goto done;
         }
         if (stop_requested) {

@@ -80,18 +80,6 @@ int cmd_error(const char *cmd, int rc, const char *fmt, ...)
     return rc;
 }
 
-int cmd_missing_value(const char *cmd, const char *opt,
-                      const char *const *valued)
-{
-    bool known = cmd_is_scene_option(opt);
-    for (int i = 0; valued[i] && !known; i++)
-        known = !strcmp(opt, valued[i]);
-    if (!known)
-        return cmd_unknown_option(cmd, opt);
-    return cmd_error(cmd, SVET_EXIT_USAGE, "%s needs a value (svet %s --help)",
-                     opt, cmd);
-}
-
 int cmd_unknown_option(const char *cmd, const char *opt)
 {
     return cmd_error(cmd, SVET_EXIT_USAGE,
@@ -133,37 +121,100 @@ void cmd_scene_opts_init(cmd_scene_opts_t *o)
     o->threads = -1;
 }
 
-bool cmd_is_scene_option(const char *opt)
+/* The scene options, which svet render and svet converge share. Returns
+ * CMD_OPT_NONE when opt is none of them, else SVET_EXIT_OK or, after the
+ * message, SVET_EXIT_USAGE. */
+enum { CMD_OPT_NONE = -2 };
+static bool scene_option_takes_value(const char *opt)
 {
     return !strcmp(opt, "--threads") || !strcmp(opt, "--seed") ||
            !strcmp(opt, "--set");
 }
 
-int cmd_scene_option(const char *cmd, const char *opt, const char *value,
-                     cmd_scene_opts_t *o)
+static int scene_option(const char *cmd, const char *opt, const char *value,
+                        cmd_scene_opts_t *o)
 {
-    if (!strcmp(opt, "--threads")) {
-        if (!cmd_parse_long(value, 0, SCENE_MAX_THREADS, &o->threads)) {
-            cmd_bad_value(cmd, opt, value);
-            return CMD_OPT_BAD;
-        }
+    if (!strcmp(opt, "--strict")) {
+        o->strict = true;
+    } else if (!strcmp(opt, "--threads")) {
+        if (!cmd_parse_long(value, 0, SCENE_MAX_THREADS, &o->threads))
+            return cmd_bad_value(cmd, opt, value);
     } else if (!strcmp(opt, "--seed")) {
-        if (!cmd_parse_seed(value, &o->seed)) {
-            cmd_bad_value(cmd, opt, value);
-            return CMD_OPT_BAD;
-        }
+        if (!cmd_parse_seed(value, &o->seed))
+            return cmd_bad_value(cmd, opt, value);
         o->seed_set = true;
     } else if (!strcmp(opt, "--set")) {
-        if (o->nsets == CMD_MAX_SETS) {
-            cmd_error(cmd, SVET_EXIT_USAGE, "at most %d --set options",
-                      CMD_MAX_SETS);
-            return CMD_OPT_BAD;
-        }
+        if (o->nsets == CMD_MAX_SETS)
+            return cmd_error(cmd, SVET_EXIT_USAGE, "at most %d --set options",
+                             CMD_MAX_SETS);
         o->sets[o->nsets++] = value;
     } else {
         return CMD_OPT_NONE;
     }
-    return CMD_OPT_TAKEN;
+    return SVET_EXIT_OK;
+}
+
+static const cmd_option_t *find_option(const cmd_option_t *t, const char *a)
+{
+    for (; t->name; t++)
+        if (!strcmp(a, t->name) || (t->alias && !strcmp(a, t->alias)))
+            return t;
+    return NULL;
+}
+
+int cmd_parse_options(const cmd_parser_t *p, int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int rc;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            p->help(stdout);
+            return SVET_EXIT_OK;
+        }
+        if (a[0] != '-' || (p->dash_positional && a[1] == '\0')) {
+            if ((rc = p->positional(p->args, p->cmd, a)) != SVET_EXIT_OK)
+                return rc;
+            continue;
+        }
+        const cmd_option_t *o = find_option(p->opts, a);
+        bool scene = !o && p->so && (!strcmp(a, "--strict") ||
+                                     scene_option_takes_value(a));
+        if (!o && !scene)
+            return cmd_unknown_option(p->cmd, a);
+        bool takes = o ? o->value : scene_option_takes_value(a);
+        if (takes && !v) {
+            if (p->needs)
+                return cmd_error(p->cmd, SVET_EXIT_USAGE, "%s needs %s", a,
+                                 p->needs);
+            return cmd_error(p->cmd, SVET_EXIT_USAGE,
+                             "%s needs a value (svet %s --help)", a, p->cmd);
+        }
+        if (!takes)
+            v = NULL;
+        else
+            i++;
+        char *at = o ? (char *)p->args + o->at : NULL;
+        if (scene) {
+            rc = scene_option(p->cmd, a, v, p->so);
+        } else if (o->what == CMD_SET_TRUE) {
+            *(bool *)(void *)at = true;
+            rc = SVET_EXIT_OK;
+        } else if (o->what == CMD_SET_TEXT) {
+            *(const char **)(void *)at = v;
+            rc = SVET_EXIT_OK;
+        } else if (o->what == CMD_SET_FILE) {
+            const char *f = cmd_file_name(p->cmd, a, v);
+            if (f)
+                *(const char **)(void *)at = f;
+            rc = f ? SVET_EXIT_OK : SVET_EXIT_USAGE;
+        } else {
+            rc = o->call(p->args, p->cmd, a, v);
+        }
+        if (rc != SVET_EXIT_OK)
+            return rc;
+    }
+    return CMD_RUN;
 }
 
 /* The mesh files the scene file names, recorded as the loader is called

@@ -9,6 +9,8 @@
 #define SVET_CMDUTIL_H
 
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
 
 #include "io/image.h"
 #include "render/scene.h"
@@ -41,13 +43,9 @@ bool cmd_parse_double(const char *s, double *out);
  * a caller can `return cmd_error("render", SVET_EXIT_USAGE, ...)`. */
 int cmd_error(const char *cmd, int rc, const char *fmt, ...) CMD_PRINTF(3, 4);
 
-/* The usage errors every subcommand reports alike: an option at the end
- * of the line without its value (or, when opt is neither in the command's
- * NULL-terminated list `valued` nor a scene option, an unknown option),
- * an option it does not know, a value out of range. Each prints one line
- * and returns SVET_EXIT_USAGE. */
-int cmd_missing_value(const char *cmd, const char *opt,
-                      const char *const *valued);
+/* The usage errors every subcommand reports alike: an option it does not
+ * know, a value out of range. Each prints one line and returns
+ * SVET_EXIT_USAGE. */
 int cmd_unknown_option(const char *cmd, const char *opt);
 int cmd_bad_value(const char *cmd, const char *opt, const char *value);
 
@@ -84,16 +82,6 @@ typedef struct {
 /* No options given. This function can't fail. */
 void cmd_scene_opts_init(cmd_scene_opts_t *o);
 
-/* Whether opt is one of the scene options below. */
-bool cmd_is_scene_option(const char *opt);
-
-/* If opt is --threads, --seed or --set, take its value (not NULL) into o.
- * Returns CMD_OPT_NONE when opt is another option, CMD_OPT_TAKEN when
- * taken, or CMD_OPT_BAD after printing why the value was refused. */
-enum { CMD_OPT_NONE, CMD_OPT_TAKEN, CMD_OPT_BAD };
-int cmd_scene_option(const char *cmd, const char *opt, const char *value,
-                     cmd_scene_opts_t *o);
-
 /* Read the scene file at path into s (scene_init'ed here), print its
  * warnings on stderr (the first SCENE_MAX_WARNINGS, then how many more),
  * apply the --set overrides in order, then --threads and --seed. Returns
@@ -120,5 +108,48 @@ typedef struct {
  * which two collide SVET_EXIT_USAGE; nothing has been written then. */
 int cmd_check_outputs(const char *cmd, const cmd_file_t *out, int nout,
                       const cmd_file_t *in, int nin);
+
+/* The option table of a subcommand, read by cmd_parse_options. An entry
+ * names an option (and its other spelling, or NULL), whether it takes the
+ * next argument as its value, and what it does: sets the bool at offset
+ * `at` of the command's argument struct (CMD_SET_TRUE), stores the value
+ * there as a const char * (CMD_SET_TEXT; CMD_SET_FILE refuses an empty
+ * one), or calls `call` (CMD_CALL), which returns SVET_EXIT_OK to go on
+ * or, after printing why, the exit code. */
+typedef enum { CMD_SET_TRUE, CMD_SET_TEXT, CMD_SET_FILE, CMD_CALL } cmd_opt_do_t;
+typedef struct {
+    const char *name, *alias;
+    bool value;
+    cmd_opt_do_t what;
+    size_t at;
+    int (*call)(void *args, const char *cmd, const char *opt,
+                const char *value);
+} cmd_option_t;
+
+/* A subcommand's command line: its name (for the messages), its options
+ * (ending with a NULL name), its argument struct, the handler of the
+ * other arguments (`positional`, which returns as `call` does), its help
+ * text (-h, --help), and what it shares: so, if not NULL, takes the scene
+ * options --threads N, --seed N, --set KEY=VALUE and --strict. With
+ * dash_positional, "-" alone is an argument, not an option. `needs` is
+ * the message's end for an option without its value (default "a value
+ * (svet CMD --help)"). */
+typedef struct {
+    const char *cmd;
+    const cmd_option_t *opts;
+    void *args;
+    int (*positional)(void *args, const char *cmd, const char *arg);
+    void (*help)(FILE *f);
+    cmd_scene_opts_t *so;
+    bool dash_positional;
+    const char *needs;
+} cmd_parser_t;
+
+/* Read argv[1..argc-1] by p's table, left to right. Returns CMD_RUN
+ * (cmd.h) when every argument was taken, SVET_EXIT_OK after printing the
+ * help, or an exit code after printing the first problem: an unknown
+ * option, an option at the end without its value, or what a handler
+ * refused. */
+int cmd_parse_options(const cmd_parser_t *p, int argc, char **argv);
 
 #endif

@@ -225,6 +225,22 @@ typedef svet_status (*scene_part_names_fn)(scenefile_ctx *c,
                                            const scene_named_t *names,
                                            int n);
 
+/* --- keys a part adds to the shapes (ch. 10, 11) --------------------------- */
+
+/* Called after a shape or mesh statement added its objects to the scene
+ * (objs[0 .. n): one for a shape, one per part of a mesh), with the values
+ * of the part's shape keys in the order of scene_part_t.shape_keys, when
+ * at least one of them is set: `medium NAME` (ch. 11) marks the objects
+ * as the boundary of a medium. */
+typedef svet_status (*scene_part_shape_fn)(scenefile_ctx *c,
+                                           COBJECT *const *objs, int n,
+                                           const val_t *vals);
+
+/* The most shape keys all parts together may add. */
+#define SCENE_MAX_SHAPE_KEYS 8
+
+/* Define a part with designated initializers (.name = "photon", ...), so
+ * that the fields it does not use are NULL. */
 typedef struct scene_part {
     const char *name;                      /* "photon", "texture", ... */
     const scene_statement_t *statements;   /* ends with { NULL, NULL } */
@@ -233,6 +249,11 @@ typedef struct scene_part {
     /* resolves names in place of a material's values (may be NULL: a
      * name there is refused, unless another part offers this) */
     scene_part_names_fn material_names;
+    /* keys every shape and mesh statement takes (nshape_keys of them),
+     * and what is done with them (shape; both may be NULL) */
+    const spec_t *shape_keys;
+    int nshape_keys;
+    scene_part_shape_fn shape;
 } scene_part_t;
 
 /* The method `name` among the parts features offers, or NULL. */

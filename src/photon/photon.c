@@ -10,7 +10,9 @@
  */
 #include "photon/photon.h"
 
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -330,8 +332,12 @@ static svet_status trace(const render_t *r, uint64_t count,
     if (!chunks)
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "photon tracing: out of memory");
+#ifdef _OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+#else
+    (void)threads;
+#endif
     for (long long c = 0; c < (long long)nchunks; c++) {
         uint64_t i0 = (uint64_t)c * CHUNK;
         uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;

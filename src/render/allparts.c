@@ -8,6 +8,8 @@
 #include "accel/accel.h"
 #include "accel/batch.h"
 #include "accel/grid.h"
+#include "irradiance/irrpart.h"
+#include "medium/medpart.h"
 #include "mesh/objmesh.h"
 #include "photon/photon.h"
 #include "render/scenepart.h"
@@ -21,8 +23,9 @@ static const accel_ops_t *const accels[] = { &batch_accel,
 
 /* Part II: photon maps (ch. 8), the irradiance cache (ch. 9), textures
  * (ch. 10), media (ch. 11), each a scenepart.h scene_part_t */
-static const scene_part_t *const parts[] = { &photon_part, &texpart_part,
-                                             NULL };
+static const scene_part_t *const parts[] = { &photon_part, &irr_part,
+                                             &texpart_part,
+                                             &medium_part, NULL };
 
 static const scene_features_t all = {
     .accel = &accel_layer, /* ch. 7: the acceleration layer */

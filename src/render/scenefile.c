@@ -667,6 +667,27 @@ static svet_status parse_value(ctx_t *c, const spec_t *sp, val_t *v)
     return SVET_OK;
 }
 
+static bool is_shape_statement(const char *stmt);
+
+/* Keys of shapes that a part of a later chapter adds (scenepart.h's shape
+ * keys): a program without that part names the chapter rather than
+ * saying "unknown parameter". */
+static const char *reserved_shape_key(const char *stmt, const tok_t *t)
+{
+    static const struct {
+        const char *key, *chapter;
+    } keys[] = {
+        { "medium", "ch. 11 (participating media)" },
+        { "bump", "ch. 10 (textures)" },
+    };
+    if (!is_shape_statement(stmt))
+        return NULL;
+    for (size_t i = 0; i < sizeof keys / sizeof *keys; i++)
+        if (tok_is(t, keys[i].key))
+            return keys[i].chapter;
+    return NULL;
+}
+
 static svet_status parse_keys(ctx_t *c, const char *stmt, const spec_t *spec,
                               int nspec, val_t *vals, bool stop_at_plus)
 {
@@ -694,6 +715,12 @@ static svet_status parse_keys(ctx_t *c, const char *stmt, const spec_t *spec,
                         show_tok(t, show, sizeof show));
         }
         if (!sp) {
+            const char *chapter = reserved_shape_key(stmt, t);
+            if (chapter)
+                return fail(c, t->col, SVET_ERR_UNSUPPORTED,
+                            "'%s' on a %s is not supported by this "
+                            "program: %s", show_tok(t, show, sizeof show),
+                            stmt, chapter);
             for (int k = 0; k < nspec && k < MAX_SPEC; k++)
                 names[k] = spec[k].key;
             char what[64];
@@ -1728,6 +1755,48 @@ static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
     return SVET_OK;
 }
 
+/* The shape keys of the parts the program offers (scenepart.h), appended
+ * to spec after its n keys; returns the new count. */
+static int part_shape_keys(const ctx_t *c, spec_t *spec, int n)
+{
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    int added = 0;
+    for (int i = 0; parts && parts[i]; i++)
+        for (int k = 0; k < parts[i]->nshape_keys &&
+                        added < SCENE_MAX_SHAPE_KEYS; k++)
+            spec[n + added++] = parts[i]->shape_keys[k];
+    return n + added;
+}
+
+/* Hand each part the values of its shape keys (vals, in the order
+ * part_shape_keys appended them) for the objects the statement added, the
+ * scene's objects from index first on. */
+static svet_status apply_shape_keys(ctx_t *c, const val_t *vals, int first)
+{
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    int at = 0;
+    for (int i = 0; parts && parts[i]; i++) {
+        const scene_part_t *p = parts[i];
+        int n = p->nshape_keys;
+        if (at + n > SCENE_MAX_SHAPE_KEYS)
+            n = SCENE_MAX_SHAPE_KEYS - at;
+        bool any = false;
+        for (int k = 0; k < n; k++)
+            any = any || vals[at + k].set;
+        if (any && p->shape) {
+            svet_status st = p->shape(c, c->scene->objects + first,
+                                      c->scene->nobjects - first,
+                                      vals + at);
+            if (st)
+                return st;
+        }
+        at += n;
+    }
+    return SVET_OK;
+}
+
 /* A corner given with the statement, moved by the statement's transform. */
 static void corner(const xform_t *x, const val_t *v, VECTOR3 out)
 {
@@ -1739,13 +1808,13 @@ static svet_status st_shape(ctx_t *c)
     int kind = 0;
     while (!tok_is(&c->tok[0], shapes[kind].name))
         kind++;
-    spec_t spec[MAX_GEO + K_COMMON];
+    spec_t spec[MAX_GEO + K_COMMON + SCENE_MAX_SHAPE_KEYS];
     int ngeo = shapes[kind].ngeo;
     memcpy(spec, shapes[kind].geo, (size_t)ngeo * sizeof *spec);
     memcpy(spec + ngeo, common_spec, sizeof common_spec);
-    val_t v[MAX_GEO + K_COMMON];
-    svet_status st = parse_keys(c, shapes[kind].name, spec, ngeo + K_COMMON,
-                                v, false);
+    int nspec = part_shape_keys(c, spec, ngeo + K_COMMON);
+    val_t v[MAX_GEO + K_COMMON + SCENE_MAX_SHAPE_KEYS];
+    svet_status st = parse_keys(c, shapes[kind].name, spec, nspec, v, false);
     if (st)
         return st;
     const val_t *common = v + ngeo;
@@ -1836,7 +1905,20 @@ static svet_status st_shape(ctx_t *c)
                                                   : SVET_ERR_RANGE,
                         "%s", e.msg);
     }
-    return add_object(c, obj, m, common);
+    int first = c->scene->nobjects;
+    st = add_object(c, obj, m, common);
+    if (st)
+        return st;
+    return apply_shape_keys(c, common + K_COMMON, first);
+}
+
+/* Is stmt the keyword of a shape or of a mesh? */
+static bool is_shape_statement(const char *stmt)
+{
+    for (int k = 0; k < S_NSHAPES; k++)
+        if (strcmp(stmt, shapes[k].name) == 0)
+            return true;
+    return strcmp(stmt, "mesh") == 0;
 }
 
 /* --- meshes -------------------------------------------------------------- */
@@ -1927,12 +2009,12 @@ static svet_status st_mesh(ctx_t *c)
                     "'mesh': this program was built without the OBJ "
                     "meshes of ch. 7 (objmesh.c, offered through "
                     "scenefile_read_with)");
-    spec_t spec[MESH_NGEO + K_COMMON];
+    spec_t spec[MESH_NGEO + K_COMMON + SCENE_MAX_SHAPE_KEYS];
     memcpy(spec, mesh_geo, sizeof mesh_geo);
     memcpy(spec + MESH_NGEO, common_spec, sizeof common_spec);
-    val_t v[MESH_NGEO + K_COMMON];
-    svet_status st = parse_keys(c, "mesh", spec, MESH_NGEO + K_COMMON, v,
-                                false);
+    int nspec = part_shape_keys(c, spec, MESH_NGEO + K_COMMON);
+    val_t v[MESH_NGEO + K_COMMON + SCENE_MAX_SHAPE_KEYS];
+    svet_status st = parse_keys(c, "mesh", spec, nspec, v, false);
     if (st)
         return st;
     const val_t *common = v + MESH_NGEO;
@@ -1976,8 +2058,11 @@ static svet_status st_mesh(ctx_t *c)
             st = fail(c, col, st, "%s", e.msg);
         else
             st = mesh_warnings(c, col, &w, v[MESH_STRICT].on);
+        int first = c->scene->nobjects;
         if (!st)
             st = add_mesh_parts(c, parts, nparts, dflt, v, common);
+        if (!st)
+            st = apply_shape_keys(c, common + K_COMMON, first);
         scene_mesh_parts_free(parts, nparts);
     }
     free(path);
@@ -2018,7 +2103,7 @@ static const struct {
     const char *name, *chapter;
 } reserved[] = {
     { "photonmap", "ch. 8 (photon maps)" },
-    { "irradiance_cache", "ch. 9 (irradiance caching)" },
+    { "irradiance", "ch. 9 (irradiance caching)" },
     { "texture", "ch. 10 (textures)" },
     { "medium", "ch. 11 (participating media)" },
     { "sky", "ch. 12 (the atmosphere)" },

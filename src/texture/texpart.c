@@ -1,12 +1,14 @@
 /*
  * texpart.c - the textures of ch. 10 in the scene file and the renderer
  * (texpart.h): `texture NAME KIND KEYS`, names of textures in place of a
- * material's values, `bump NAME strength S`, and the per-hit shading hook
+ * material's values, `bump NAME strength S` on a material or a shape, and
+ * the per-hit shading hook
  * (scene_t.shade) that reads them.
  * Tests: tests/texture/test_texpart.c
  */
 #include "texture/texpart.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,11 +43,22 @@ struct texture {
 };
 typedef struct texture binding_t;
 
+/* A `bump NAME strength S` given on a shape or mesh: it replaces its
+ * material's bump (if any) on those objects. */
+typedef struct {
+    COBJECT *obj;
+    int index;     /* into the part's textures */
+    real strength;
+} shape_bump_t;
+
 typedef struct {
     named_texture_t *tex;  /* every texture, in order */
     int ntex;
-    binding_t *bind;       /* every textured material */
+    binding_t *bind;       /* every textured material, then every object
+                              of a bumped shape (set up by finish) */
     int nbind;
+    shape_bump_t *bumps;   /* every bumped shape's objects */
+    int nbumps;
 } texpart_data_t;
 
 static void data_free(void *p)
@@ -55,6 +68,7 @@ static void data_free(void *p)
         texture_free(&d->tex[i].tex);
     free(d->tex);
     free(d->bind);
+    free(d->bumps);
     free(d);
 }
 
@@ -346,6 +360,53 @@ static svet_status material_names(scenefile_ctx *c, const char *material,
     return SVET_OK;
 }
 
+/* --- `bump NAME strength S` on a shape or mesh ---------------------------- */
+
+enum { SK_BUMP, SK_STRENGTH, SK_N };
+static const spec_t shape_spec[SK_N] = {
+    [SK_BUMP] = { "bump", V_STRING, 0, 0, 0, NULL },
+    [SK_STRENGTH] = { "strength", V_NUM, 0, 0, 0, NULL },
+};
+
+static svet_status shape_keys(scenefile_ctx *c, COBJECT *const *objs, int n,
+                              const val_t *vals)
+{
+    if (!vals[SK_BUMP].set)
+        return scenefile_fail(c, vals[SK_STRENGTH].col, SVET_ERR_PARSE,
+                              "'strength' is the scale of a bump: give "
+                              "'bump NAME' with it");
+    texpart_data_t *d = data_of(c);
+    if (!d)
+        return scenefile_fail(c, vals[SK_BUMP].col, SVET_ERR_NOMEM,
+                              "out of memory");
+    char name[SCENE_MAX_NAME + 1];
+    const tok_t *t = &vals[SK_BUMP].word;
+    scenefile_tok_copy(t, name, sizeof name);
+    int found = -1;
+    for (int k = 0; k < d->ntex && found < 0; k++)
+        if (t->len <= SCENE_MAX_NAME && !strcmp(d->tex[k].name, name))
+            found = k;
+    if (found < 0)
+        return scenefile_fail(c, t->col, SVET_ERR_PARSE,
+                              "'bump %s': no texture of that name is "
+                              "defined above", name);
+    if (n <= 0)
+        return SVET_OK;
+    if (d->nbumps > INT_MAX - n)
+        return scenefile_fail(c, t->col, SVET_ERR_RANGE, "too many bumps");
+    shape_bump_t *nb = realloc(d->bumps,
+                               (size_t)(d->nbumps + n) * sizeof *nb);
+    if (!nb)
+        return scenefile_fail(c, t->col, SVET_ERR_NOMEM, "out of memory");
+    d->bumps = nb;
+    for (int i = 0; i < n; i++)
+        d->bumps[d->nbumps++] = (shape_bump_t){
+            objs[i], found,
+            vals[SK_STRENGTH].set ? vals[SK_STRENGTH].v[0] : 1
+        };
+    return SVET_OK;
+}
+
 /* --- the shading at a hit ------------------------------------------------- */
 
 /* The width, in (s, t) units, of the pixel's footprint at the camera ray's
@@ -464,8 +525,18 @@ static svet_status finish(scenefile_ctx *c)
     texpart_data_t *d = scene_part_data(s, "texture");
     if (!d)
         return SVET_OK;
-    if (d->nbind == 0)
+    if (d->nbind == 0 && d->nbumps == 0)
         return SVET_OK;
+    /* room for a binding per bumped object, before any pointer into the
+     * list is taken */
+    if (d->nbumps > 0) {
+        binding_t *nb = realloc(d->bind, (size_t)(d->nbind + d->nbumps) *
+                                             sizeof *nb);
+        if (!nb)
+            return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
+                                  "out of memory");
+        d->bind = nb;
+    }
     real spread = pixel_spread(&s->camera);
     for (int k = 0; k < d->nbind; k++) {
         binding_t *b = &d->bind[k];
@@ -479,7 +550,33 @@ static svet_status finish(scenefile_ctx *c)
         for (int k = 0; k < d->nbind; k++)
             if (s->objects[i]->material == d->bind[k].base)
                 s->objects[i]->texture = &d->bind[k];
-    s->shade = shade;
+    /* a shape's bump replaces its material's: the object reads a copy of
+     * the material's binding (or a new one) with the shape's height */
+    for (int k = 0; k < d->nbumps; k++) {
+        const shape_bump_t *sb = &d->bumps[k];
+        binding_t b;
+        if (sb->obj->texture)
+            b = *sb->obj->texture;
+        else {
+            memset(&b, 0, sizeof b);
+            b.base = sb->obj->material;
+            for (int j = 0; j <= SCENE_PARAM_BUMP; j++)
+                b.index[j] = -1;
+            b.spread = spread;
+        }
+        b.index[SCENE_PARAM_BUMP] = sb->index;
+        b.param[SCENE_PARAM_BUMP] = &d->tex[sb->index].tex;
+        b.strength = sb->strength;
+        if (!b.reparam && b.strength == 0) {
+            /* as on a material: a bump of strength 0 is no bump */
+            sb->obj->texture = NULL;
+            continue;
+        }
+        d->bind[d->nbind] = b;
+        sb->obj->texture = &d->bind[d->nbind++];
+    }
+    if (d->nbind > 0)
+        s->shade = shade;
     return SVET_OK;
 }
 
@@ -494,4 +591,7 @@ const scene_part_t texpart_part = {
     .methods = NULL,
     .finish = finish,
     .material_names = material_names,
+    .shape_keys = shape_spec,
+    .nshape_keys = SK_N,
+    .shape = shape_keys,
 };

@@ -1,8 +1,8 @@
 /*
  * test_cmd_render.c - `svet render` end to end (cmd/cmd_render.c): the EXR and
  * the PNG it writes, the same image for any thread count and pass split,
- * the exit codes of bad input, and SIGTERM ending the render after a pass
- * with what was rendered written.
+ * the exit codes of bad input and of a failing pass, and SIGTERM ending
+ * the render after a pass with what was rendered written.
  */
 #include "testutil.h"
 #include "cmdtest.h"
@@ -412,6 +412,33 @@ START_TEST(sigint_in_the_first_pass_keeps_the_old_output)
 }
 END_TEST
 
+/* A pass that fails (here ppm's begin_pass: 500 photon maps of 5e6
+ * photons for the 500 sample indices of a pass are more than a photon map
+ * may hold, refused before anything is traced) exits 6, names the scene
+ * and the reason, and leaves the earlier output as it was. */
+START_TEST(a_failing_pass_exits_6_and_keeps_the_old_output)
+{
+    char args[1024], cmd[1200];
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s/a.exr' -q", dir,
+             dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 0);
+    snprintf(cmd, sizeof cmd, "cp '%s/a.exr' '%s/a0.exr'", dir, dir);
+    ck_assert_int_eq(system(cmd), 0);
+    snprintf(args, sizeof args, "render '%s/tiny.scn' -o '%s/a.exr' -q "
+             "--set integrator=ppm --set photonmap.global=5000000 "
+             "--spp 1000 --passes 2 --checkpoint", dir, dir);
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, args), 6);
+    ck_assert_ptr_nonnull(strstr(out, "tiny.scn: ppm: 500 maps"));
+    char a[512], a0[512];
+    snprintf(a, sizeof a, "%s/a.exr", dir);
+    snprintf(a0, sizeof a0, "%s/a0.exr", dir);
+    ck_assert(same_file(a, a0));
+    /* svet --help lists the code */
+    ck_assert_int_eq(cmdtest_run(out, sizeof out, "--help"), 0);
+    ck_assert_ptr_nonnull(strstr(out, "6  svet render: a pass"));
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet render");
@@ -426,6 +453,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, sigterm_finishes_the_pass_and_writes_the_image);
     tcase_add_test(tc, sigint_abandons_the_pass_and_writes_the_last_whole_one);
     tcase_add_test(tc, sigint_in_the_first_pass_keeps_the_old_output);
+    tcase_add_test(tc, a_failing_pass_exits_6_and_keeps_the_old_output);
     suite_add_tcase(s, tc);
     return s;
 }

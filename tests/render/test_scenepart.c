@@ -4,7 +4,8 @@
  * settings statement read with the core's key machinery, `--set
  * glow.level=...`, its data kept and freed with the scene, and a `render
  * integrator glow` method whose prepare, begin_pass and li the renderer
- * calls in that order. Without the part, both keywords are refused.
+ * calls in that order, and a `halo` key on the shapes. Without the part,
+ * its keywords and keys are refused.
  */
 #include "testutil.h"
 #include "render/render.h"
@@ -145,8 +146,35 @@ static const scene_statement_t glow_statements[] = {
     { "glow", glow_statement }, { "glowmap", glowmap_statement },
     { NULL, NULL }
 };
-static const scene_part_t glow_part = { "glow", glow_statements,
-                                        glow_methods, glow_finish, NULL };
+/* `halo H` on a shape or mesh: the objects it names and the value */
+enum { H_HALO, H_N };
+static const spec_t halo_spec[H_N] = {
+    [H_HALO] = { "halo", V_NUM, F_POSITIVE, 0, 0, NULL },
+};
+static int halo_calls, halo_objects, halo_first_id;
+static real halo_value;
+static svet_status halo_shape(scenefile_ctx *c, COBJECT *const *objs, int n,
+                              const val_t *vals)
+{
+    if (vals[H_HALO].v[0] > 10)
+        return scenefile_fail(c, vals[H_HALO].col, SVET_ERR_RANGE,
+                              "a halo above 10");
+    halo_calls++;
+    halo_objects += n;
+    halo_first_id = objs[0]->id;
+    halo_value = vals[H_HALO].v[0];
+    return SVET_OK;
+}
+
+static const scene_part_t glow_part = {
+    .name = "glow",
+    .statements = glow_statements,
+    .methods = glow_methods,
+    .finish = glow_finish,
+    .shape_keys = halo_spec,
+    .nshape_keys = H_N,
+    .shape = halo_shape,
+};
 static const scene_part_t *const parts[] = { &glow_part, NULL };
 static const scene_features_t features = { .parts = parts };
 
@@ -240,6 +268,43 @@ START_TEST(a_part_reads_names_files_and_checks_the_whole_scene)
 }
 END_TEST
 
+START_TEST(a_part_adds_keys_to_the_shapes)
+{
+    scene_t s;
+    svet_error e;
+    halo_calls = halo_objects = 0;
+    const char *ok = BALL
+        "box min 0 0 -5 max 1 1 -4 material m halo 0.25 translate 1 0 0\n"
+        "sphere centre 0 2 -3 radius 1 material m\n";
+    ck_assert_int_eq(parse(&s, ok, &features, &e), SVET_OK);
+    /* called once, for the box only (the scene's second object) */
+    ck_assert_int_eq(halo_calls, 1);
+    ck_assert_int_eq(halo_objects, 1);
+    ck_assert_int_eq(halo_first_id, 1);
+    ck_assert_near(halo_value, 0.25, 0);
+    scene_free(&s);
+    /* the part's message names the key's column; the core's checks apply */
+    const char *big = BALL "sphere centre 0 0 -9 radius 1 halo 20 material m\n";
+    ck_assert_int_eq(parse(&s, big, &features, &e), SVET_ERR_RANGE);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:31: a halo above 10"), "%s", e.msg);
+    const char *neg = BALL "sphere centre 0 0 -9 radius 1 halo -1 material m\n";
+    ck_assert_int_eq(parse(&s, neg, &features, &e), SVET_ERR_RANGE);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:"), "%s", e.msg);
+    const char *typo = BALL "sphere centre 0 0 -9 radius 1 hallo 1 material m\n";
+    ck_assert_int_eq(parse(&s, typo, &features, &e), SVET_ERR_PARSE);
+    ck_assert_msg(strstr(e.msg, "did you mean 'halo'"), "%s", e.msg);
+    /* without the part the key is unknown; a later chapter's names it */
+    ck_assert_int_eq(parse(&s, ok, NULL, &e), SVET_ERR_PARSE);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:"), "%s", e.msg);
+    const char *fog = BALL "sphere centre 0 0 -9 radius 1 medium fog material m\n";
+    ck_assert_int_eq(parse(&s, fog, NULL, &e), SVET_ERR_UNSUPPORTED);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:31: 'medium' on a sphere is not "
+                                "supported by this program: ch. 11"),
+                  "%s", e.msg);
+    ck_assert_int_eq(halo_calls, 1);
+}
+END_TEST
+
 START_TEST(without_the_part_its_keywords_are_refused)
 {
     scene_t s;
@@ -311,6 +376,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_part_statement_is_read_with_the_core_keys);
     tcase_add_test(tc, a_part_statement_reports_file_line_and_column);
     tcase_add_test(tc, a_part_reads_names_files_and_checks_the_whole_scene);
+    tcase_add_test(tc, a_part_adds_keys_to_the_shapes);
     tcase_add_test(tc, without_the_part_its_keywords_are_refused);
     tcase_add_test(tc, the_renderer_runs_the_method_pass_by_pass);
     suite_add_tcase(s, tc);

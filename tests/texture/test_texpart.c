@@ -2,9 +2,11 @@
  * test_texpart.c - texpart.h, the textures in the scene file and the
  * renderer: every kind parses; bad input (an unknown kind or name, a key
  * the kind does not take, NaN, a missing, truncated, non-image or
- * decompression-bomb file) fails with file:line:col; a program without
+ * decompression-bomb file, an EXR of channels it does not know) fails
+ * with file:line:col and the reader's reason; a program without
  * the part refuses a texture's name; a zero bump and a constant texture
- * render the same bits as none; the grazing checkerboard at 1 spp is
+ * render the same bits as none; a bump on a shape renders the same bits
+ * as on its material, and wins over the material's; the grazing checkerboard at 1 spp is
  * nearer a supersampled reference with the trilinear mip map than with
  * the nearest texel.
  */
@@ -158,6 +160,31 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n",
              nan_exr);
     refused(text, "t.scn:2:22:", "the texel (2, 1) is not a finite number");
+    /* an EXR whose channels are none the reader knows (U V W: neither R G
+     * B nor Y): the same file as an RGB one with its channel names
+     * renamed in the header's chlist, so that nothing else changes */
+    imgtest_hdr_image(&img, 4, 4, 3);
+    const char *uvw = imgtest_path("uvw.exr");
+    ck_assert_int_eq(exrio_write(uvw, &img, EXRIO_FLOAT, EXRIO_NONE, &e),
+                     SVET_OK);
+    image_free(&img);
+    n = imgtest_read_bytes(uvw, &bytes);
+    unsigned char *at = NULL;
+    for (size_t i = 0; i + 7 <= n && !at; i++)
+        if (memcmp(bytes + i, "chlist", 7) == 0)
+            at = bytes + i;
+    ck_assert_ptr_nonnull(at);
+    /* after "chlist\0" and the int32 size, each channel is its name, NUL
+     * and 16 bytes of type, linearity and sampling: "B" "G" "R" */
+    unsigned char *name = at + 7 + 4;
+    for (int k = 0; k < 3; k++, name += 2 + 16) {
+        ck_assert_int_eq(name[0], "BGR"[k]);
+        name[0] = (unsigned char)"UVW"[k];
+    }
+    imgtest_write_bytes(uvw, bytes, n);
+    free(bytes);
+    snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", uvw);
+    refused(text, "t.scn:2:22:", "the file has: U V W");
     /* and the whole one loads */
     snprintf(text, sizeof text,
              HEAD "texture t image file \"%s\" filter bilinear wrap mirror\n"
@@ -231,6 +258,74 @@ START_TEST(a_zero_bump_and_a_constant_texture_render_the_same_bits)
     image_free(&flat);
     image_free(&grey);
     image_free(&grey2);
+}
+END_TEST
+
+START_TEST(a_bumped_shape_shades_as_its_bumped_material)
+{
+    image_t mat, shp, both, none, plain;
+    /* the same waves on the plane: once as the material's component, once
+     * as the plane's key (the sphere keeps the unbumped material) */
+    render_text(LIT "texture w waves\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                "bump w strength 0.05\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material b\n", 1, &mat);
+    render_text(LIT "texture w waves\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material m bump w "
+                "strength 0.05\n", 1, &shp);
+    ck_assert(same_bits(&mat, &shp));
+    /* the shape's bump wins over its material's */
+    render_text(LIT "texture w waves\ntexture r ripples\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                "bump r strength 0.2\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material b bump w "
+                "strength 0.05\n", 1, &both);
+    ck_assert(same_bits(&mat, &both));
+    /* strength 0 on the shape takes the material's bump away */
+    render_text(LIT "texture r ripples\n"
+                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                "bump r strength 0.2\n" BALL
+                "plane point 0 -1 0 normal 0 1 0 material b bump r "
+                "strength 0\n", 1, &none);
+    render_text(LIT "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                SCENE, 1, &plain);
+    ck_assert(same_bits(&none, &plain));
+    ck_assert(!same_bits(&mat, &plain));
+    image_free(&mat);
+    image_free(&shp);
+    image_free(&both);
+    image_free(&none);
+    image_free(&plain);
+    /* bad values */
+    refused(HEAD "material m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump nope\n",
+            "t.scn:3:46:", "'bump nope': no texture of that name");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m strength 2\n",
+            "t.scn:4:41:", "give 'bump NAME' with it");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump w strength nan\n",
+            "t.scn:4:", "");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump w strength\n",
+            "t.scn:4:", "");
+    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+            "sphere centre 0 0 0 radius 1 material m bump w bump w\n",
+            "t.scn:4:", "");
+    /* a program without textures names the chapter */
+    scene_t s;
+    svet_error e;
+    const char *t = HEAD "material m lambert rho 0.5\n"
+                    "sphere centre 0 0 0 radius 1 material m bump w\n";
+    ck_assert_int_eq(scenefile_parse_with(&s, t, strlen(t), "t.scn", NULL,
+                                          NULL, &e), SVET_ERR_UNSUPPORTED);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:41: 'bump' on a sphere is not "
+                                "supported by this program: ch. 10"),
+                  "%s", e.msg);
 }
 END_TEST
 
@@ -308,6 +403,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_program_without_textures_refuses_their_names);
     tcase_add_test(tc, bad_texture_files_are_refused_with_the_readers_reason);
     tcase_add_test(tc, a_zero_bump_and_a_constant_texture_render_the_same_bits);
+    tcase_add_test(tc, a_bumped_shape_shades_as_its_bumped_material);
     tcase_add_test(tc, the_grazing_checkerboard_is_nearer_the_reference_trilinear);
     suite_add_tcase(s, tc);
     return s;

@@ -1,0 +1,253 @@
+/*
+ * test_medpart.c - medpart.h, the media of ch. 11 in the scene file and
+ * `render integrator volpath`: the statement and the shape keys parse;
+ * bad input (negative or NaN coefficients, g outside (-1, 1), an unknown
+ * medium, a boundary that is not closed, a bad .vol file) fails with
+ * file:line:col; a light seen through an absorbing slab is dimmed by
+ * Beer-Lambert's exp(-sigma_a d) in each channel.
+ */
+#include "testutil.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "medium/medpart.h"
+#include "render/allparts.h"
+#include "render/render.h"
+#include "render/scenefile.h"
+
+static svet_status parse(scene_t *s, const char *text, svet_error *e)
+{
+    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
+                                scene_features_all(), e);
+}
+
+/* Parse text, expect failure with a message that starts with `where` and
+ * holds `what`. */
+static void refused(const char *text, const char *where, const char *what)
+{
+    scene_t s;
+    svet_error e;
+    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
+    ck_assert_msg(strncmp(e.msg, where, strlen(where)) == 0 &&
+                      strstr(e.msg, what),
+                  "expected '%s ... %s', got '%s'", where, what, e.msg);
+}
+
+static void accepted(const char *text)
+{
+    scene_t s;
+    svet_error e;
+    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
+    scene_free(&s);
+}
+
+#define HEAD "camera position 0 0 3 target 0 0 0 width 8 height 6\n" \
+    "material m lambert rho 0.5\n"
+
+START_TEST(media_and_boundaries_parse)
+{
+    accepted(HEAD "medium fog homogeneous sigma_a 0.1 sigma_s 0.2 0.3 0.4 "
+                  "global\n"
+                  "medium smoke homogeneous sigma_s 1 phase hg g -0.5\n"
+                  "medium air homogeneous sigma_s 0.01 phase rayleigh\n"
+                  "sphere centre 0 0 0 radius 1 material m medium smoke\n"
+                  "box min -1 -1 -1 max 1 1 1 material m medium air "
+                  "outside smoke invisible\n"
+                  "cylinder base 0 0 0 top 0 1 0 radius 1 material m "
+                  "medium smoke rotate 1 0 0 30\n"
+                  "render integrator volpath\n");
+    /* the objects point at their sides, the global medium is found */
+    scene_t s;
+    svet_error e;
+    ck_assert_int_eq(parse(&s, HEAD
+                           "medium fog homogeneous sigma_a 0.1 global\n"
+                           "medium smoke homogeneous sigma_s 1\n"
+                           "sphere centre 0 0 0 radius 1 material m "
+                           "medium smoke invisible\n"
+                           "sphere centre 0 0 5 radius 1 material m\n", &e),
+                     SVET_OK);
+    const medium_t *fog = medpart_global(&s);
+    ck_assert_ptr_nonnull(fog);
+    ck_assert(fog->sigma_a.r == REAL_C(0.1));
+    ck_assert_ptr_nonnull(s.objects[0]->inside);
+    ck_assert(s.objects[0]->inside->invisible);
+    ck_assert(s.objects[0]->inside->m->sigma_s.g == 1);
+    ck_assert_ptr_eq(s.objects[0]->outside->m, fog);
+    ck_assert_ptr_null(s.objects[1]->inside);
+    ck_assert_ptr_null(s.objects[1]->outside);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(bad_media_name_file_line_and_column)
+{
+    refused(HEAD "medium a homogeneous sigma_a -1\n", "t.scn:3:",
+            "must not be negative");
+    refused(HEAD "medium a homogeneous sigma_s 1 nan 1\n", "t.scn:3:", "");
+    refused(HEAD "medium a homogeneous sigma_s 1 phase hg g 1\n",
+            "t.scn:3:41:", "g must be in (-1, 1)");
+    refused(HEAD "medium a homogeneous sigma_s 1 phase hg g -1.5\n",
+            "t.scn:3:41:", "g must be in (-1, 1)");
+    refused(HEAD "medium a homogeneous sigma_s 1 g 0.5\n", "t.scn:3:32:",
+            "phase hg");
+    refused(HEAD "medium a fluffy\n", "t.scn:3:10:", "expects a kind");
+    refused(HEAD "medium a homogeneous sigma_s 1\nmedium a homogeneous\n",
+            "t.scn:4:8:", "already defined");
+    refused(HEAD "medium smoke homogeneous sigma_s 1\n"
+                 "sphere centre 0 0 0 radius 1 material m medium smoek\n",
+            "t.scn:4:48:", "did you mean 'smoke'");
+    refused(HEAD "sphere centre 0 0 0 radius 1 material m medium x\n",
+            "t.scn:3:48:", "unknown medium 'x'");
+    refused(HEAD "sphere centre 0 0 0 radius 1 material m invisible\n",
+            "t.scn:3:41:", "needs 'medium NAME'");
+    static const char *const open[] = {
+        "plane point 0 0 0 normal 0 1 0",
+        "disk centre 0 0 0 normal 0 1 0 radius 1",
+        "parallelogram c0 0 0 0 c1 1 0 0 c3 0 1 0",
+        "triangle p0 0 0 0 p1 1 0 0 p2 0 1 0",
+        "cylinder base 0 0 0 top 0 1 0 radius 0.5 open",
+        "cone base 0 0 0 apex 0 1 0 radius 0.5 open",
+        "cylinder base 0 0 0 top 0 1 0 radius 0.5 open rotate 1 1 0 40",
+    };
+    for (size_t i = 0; i < sizeof open / sizeof *open; i++) {
+        char text[512];
+        snprintf(text, sizeof text,
+                 HEAD "medium a homogeneous sigma_s 1\n%s material m "
+                      "medium a\n", open[i]);
+        refused(text, "t.scn:4:", "must be a closed surface");
+    }
+    refused(HEAD "medium a grid sigma_s 1\n", "t.scn:3:1:", "needs 'file'");
+    refused(HEAD "medium a grid sigma_s 1 file missing.vol\n", "t.scn:3:",
+            "missing.vol");
+    refused(HEAD "medium a homogeneous sigma_s 1 file x.vol\n",
+            "t.scn:3:32:", "takes no 'file'");
+}
+END_TEST
+
+/* Write n bytes of a .vol header declaring nx ny nz and then `values`
+ * floats of 0.5 to path. */
+static void write_vol(const char *path, int32_t nx, int32_t ny, int32_t nz,
+                      long values)
+{
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    const unsigned char magic[4] = { 'V', 'O', 'L', 3 };
+    fwrite(magic, 1, 4, f);
+    int32_t h[5] = { 1, nx, ny, nz, 1 };
+    fwrite(h, 4, 5, f);
+    float box[6] = { 0, 0, 0, 1, 1, 1 };
+    fwrite(box, 4, 6, f);
+    for (long i = 0; i < values; i++) {
+        float v = 0.5f;
+        fwrite(&v, 4, 1, f);
+    }
+    fclose(f);
+}
+
+START_TEST(bad_vol_files_are_refused)
+{
+    char dir[] = "/tmp/medpartXXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char good[256], trunc[256], huge[256], text[1024];
+    snprintf(good, sizeof good, "%s/good.vol", dir);
+    snprintf(trunc, sizeof trunc, "%s/trunc.vol", dir);
+    snprintf(huge, sizeof huge, "%s/huge.vol", dir);
+    write_vol(good, 2, 2, 2, 8);
+    write_vol(trunc, 2, 2, 2, 7);
+    write_vol(huge, 100000, 100000, 100000, 0);
+    snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\" "
+             "scale 2 min -1 -1 -1 max 1 1 1\n"
+             "box min -1 -1 -1 max 1 1 1 material m medium a invisible\n",
+             good);
+    accepted(text);
+    snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\"\n",
+             trunc);
+    refused(text, "t.scn:3:", "trunc.vol");
+    snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\"\n",
+             huge);
+    refused(text, "t.scn:3:", "huge.vol");
+    snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\" "
+             "min 0 0 0\n", good);
+    refused(text, "t.scn:3:", "both 'min' and 'max'");
+    snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\" "
+             "global\n", good);
+    refused(text, "t.scn:3:", "bound it by a shape");
+    remove(good);
+    remove(trunc);
+    remove(huge);
+    rmdir(dir);
+}
+END_TEST
+
+/* Render text at its own spp with `threads` threads into img. */
+static void render_text(const char *text, int threads, image_t *img)
+{
+    scene_t s;
+    svet_error e;
+    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
+    render_t r;
+    ck_assert_int_eq(render_init(&r, &s, &e), SVET_OK);
+    ck_assert_int_eq(render_pass(&r, s.render.spp, threads, NULL, NULL),
+                     SVET_OK);
+    ck_assert_int_eq(render_image(&r, img, &e), SVET_OK);
+    render_free(&r);
+    scene_free(&s);
+}
+
+/* A square light of radiance 1 seen along z through a slab 1 thick of
+ * purely absorbing medium (invisible boundary), with a field of view of
+ * 1 degree: every path crosses the slab within 1e-4 of straight on. */
+#define SLAB "camera position 0 0 3 target 0 0 0 fov 1 width 4 height 4\n" \
+    "render spp 1024 maxdepth 2 integrator volpath seed 3\n" \
+    "material black lambert rho 0\n" \
+    "medium ink homogeneous sigma_a 0.5 1 2\n" \
+    "parallelogram c0 -1 -1 0 c1 1 -1 0 c3 -1 1 0 material black emit 1\n" \
+    "box min -2 -2 0.5 max 2 2 1.5 material black medium ink invisible\n"
+
+START_TEST(beer_lambert_through_a_slab_per_channel)
+{
+    image_t img;
+    render_text(SLAB, 0, &img);
+    const double sig[3] = { 0.5, 1, 2 };
+    double T[3], P = 0;
+    for (int k = 0; k < 3; k++) {
+        T[k] = exp(-sig[k]);
+        P += T[k] / 3;
+    }
+    /* Each sample picks a channel, passes the slab with probability P =
+     * the channels' mean transmittance, and then carries T_c / P in
+     * channel c (0 if it was absorbed): mean T_c, variance T_c^2 (1/P -
+     * 1). The image mean of N = 16 * 1024 samples is within 4 standard
+     * errors T_c sqrt((1/P - 1) / N), about 4% of T_c; the slant of the
+     * rays adds below 1e-4. */
+    const double N = 16.0 * 1024;
+    for (int k = 0; k < 3; k++) {
+        double sum = 0;
+        for (int y = 0; y < 4; y++)
+            for (int x = 0; x < 4; x++)
+                sum += (double)image_at(&img, x, y)[k];
+        double mean = sum / 16, se = T[k] * sqrt((1 / P - 1) / N);
+        ck_assert_msg(fabs(mean - T[k]) < 4 * se,
+                      "channel %d: %g, exp(-sigma_t d) = %g (se %g)", k, mean,
+                      T[k], se);
+    }
+    image_free(&img);
+}
+END_TEST
+
+Suite *test_suite(void)
+{
+    Suite *s = suite_create("medpart");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, media_and_boundaries_parse);
+    tcase_add_test(tc, bad_media_name_file_line_and_column);
+    tcase_add_test(tc, bad_vol_files_are_refused);
+    tcase_add_test(tc, beer_lambert_through_a_slab_per_channel);
+    suite_add_tcase(s, tc);
+    return s;
+}
