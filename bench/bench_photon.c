@@ -5,8 +5,12 @@
  * balance the kd-tree on one thread and on all, its memory, and k = 50
  * nearest-photon queries per CPU-second on one thread, the query points
  * in scanline order over a wall (as a renderer's first hits come) and at
- * random. Prints a Markdown table, also written to bench/results/photon.md
- * (or the path given as argv[1]); `--quick` stops at 1e6.
+ * random. Then photon tracing in scenes/caustic.scn (photon/photon.h):
+ * photons emitted per CPU-second on one thread and per second of wall
+ * time on all, for the global and the caustic map, and Christensen's
+ * precomputation (every 4th global photon, k = 50). Prints Markdown
+ * tables, also written to bench/results/photon.md (or the path given as
+ * argv[1]); `--quick` stops at 1e6 and traces fewer photons.
  */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
@@ -16,7 +20,11 @@
 #include <omp.h>
 
 #include "core/rng.h"
+#include "photon/photon.h"
 #include "photon/photonmap.h"
+#include "render/allparts.h"
+#include "render/render.h"
+#include "render/scenefile.h"
 
 /* a point on the box's walls: face f in 0..5, (a, b) on it */
 static void wall_point(int f, real a, real b, VECTOR3 p)
@@ -134,6 +142,77 @@ int main(int argc, char **argv)
     }
     free(scan);
     free(rnd);
+
+    /* photon tracing in the caustic scene */
+    scene_t sc;
+    render_t r;
+    svet_error e;
+    if (scenefile_read_with(&sc, "scenes/caustic.scn", scene_features_all(),
+                            &e) != SVET_OK ||
+        render_init(&r, &sc, &e) != SVET_OK) {
+        fprintf(stderr, "bench_photon: %s\n", e.msg);
+        return 1;
+    }
+    const uint64_t count = quick ? 100000 : 1000000;
+    fprintf(f, "\nPhoton tracing in scenes/caustic.scn, %llu photons emitted "
+               "(the map built included): photons per CPU-second on one "
+               "thread, per wall second on %d; and the irradiance "
+               "precomputed at every 4th global photon (k = 50, max_radius "
+               "0.08, Christensen 1999), points per CPU-second on one "
+               "thread.\n\n| map | stored | photons/s, 1 thread (CPU) | "
+               "photons/s, %d threads (wall) | precomputed points/s, 1 "
+               "thread |\n|---|---:|---:|---:|---:|\n",
+            (unsigned long long)count, nthreads, nthreads);
+    photonmap_query_t q = { 50, REAL_C(0.08), PHOTONMAP_FILTER_CONE,
+                            REAL_C(1.1), REAL_C(0.25) };
+    for (int kind = 0; kind < 2; kind++) {
+        photon_kind_t pk = kind == 0 ? PHOTON_GLOBAL : PHOTON_CAUSTIC;
+        photonmap_t m, irr;
+        omp_set_num_threads(1);
+        double c0 = bench_cpu_now();
+        if (photon_trace(&r, count, pk, 0, 1, &m, &e) != SVET_OK) {
+            fprintf(stderr, "bench_photon: %s\n", e.msg);
+            return 1;
+        }
+        double t1 = bench_cpu_now() - c0;
+        size_t stored = m.n;
+        photonmap_free(&m);
+        omp_set_num_threads(nthreads);
+        double w0 = bench_now();
+        if (photon_trace(&r, count, pk, 0, nthreads, &m, &e) != SVET_OK) {
+            fprintf(stderr, "bench_photon: %s\n", e.msg);
+            return 1;
+        }
+        double tn = bench_now() - w0;
+        photonmap_free(&m);
+        char pre[64] = "-";
+        if (pk == PHOTON_GLOBAL) {
+            /* the precomputation's CPU time: the traced map's and the
+             * precomputed one's, less the tracing's alone */
+            omp_set_num_threads(1);
+            c0 = bench_cpu_now();
+            if (photon_trace_precomputed(&r, count, pk, 0, 1, 4, &q, &m, &irr,
+                                         &e) != SVET_OK) {
+                fprintf(stderr, "bench_photon: %s\n", e.msg);
+                return 1;
+            }
+            double tp = bench_cpu_now() - c0 - t1;
+            snprintf(pre, sizeof pre, "%.0f",
+                     tp > 0 ? (double)irr.n / tp : 0.0);
+            photonmap_free(&m);
+            photonmap_free(&irr);
+        }
+        fprintf(f, "| %s | %zu | %.0f | %.0f | %s |\n",
+                kind == 0 ? "global" : "caustic", stored, (double)count / t1,
+                (double)count / tn, pre);
+        printf("photon tracing, %s map: %zu stored; %.0f photons/s (1T CPU), "
+               "%.0f/s (%dT wall); precomputed %s points/s\n",
+               kind == 0 ? "global" : "caustic", stored, (double)count / t1,
+               (double)count / tn, nthreads, pre);
+        fflush(stdout);
+    }
+    render_free(&r);
+    scene_free(&sc);
     if (fclose(f) != 0 || rename(path, out) != 0) {
         perror(out);
         return 1;

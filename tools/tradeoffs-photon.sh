@@ -50,14 +50,14 @@ series global=50000 --set photonmap.global=50000
 series filter=gaussian --set photonmap.filter=gaussian
 series precompute=4 --set photonmap.precompute=4
 series precompute=16 --set photonmap.precompute=16
-series precompute=4,gather=4 --set photonmap.precompute=4 --set photonmap.gather=4
-series precompute=4,gather=64 --set photonmap.precompute=4 --set photonmap.gather=64
+series precompute=4+gather=4 --set photonmap.precompute=4 --set photonmap.gather=4
+series precompute=4+gather=64 --set photonmap.precompute=4 --set photonmap.gather=64
 series preview --set photonmap.gather=0 --set photonmap.max_radius=0.2
 series ppm --set integrator=ppm --set photonmap.global=50000 \
     --set photonmap.radius=0.05
 series ppm-alpha=0.5 --set integrator=ppm --set photonmap.global=50000 \
     --set photonmap.radius=0.05 --set photonmap.alpha=0.5
-files="path photon gather=4 gather=64 k=20 k=200 max_radius=0.03 caustic=100000 caustic=1600000 global=50000 filter=gaussian precompute=4 precompute=16 precompute=4,gather=4 precompute=4,gather=64 preview ppm ppm-alpha=0.5"
+files="path photon gather=4 gather=64 k=20 k=200 max_radius=0.03 caustic=100000 caustic=1600000 global=50000 filter=gaussian precompute=4 precompute=16 precompute=4+gather=4 precompute=4+gather=64 preview ppm ppm-alpha=0.5"
 report=$(cd "$out" && "$OLDPWD/$svet" converge --report $(for f in $files; do printf '%s.csv ' "$f"; done))
 # Fresnel: the path tracer's image with the scene's exact reflectance
 # against the same with Schlick's

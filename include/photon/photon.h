@@ -7,7 +7,9 @@
  * and two rendering methods: `render integrator photon` (Jensen's two
  * passes with final gathering) and `render integrator ppm` (Knaus &
  * Zwicker, "Progressive Photon Mapping: A Probabilistic Approach", ACM TOG
- * 30(3), 2011: a new map for every sample index, its radius shrinking).
+ * 30(3), 2011: a new map for every sample index, its radius shrinking),
+ * with Christensen's precomputed irradiance ("Faster Photon Map Global
+ * Illumination", JGT 4(3), 1999) as an option of the final gather.
  * Tests: tests/photon/test_photon.c
  */
 #ifndef SVET_PHOTON_H

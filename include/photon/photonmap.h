@@ -5,7 +5,8 @@
  * left-balanced kd-tree kept as a heap without pointers (Jensen 2001,
  * app. B), the k nearest photons within a radius by a max-heap, and the
  * density estimate of the irradiance with the cone and Gaussian filters
- * (Jensen 2001, sec. 7.2).
+ * (Jensen 2001, sec. 7.2), and the irradiance precomputed at a subset of
+ * the photons (Christensen 1999).
  * Tests: tests/photon/test_photonmap.c; benchmark: bench/bench_photon.c
  */
 #ifndef SVET_PHOTONMAP_H

@@ -4,7 +4,8 @@
  * ch. 5), the radiance estimate (Jensen 1996, eq. 9), and the methods
  * `photon` (direct light by ch. 5's light sampling, caustics from the
  * caustic map, indirect diffuse light by final gathering from the global
- * map; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011).
+ * map, optionally from irradiance precomputed at a subset of its photons,
+ * Christensen 1999; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011).
  * Tests: tests/photon/test_photon.c
  */
 #include "photon/photon.h"
@@ -167,11 +168,17 @@ static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
  * pmf: a point light emits isotropically, Phi = 4 pi I; an area light
  * from a point uniform by area, cosine-weighted about its normal (on a
  * side chosen at random when it emits on both), Phi = sides pi L_e A
- * (Jensen 2001, sec. 5.1.1). Returns false for an environment (which
- * photon tracing does not emit: scenes/README.md) or a degenerate
- * sample. */
-static bool emit(const light_t *l, real pmf, uint64_t count, pcg32_t *g,
-                 ray_t *ray, RADIANCE *power, const COBJECT **from)
+ * (Jensen 2001, sec. 5.1.1); the environment along a direction uniform
+ * over the sphere from a point uniform on the disc of the scene's
+ * bounding sphere (centre c, radius R) facing it, the disc's plane R
+ * behind c: every ray that can reach the scene crosses that disc, and
+ * Phi = pi R^2 times the radiance's integral over the sphere, 4 pi L
+ * (pbrt-v3 sec. 16.1.2, InfiniteAreaLight::Sample_Le, whose weight is
+ * L / (pdf_pos pdf_dir); Jensen 2001, sec. 5.1.1). Returns false for a
+ * degenerate sample. */
+static bool emit(const lightset_t *ls, const light_t *l, real pmf,
+                 uint64_t count, pcg32_t *g, ray_t *ray, RADIANCE *power,
+                 const COBJECT **from)
 {
     real u[2] = { pcg32_real(g), pcg32_real(g) };
     real us = pcg32_real(g), ud[2] = { pcg32_real(g), pcg32_real(g) };
@@ -183,6 +190,20 @@ static bool emit(const light_t *l, real pmf, uint64_t count, pcg32_t *g,
         vec_copy(ray->o, l->position);
         vec_copy(ray->d, d);
         *power = rad_scale(l->intensity, 4 * REAL_PI * share);
+        return true;
+    }
+    if (l->kind == LIGHT_ENVIRONMENT) {
+        VECTOR3 d, t1, t2, disc;
+        real R = ls->radius;
+        sample_uniform_sphere(d, u);
+        frame_from_normal(t1, t2, d);
+        real rr = R * sqrt(ud[0]), phi = 2 * REAL_PI * ud[1];
+        vec_set(disc, rr * cos(phi), rr * sin(phi), 0);
+        frame_to_world(ray->o, disc, t1, t2, d);
+        for (int a = 0; a < 3; a++)
+            ray->o[a] += ls->centre[a] - R * d[a];
+        vec_copy(ray->d, d);
+        *power = rad_scale(l->radiance, 4 * REAL_PI * REAL_PI * R * R * share);
         return true;
     }
     if (l->kind != LIGHT_AREA)
@@ -232,7 +253,8 @@ static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
     ray_t ray;
     RADIANCE power;
     const COBJECT *skip[2] = { NULL, NULL };
-    if (!l || !(pmf > 0) || !emit(l, pmf, count, &g, &ray, &power, &skip[0]))
+    if (!l || !(pmf > 0) || !emit(&r->lights, l, pmf, count, &g, &ray, &power,
+                                       &skip[0]))
         return;
     bool diffuse_seen = false;
     const int max_depth = r->scene->render.max_depth;

@@ -7,7 +7,9 @@
  */
 #include "photon/photonmap.h"
 
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -434,8 +436,12 @@ svet_status photonmap_precompute(const photonmap_t *m,
     if (!e)
         return svet_error_set(err, SVET_ERR_NOMEM, "precomputing the "
                               "irradiance at %zu points: out of memory", n);
+#ifdef _OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
+#else
+    (void)threads;
+#endif
     for (long long i = 0; i < (long long)n; i++) {
         VECTOR3 x = { pos[i][0], pos[i][1], pos[i][2] };
         VECTOR3 nv = { nrm[i][0], nrm[i][1], nrm[i][2] };

@@ -1,10 +1,14 @@
 /*
  * test_photon.c - the photon map method of ch. 8 (photon/photon.h): the
- * power balance of a closed box against Phi / (A (1 - rho)); the density
+ * power balance of a closed box against Phi / (A (1 - rho)); photons from
+ * a uniform environment against pi L on an open square; the density
  * estimate on uniform photons against its exact mean k/(k-1) and standard
- * deviation; maps and images the same bits for 1 and 2 threads and, for
- * ppm, for any split into passes; photon and ppm renders of a caustic
- * scene and the Cornell box against the path tracer's converged image;
+ * deviation; Christensen's precomputed irradiance on uniform photons
+ * against its exact mean k/(k-2) and the plain estimate, and in the box
+ * against the plain estimate at each point; maps and images the same
+ * bits for 1 and 2 threads and, for ppm, for any split into passes;
+ * photon and ppm renders of a caustic scene and the Cornell box against
+ * the path tracer's converged image;
  * ppm's error falling as samples are added; the photonmap statement's
  * messages.
  */
@@ -135,6 +139,65 @@ START_TEST(maps_are_the_same_for_any_thread_count)
               memcmp(a.ph + 1, b.ph + 1, a.n * sizeof(photon_t)) != 0);
     photonmap_free(&a);
     photonmap_free(&b);
+    render_free(&r);
+    scene_free(&s);
+}
+END_TEST
+
+/* --- the environment ------------------------------------------------------- */
+
+START_TEST(environment_photons_give_pi_L_on_an_open_plane)
+{
+    /* A grey square of side 2 under a uniform environment of radiance
+     * L = 1.5 (green): the irradiance on either side is pi L, so the power
+     * of the photons stored on a side, over the area 4, is pi L in
+     * expectation. The square cannot see itself, so every stored photon
+     * came straight from the environment. Each carries the same power
+     * pi R^2 4 pi L / N and lands on the top with chance p = 4 E[|d_y|;
+     * d_y < 0] / (pi R^2) = 1 / (pi R^2) (projected area over the disc of
+     * the bounding sphere, radius R = sqrt 2 here), so the sum is binomial
+     * with relative standard deviation sqrt((1 - p) / (N p)); the
+     * tolerance is 4 of those (0.7 % each for N = 100000). */
+    static const char text[] =
+        "camera position 0 3 0 target 0 0 0 up 0 0 -1 width 4 height 4\n"
+        "material grey lambert rho 0.5\n"
+        "parallelogram c0 -1 0 -1 c1 1 0 -1 c3 -1 0 1 material grey\n"
+        "environment radiance 0.5 1.5 1\n";
+    scene_t s;
+    render_t r;
+    svet_error e;
+    parse_ok(&s, text);
+    ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
+    const uint64_t n = 100000;
+    photonmap_t m;
+    ck_assert_int_eq(photon_trace(&r, n, PHOTON_GLOBAL, 0, 0, &m, &e),
+                     SVET_OK);
+    double top = 0, below = 0;
+    size_t ntop = 0, nbelow = 0;
+    for (size_t i = 1; i <= m.n; i++) {
+        VECTOR3 d;
+        photonmap_direction(&m.ph[i], d);
+        ck_assert(fabs((double)m.ph[i].pos[1]) < 1e-5);
+        if (d[Y] < 0) {
+            top += (double)m.ph[i].power[1];
+            ntop++;
+        } else {
+            below += (double)m.ph[i].power[1];
+            nbelow++;
+        }
+    }
+    const double pi = 3.14159265358979323846;
+    const double R = (double)r.lights.radius, p = 1 / (pi * R * R);
+    const double exact = pi * 1.5;
+    const double tol = 4 * sqrt((1 - p) / ((double)n * p));
+    ck_assert_msg(fabs(top / 4 / exact - 1) < tol, "irradiance from above "
+                  "%g, exact pi L = %g (tolerance %g relative, %zu photons)",
+                  top / 4, exact, tol, ntop);
+    /* the bottom sees the same environment */
+    ck_assert_msg(fabs(below / 4 / exact - 1) < tol, "irradiance from below "
+                  "%g, exact pi L = %g (tolerance %g relative, %zu photons)",
+                  below / 4, exact, tol, nbelow);
+    photonmap_free(&m);
     render_free(&r);
     scene_free(&s);
 }
@@ -541,6 +604,7 @@ START_TEST(photonmap_statement_messages)
         refused("photonmap caustic 2000000000", "GB of memory");
     refused("photonmap filter box", "filter");
     refused("photonmap gathr 4", "did you mean 'gather'");
+    refused("photonmap precompute -1", "precompute");
     scene_t s;
     parse_ok(&s, box_scene);
     svet_error e;
@@ -552,6 +616,10 @@ START_TEST(photonmap_statement_messages)
     ck_assert_int_eq(set.k, 20);
     ck_assert_int_eq(set.gather, 0);
     ck_assert_uint_eq(set.global, 100000);
+    ck_assert_int_eq(scenefile_override(&s, "photonmap.precompute=8", &e),
+                     SVET_OK);
+    photon_settings_of(&s, &set);
+    ck_assert_int_eq(set.precompute, 8);
     ck_assert_int_ne(scenefile_override(&s, "photonmap.k=0", &e), SVET_OK);
     scene_free(&s);
 }
@@ -565,6 +633,7 @@ Suite *test_suite(void)
     tcase_add_test(t, photonmap_statement_messages);
     tcase_add_test(t, power_balance_in_a_closed_box);
     tcase_add_test(t, maps_are_the_same_for_any_thread_count);
+    tcase_add_test(t, environment_photons_give_pi_L_on_an_open_plane);
     tcase_add_test(t, density_estimate_on_uniform_photons_has_its_exact_mean);
     tcase_add_test(t,
                    precomputed_irradiance_on_uniform_photons_has_its_exact_mean);
