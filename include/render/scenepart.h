@@ -150,6 +150,12 @@ void *scene_part_data(const scene_t *s, const char *name);
 svet_status scene_set_part_data(scene_t *s, const char *name, void *data,
                                 void (*free_fn)(void *), svet_error *err);
 
+/* Part `name`'s data in s; when it has none yet, a new zeroed block of
+ * size bytes kept as its data (freed with free_fn) and *fresh set, so the
+ * part can give it its defaults. NULL when out of memory. */
+void *scene_part_data_new(scene_t *s, const char *name, size_t size,
+                          void (*free_fn)(void *), bool *fresh);
+
 /* --- a part's statements and rendering methods ----------------------------- */
 
 /* A statement a part adds, e.g. { "texture", texture_statement }. */

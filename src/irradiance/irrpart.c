@@ -76,18 +76,13 @@ static svet_status irr_statement(scenefile_ctx *c)
                               "'m' x 'n' = %ld: at most 65536 gather rays",
                               v[I_M].i * v[I_N].i);
     scene_t *s = scenefile_scene(c);
-    irr_settings_t *p = scene_part_data(s, "irradiance");
-    if (!p) {
-        svet_error e;
-        p = malloc(sizeof *p);
-        if (!p)
-            return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
-                                  "out of memory");
+    bool fresh;
+    irr_settings_t *p = scene_part_data_new(s, "irradiance", sizeof *p, free, &fresh);
+    if (!p)
+        return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
+                              "out of memory");
+    if (fresh)
         irr_settings_default(p);
-        if (scene_set_part_data(s, "irradiance", p, free, &e))
-            return scenefile_fail(c, scenefile_stmt_col(c), e.status, "%s",
-                                  e.msg);
-    }
     /* the line updates the settings: `--set irradiance.a=0.1` reruns it;
      * the range of R is checked against what the line leaves */
     real min_r = v[I_MINR].set ? v[I_MINR].v[0] : p->min_r;

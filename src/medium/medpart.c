@@ -34,15 +34,11 @@ static void data_free(void *p)
 
 static medpart_data_t *data_of(scenefile_ctx *c)
 {
-    scene_t *s = scenefile_scene(c);
-    medpart_data_t *d = scene_part_data(s, "medium");
-    if (d)
-        return d;
-    d = calloc(1, sizeof *d);
-    svet_error e;
-    if (!d || scene_set_part_data(s, "medium", d, data_free, &e))
-        return NULL;
-    d->global = -1;
+    bool fresh;
+    medpart_data_t *d = scene_part_data_new(scenefile_scene(c), "medium",
+                                            sizeof *d, data_free, &fresh);
+    if (d && fresh)
+        d->global = -1;
     return d;
 }
 

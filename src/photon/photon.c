@@ -94,18 +94,13 @@ static svet_status photon_statement(scenefile_ctx *c)
                               (double)v[P_ALPHA].v[0]);
     /* the line updates the settings: `--set photonmap.k=20` reruns it */
     scene_t *s = scenefile_scene(c);
-    photon_settings_t *p = scene_part_data(s, "photon");
-    if (!p) {
-        svet_error e;
-        p = malloc(sizeof *p);
-        if (!p)
-            return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
-                                  "out of memory");
+    bool fresh;
+    photon_settings_t *p = scene_part_data_new(s, "photon", sizeof *p, free, &fresh);
+    if (!p)
+        return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
+                              "out of memory");
+    if (fresh)
         photon_settings_default(p);
-        if (scene_set_part_data(s, "photon", p, free, &e))
-            return scenefile_fail(c, scenefile_stmt_col(c), e.status, "%s",
-                                  e.msg);
-    }
     if (v[P_GLOBAL].set)
         p->global = v[P_GLOBAL].u;
     if (v[P_CAUSTIC].set)

@@ -120,6 +120,24 @@ svet_status scene_set_part_data(scene_t *s, const char *name, void *data,
     return SVET_OK;
 }
 
+void *scene_part_data_new(scene_t *s, const char *name, size_t size,
+                          void (*free_fn)(void *), bool *fresh)
+{
+    void *d = scene_part_data(s, name);
+    *fresh = d == NULL;
+    if (d)
+        return d;
+    svet_error e;
+    if (!(d = calloc(1, size)))
+        return NULL;
+    if (scene_set_part_data(s, name, d, free_fn, &e) != SVET_OK) {
+        if (!free_fn) /* else scene_set_part_data freed it */
+            free(d);
+        return NULL;
+    }
+    return d;
+}
+
 const render_method_t *scene_find_method(const scene_features_t *features,
                                          const char *name)
 {

@@ -74,15 +74,9 @@ static void data_free(void *p)
 
 static texpart_data_t *data_of(scenefile_ctx *c)
 {
-    scene_t *s = scenefile_scene(c);
-    texpart_data_t *d = scene_part_data(s, "texture");
-    if (d)
-        return d;
-    d = calloc(1, sizeof *d);
-    svet_error e;
-    if (!d || scene_set_part_data(s, "texture", d, data_free, &e))
-        return NULL;
-    return d;
+    bool fresh;
+    return scene_part_data_new(scenefile_scene(c), "texture",
+                               sizeof(texpart_data_t), data_free, &fresh);
 }
 
 /* --- `texture NAME KIND KEYS` -------------------------------------------- */
