@@ -448,6 +448,21 @@ ab-render: $(BUILD)/svet
 	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) "$(THREADS)" \
 	    "$(PAIRS)" "$(SPP)"
 
+# `make bench-scale [SCALE_SPP=4096] [THREADS=2]`: the Cornell box split
+# into 2, 4 and 8 parts by samples and merged, against one render
+# (tools/bench-scale.sh; bench/results/scale.md).
+.PHONY: bench-scale
+bench-scale: $(BUILD)/svet
+	sh tools/bench-scale.sh $(BUILD)/svet $(or $(SCALE_SPP),4096) \
+	    $(or $(THREADS),2)
+
+# `make slurm-check`: a one-node Slurm on this machine runs
+# tools/slurm/*.sbatch and the merge is compared with a single render
+# (tools/slurm-check.sh; needs slurm-wlm and munge; not in CI).
+.PHONY: slurm-check
+slurm-check: $(BUILD)/svet
+	sh tools/slurm-check.sh $(BUILD)/svet
+
 # `make ab-plain [THREADS=1,2] [PAIRS=6] [SPP=16]`: the same, the default
 # build against the plain one (SIMD=off, build/REAL-plain/), same bits.
 ab-plain: build/$(REAL)/svet

@@ -813,9 +813,9 @@ static int render_bench(bool quick, const char *only)
         render_run_t *u1 = &u[0], *u2 = &u[1];
         size_t n = (size_t)g_cam * (size_t)g_cam;
         bool same = pk.packets &&
-                    memcmp(one.acc.sum, pk.acc.sum, 3 * n * sizeof(double)) == 0 &&
+                    memcmp(one.acc.sum, pk.acc.sum, 3 * n * sizeof(image_fixed_t)) == 0 &&
                     memcmp(one.acc.count, pk.acc.count, n * sizeof(uint64_t)) == 0 &&
-                    memcmp(one.sum2, pk.sum2, 3 * n * sizeof(double)) == 0 &&
+                    memcmp(one.sum2, pk.sum2, 3 * n * sizeof(image_fixed_t)) == 0 &&
                     one.stats.rays == pk.stats.rays &&
                     one.stats.paths == pk.stats.paths;
         render_row(modes[m].name, "one at a time", u1, "");

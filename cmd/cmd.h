@@ -64,14 +64,27 @@ svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
                               const cmd_scene_opts_t *so,
                               unsigned long long *id, svet_error *err);
 
-/* A part file read back (FILE.exr.part): its header, tone map, and 8
- * doubles per pixel of the crop (sums, sums of squares, counts). */
+/* One pixel of a part file: its exact sums (image.h), counts added and
+ * dropped. */
+typedef struct {
+    image_fixed_t sum[3], sum2[3];
+    uint64_t count, nonfinite;
+} cmd_part_pixel_t;
+
+/* A part file read back (FILE.exr.part): its header, tone map, and the
+ * pixels of the crop, row by row. */
 typedef struct {
     cmd_part_t p;
     int tm_op, tm_curve;
     double tm[5];
-    double *v;
+    cmd_part_pixel_t *v;
 } cmd_part_file_t;
+
+/* An exact sum in a part file: a signed hexadecimal integer, no prefix
+ * ("-" and at most 48 digits). cmd_fixed_write prints one; cmd_fixed_parse
+ * reads the word s, false if it is not one. */
+void cmd_fixed_write(FILE *f, const image_fixed_t *v);
+bool cmd_fixed_parse(const char *s, image_fixed_t *v);
 
 /* Read exr's part file into q (q->v malloc'ed: free it). Returns
  * SVET_EXIT_OK, or SVET_EXIT_INPUT after printing why. */

@@ -2,9 +2,9 @@
  * cmd_merge.c - `svet merge PART.exr ... -o OUT.exr`: the parts of a render
  * split by sample ranges (--samples) or by pixels (--crop) made into the
  * image one render makes. Each part's FILE.exr.part holds its per-pixel
- * double sums, sums of squares and counts; a pixel's parts are added in the
- * order of their sample ranges (image.h says when that sum is the one-pass
- * sum bit for bit: always for a pixel rendered by a single part).
+ * sums, sums of squares and counts, the sums exact integers (image.h:
+ * image_fixed_t), so their total is the one-pass sum bit for bit in any
+ * order.
  * Tests: tests/cmd/test_merge.sh
  */
 #define _POSIX_C_SOURCE 200809L
@@ -52,10 +52,61 @@ void cmd_merge_help(FILE *f)
 "\n"
 "Merge the parts of a split render (svet render --samples FROM:TO or\n"
 "--crop X0:X1,Y0:Y1, each with its PART.exr.part) into OUT.exr, its PNG\n"
-"and its variance. Refuses parts of different scenes, seeds, settings or\n"
-"sizes and overlapping sample ranges, and says which samples or pixels\n"
-"are missing. Exit 1: bad command line or parts that do not fit together;\n"
-"2: a part is missing or malformed; 3: an output could not be written.\n");
+"and its variance, with OUT.exr.part (the samples FROM:TO of every pixel,\n"
+"so that merged images merge again). Refuses parts of different scenes,\n"
+"seeds, settings or sizes and overlapping sample ranges, and says which\n"
+"samples or pixels are missing. Exit 1: bad command line or parts that do\n"
+"not fit together; 2: a part is missing or malformed; 3: an output could\n"
+"not be written.\n");
+}
+
+void cmd_fixed_write(FILE *f, const image_fixed_t *v)
+{
+    image_fixed_t t = *v;
+    if (t.w[2] >> 63) { /* negative: print "-" and the magnitude, ~t + 1 */
+        for (int k = 0; k < 3; k++)
+            t.w[k] = ~t.w[k];
+        const image_fixed_t one = { { 1, 0, 0 } };
+        image_fixed_add(&t, &one);
+        putc('-', f);
+    }
+    if (t.w[2])
+        fprintf(f, "%llx%016llx%016llx", (unsigned long long)t.w[2],
+                (unsigned long long)t.w[1], (unsigned long long)t.w[0]);
+    else if (t.w[1])
+        fprintf(f, "%llx%016llx", (unsigned long long)t.w[1],
+                (unsigned long long)t.w[0]);
+    else
+        fprintf(f, "%llx", (unsigned long long)t.w[0]);
+}
+
+bool cmd_fixed_parse(const char *s, image_fixed_t *v)
+{
+    const bool negative = *s == '-';
+    s += negative;
+    size_t n = strlen(s);
+    if (n == 0 || n > 48)
+        return false;
+    image_fixed_t t = { { 0, 0, 0 } };
+    for (; *s; s++) {
+        int d = *s >= '0' && *s <= '9' ? *s - '0'
+              : *s >= 'a' && *s <= 'f' ? *s - 'a' + 10 : -1;
+        if (d < 0)
+            return false;
+        t.w[2] = t.w[2] << 4 | t.w[1] >> 60;
+        t.w[1] = t.w[1] << 4 | t.w[0] >> 60;
+        t.w[0] = t.w[0] << 4 | (uint64_t)d;
+    }
+    if (t.w[2] >> 63)
+        return false; /* beyond the 191 bits of magnitude */
+    if (negative) {
+        for (int k = 0; k < 3; k++)
+            t.w[k] = ~t.w[k];
+        const image_fixed_t one = { { 1, 0, 0 } };
+        image_fixed_add(&t, &one);
+    }
+    *v = t;
+    return true;
 }
 
 int cmd_part_read(const char *exr, cmd_part_file_t *q)
@@ -75,7 +126,7 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
                &ver, &p->identity, &p->width, &p->height, &p->from, &p->to,
                &p->x0, &p->x1, &p->y0, &p->y1, &q->tm_op, &q->tm[0],
                &q->tm[1], &q->tm[2], &q->tm[3], &q->tm_curve,
-               &q->tm[4]) != 17 || ver != 1 || p->width <= 0 ||
+               &q->tm[4]) != 17 || ver != 2 || p->width <= 0 ||
         p->height <= 0 || p->x0 < 0 || p->x1 > p->width || p->x0 >= p->x1 ||
         p->y0 < 0 || p->y1 > p->height || p->y0 >= p->y1 || p->from < 0 ||
         p->to <= p->from) {
@@ -84,7 +135,7 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
         return SVET_EXIT_INPUT;
     }
     size_t n = (size_t)(p->x1 - p->x0) * (size_t)(p->y1 - p->y0);
-    q->v = malloc(8 * n * sizeof *q->v);
+    q->v = malloc(n * sizeof *q->v);
     if (!q->v) {
         fprintf(stderr, "svet merge: %s: out of memory\n", path);
         fclose(f);
@@ -92,24 +143,29 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
     }
     for (size_t i = 0; i < n; i++) {
         unsigned long long c, nf;
-        double *v = q->v + 8 * i;
-        if (fscanf(f, "%la %la %la %la %la %la %llu %llu", &v[0], &v[1],
-                   &v[2], &v[3], &v[4], &v[5], &c, &nf) != 8) {
+        cmd_part_pixel_t *v = q->v + i;
+        char w[6][64];
+        if (fscanf(f, "%63s %63s %63s %63s %63s %63s %llu %llu", w[0], w[1],
+                   w[2], w[3], w[4], w[5], &c, &nf) != 8) {
             fprintf(stderr, "svet merge: %s: truncated at pixel %zu\n", path,
                     i);
             fclose(f);
             return SVET_EXIT_INPUT;
         }
-        /* a render drops non-finite samples (it counts them in nf), so
-         * its sums are finite: anything else is a damaged file */
         for (int k = 0; k < 6; k++)
-            if (!isfinite(v[k])) {
-                fprintf(stderr, "svet merge: %s: pixel %zu: a sum that is "
-                                "not finite\n", path, i);
+            if (!cmd_fixed_parse(w[k], k < 3 ? &v->sum[k] : &v->sum2[k - 3])) {
+                fprintf(stderr, "svet merge: %s: pixel %zu: '%s' is not a "
+                                "sum (a hexadecimal integer)\n", path, i, w[k]);
                 fclose(f);
                 return SVET_EXIT_INPUT;
             }
-        v[6] = (double)c, v[7] = (double)nf;
+        if (c > IMAGE_MAX_COUNT || nf > IMAGE_MAX_COUNT) {
+            fprintf(stderr, "svet merge: %s: pixel %zu: more than 2^46 "
+                            "samples\n", path, i);
+            fclose(f);
+            return SVET_EXIT_INPUT;
+        }
+        v->count = c, v->nonfinite = nf;
     }
     fclose(f);
     return SVET_EXIT_OK;
@@ -173,7 +229,7 @@ int cmd_merge(int argc, char **argv)
                          "usage: svet merge PART.exr ... -o OUT.exr");
     cmd_part_file_t *q = calloc((size_t)nin, sizeof *q);
     cmd_part_file_t **order = calloc((size_t)nin, sizeof *order);
-    char *png_alloc = NULL;
+    char *png_alloc = NULL, *part_path = NULL;
     render_t r;
     memset(&r, 0, sizeof r);
     if (!q || !order) {
@@ -208,11 +264,14 @@ int cmd_merge(int argc, char **argv)
         goto done;
     }
     r.camera.width = W, r.camera.height = H;
+    /* the samples base:spp of every pixel; base is 0 but for a merge of
+     * parts that are themselves later sample ranges */
+    const long base = order[0]->p.from;
     long spp = -1;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             size_t i = (size_t)y * (size_t)W + (size_t)x;
-            long next = 0;
+            long next = base;
             for (int k = 0; k < nin; k++) {
                 const cmd_part_t *p = &order[k]->p;
                 if (x < p->x0 || x >= p->x1 || y < p->y0 || y >= p->y1)
@@ -231,17 +290,22 @@ int cmd_merge(int argc, char **argv)
                     goto done;
                 }
                 next = p->to;
-                const double *v = order[k]->v +
-                    8 * ((size_t)(y - p->y0) * (size_t)(p->x1 - p->x0) +
-                         (size_t)(x - p->x0));
+                const cmd_part_pixel_t *v = order[k]->v +
+                    ((size_t)(y - p->y0) * (size_t)(p->x1 - p->x0) +
+                     (size_t)(x - p->x0));
                 for (int c = 0; c < 3; c++) {
-                    r.acc.sum[3 * i + c] += v[c];
-                    r.sum2[3 * i + c] += v[3 + c];
+                    image_fixed_add(&r.acc.sum[3 * i + c], &v->sum[c]);
+                    image_fixed_add(&r.sum2[3 * i + c], &v->sum2[c]);
                 }
-                r.acc.count[i] += (uint64_t)v[6];
-                r.acc.nonfinite[i] += (uint64_t)v[7];
+                r.acc.count[i] += v->count;
+                r.acc.nonfinite[i] += v->nonfinite;
+                if (r.acc.count[i] > IMAGE_MAX_COUNT) {
+                    rc = cmd_error("merge", SVET_EXIT_USAGE, "pixel (%d, %d): "
+                                   "more than 2^46 samples", x, y);
+                    goto done;
+                }
             }
-            if (next == 0) {
+            if (next == base) {
                 rc = cmd_error("merge", SVET_EXIT_USAGE, "pixel (%d, %d) is "
                                "in no part", x, y);
                 goto done;
@@ -268,7 +332,19 @@ int cmd_merge(int argc, char **argv)
         rc = SVET_EXIT_OUTPUT;
         goto done;
     }
-    outputs_t out = { exr, png, var, false, NULL };
+    /* the merged sums as a part file of samples base:spp of every pixel, so
+     * that merged images merge again (a merge of merges) */
+    cmd_part_t whole = q[0].p;
+    whole.from = base, whole.to = spp;
+    whole.x0 = 0, whole.x1 = W, whole.y0 = 0, whole.y1 = H;
+    if (!(part_path = malloc(strlen(exr) + 6))) {
+        rc = SVET_EXIT_OUTPUT;
+        goto done;
+    }
+    sprintf(part_path, "%s.part", exr);
+    whole.path = part_path;
+    r.spp_done = spp;
+    outputs_t out = { exr, png, var, false, &whole };
     if (cmd_render_write(&r, &s, &out, &err) != SVET_OK) {
         fprintf(stderr, "svet merge: %s\n", err.msg);
         rc = SVET_EXIT_OUTPUT;
@@ -279,6 +355,7 @@ done:
     free(q);
     free(order);
     free(png_alloc);
+    free(part_path);
     image_accum_free(&r.acc);
     free(r.sum2);
     return rc;

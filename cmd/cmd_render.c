@@ -151,13 +151,14 @@ static void ensure_dir(const char *path)
  * temporary file before any replaces its target, so an interrupted or
  * failed write leaves the previous checkpoint's files, all of them. */
 /* The part file beside a part's EXR (cmd.h: cmd_part_t): the exact
- * per-pixel sums, sums of squares and counts of its crop, as hexadecimal
- * floats, so that svet merge adds the same doubles. */
+ * per-pixel sums, sums of squares and counts of its crop, the sums as
+ * the hexadecimal integers of image.h's fixed point, so that svet merge
+ * adds the same integers. */
 static void write_part(FILE *f, const render_t *r, const scene_t *s,
                        const cmd_part_t *p)
 {
     const scene_tonemap_t *t = &s->render.tonemap;
-    fprintf(f, "svet-part 1\nidentity %016llx\nsize %d %d\nsamples %ld %ld\n"
+    fprintf(f, "svet-part 2\nidentity %016llx\nsize %d %d\nsamples %ld %ld\n"
                "crop %d %d %d %d\ntonemap %d %a %a %a %a %d %a\n",
             (unsigned long long)p->identity, p->width, p->height, p->from,
             r->spp_done, p->x0, p->x1, p->y0, p->y1, (int)t->op,
@@ -166,9 +167,15 @@ static void write_part(FILE *f, const render_t *r, const scene_t *s,
     for (int y = p->y0; y < p->y1; y++)
         for (int x = p->x0; x < p->x1; x++) {
             size_t i = (size_t)y * (size_t)p->width + (size_t)x;
-            const double *a = r->acc.sum + 3 * i, *q = r->sum2 + 3 * i;
-            fprintf(f, "%a %a %a %a %a %a %llu %llu\n", a[0], a[1], a[2],
-                    q[0], q[1], q[2], (unsigned long long)r->acc.count[i],
+            for (int c = 0; c < 3; c++) {
+                cmd_fixed_write(f, &r->acc.sum[3 * i + (size_t)c]);
+                putc(' ', f);
+            }
+            for (int c = 0; c < 3; c++) {
+                cmd_fixed_write(f, &r->sum2[3 * i + (size_t)c]);
+                putc(' ', f);
+            }
+            fprintf(f, "%llu %llu\n", (unsigned long long)r->acc.count[i],
                     (unsigned long long)r->acc.nonfinite[i]);
         }
 }
@@ -442,12 +449,12 @@ int cmd_render(int argc, char **argv)
             for (int y = part.y0; y < part.y1; y++)
                 for (int x = part.x0; x < part.x1; x++) {
                     size_t i = (size_t)y * (size_t)part.width + (size_t)x;
-                    const double *v = q.v + 8 * ((size_t)(y - part.y0) *
+                    const cmd_part_pixel_t *v = q.v + ((size_t)(y - part.y0) *
                         (size_t)(part.x1 - part.x0) + (size_t)(x - part.x0));
-                    memcpy(r.acc.sum + 3 * i, v, 3 * sizeof *v);
-                    memcpy(r.sum2 + 3 * i, v + 3, 3 * sizeof *v);
-                    r.acc.count[i] = (uint64_t)v[6];
-                    r.acc.nonfinite[i] = (uint64_t)v[7];
+                    memcpy(r.acc.sum + 3 * i, v->sum, sizeof v->sum);
+                    memcpy(r.sum2 + 3 * i, v->sum2, sizeof v->sum2);
+                    r.acc.count[i] = v->count;
+                    r.acc.nonfinite[i] = v->nonfinite;
                 }
         free(q.v);
         if (rc != SVET_EXIT_OK)

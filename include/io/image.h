@@ -9,8 +9,11 @@
 #ifndef SVET_IMAGE_H
 #define SVET_IMAGE_H
 
+#include <math.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 #include "core/error.h"
 #include "materials/radiance.h"
 
@@ -122,34 +125,109 @@ static inline unsigned image_quantize(float v, unsigned maxval)
 
 /* --- accumulation -------------------------------------------------------- */
 
-/* The running sums of a render. Each sample adds its radiance to `sum` (in
- * double) and 1 to `count`; the image is sum / count (image_accum_resolve).
- * A sample with a NaN or infinite channel is not added: it goes to
- * `nonfinite` only, so one bad path cannot blacken or whiten a pixel for
- * ever, and the count says it happened (a correct renderer keeps it at 0).
+/* An exact sum: a signed 192-bit integer (two's complement, w[0] the low
+ * 64 bits) counting units of 2^-q for a fixed q. Integer addition is
+ * associative, so a sum of samples has the same bits in every order and
+ * grouping: that is what makes a render split over sample ranges or
+ * machines merge to the single render's bits by construction. This is the
+ * "exact accumulator over a bounded exponent window" of reproducible
+ * summation (Demmel & Nguyen, "Parallel Reproducible Summation", IEEE TC
+ * 2015, section II, whose binned sums need the window only where the
+ * values are): a renderer knows its window in advance, so one fixed-point
+ * integer does it. */
+typedef struct {
+    uint64_t w[3];
+} image_fixed_t;
+
+/* The windows of the accumulation. A sample whose channels are all below
+ * IMAGE_SAMPLE_MAX = 2^40 in magnitude is added; its value goes into the
+ * sum in units of 2^-IMAGE_SUM_Q (every float of magnitude 2^-72 or more,
+ * and every double of 2^-43 or more, exactly; smaller values lose their
+ * bits below 2^-96, toward zero), its square into the sum of squares in
+ * units of 2^-IMAGE_SUM2_Q. With at most IMAGE_MAX_COUNT = 2^46 samples a
+ * pixel, |sum| < 2^(46+40+96) = 2^182 and sum2 < 2^(46+80+64) = 2^190,
+ * inside the 191 bits of magnitude. */
+#define IMAGE_SUM_Q 96
+#define IMAGE_SUM2_Q 64
+#define IMAGE_SAMPLE_MAX 0x1p40
+#define IMAGE_MAX_COUNT (UINT64_C(1) << 46)
+
+/* s += t, modulo 2^192 (exact while the true sum is in the window). This
+ * function can't fail. */
+static inline void image_fixed_add(image_fixed_t *s, const image_fixed_t *t)
+{
+    uint64_t carry = 0;
+    for (int k = 0; k < 3; k++) {
+        uint64_t a = s->w[k] + t->w[k];
+        uint64_t c = a < t->w[k];
+        s->w[k] = a + carry;
+        carry = c | (s->w[k] < carry);
+    }
+}
+
+/* s += v 2^q, the product truncated toward zero to an integer. v must be
+ * finite with |v| 2^q < 2^180 (the windows above). The value is read off
+ * the bits of the double, |v| = m 2^e with an integer m < 2^53, and m is
+ * shifted into place. This function can't fail. */
+static inline void image_fixed_add_double(image_fixed_t *s, double v, int q)
+{
+    uint64_t b;
+    memcpy(&b, &v, sizeof b);
+    int be = (int)((b >> 52) & 0x7ff);
+    uint64_t m = b & ((UINT64_C(1) << 52) - 1);
+    int sh = (be ? be - 1075 : -1074) + q; /* |v| 2^q = m 2^sh */
+    if (be)
+        m |= UINT64_C(1) << 52;
+    if (sh < 0) {
+        m = sh > -64 ? m >> -sh : 0;
+        sh = 0;
+    }
+    image_fixed_t t = { { 0, 0, 0 } };
+    t.w[sh / 64] = m << (sh % 64);
+    if (sh % 64 && sh / 64 < 2)
+        t.w[sh / 64 + 1] = m >> (64 - sh % 64);
+    if (b >> 63) { /* negative: two's complement, ~t + 1 */
+        for (int k = 0; k < 3; k++)
+            t.w[k] = ~t.w[k];
+        const image_fixed_t one = { { 1, 0, 0 } };
+        image_fixed_add(&t, &one);
+    }
+    image_fixed_add(s, &t);
+}
+
+/* The value of s, s 2^-q, as a double: the limbs are converted and added
+ * from the top, so the result is exact whenever the value fits a double
+ * and within an ulp otherwise, and always the same bits for the same s.
+ * This function can't fail. */
+double image_fixed_value(const image_fixed_t *s, int q);
+
+/* The running sums of a render. Each sample adds its radiance to `sum` and
+ * 1 to `count`; the image is sum / count (image_accum_resolve). A sample
+ * with a NaN or infinite channel, or one of magnitude IMAGE_SAMPLE_MAX or
+ * more, is not added: it goes to `nonfinite` only, so one bad path cannot
+ * blacken or whiten a pixel for ever, and the count says it happened (a
+ * correct renderer keeps it at 0).
  *
- * Exactness of a merge. Floating-point addition is not associative, so
+ * Exactness of a merge. Floating-point addition is not associative:
  * (a1 + a2) + (b1 + b2) and ((a1 + a2) + b1) + b2 can differ in the last
- * bit. Two choices make merging safe:
- *  - sums are double, counts integers: merging in a fixed order (pass 1,
- *    then 2, then 3) gives the same bits on every run and machine that
- *    honours IEEE 754 and -ffp-contract=off;
- *  - a double sum of float samples is EXACT (so every order gives the same
- *    bits, and a merge equals one accumulation of all the samples) as long
- *    as a pixel's samples, written as integer multiples of the smallest
- *    ulp among them, add up to less than 2^53 of those: e.g. up to 2^12
- *    float samples per pixel whose nonzero magnitudes lie within a factor
- *    2^16 of one another (each is then below 2^40 ulps, the sum below
- *    2^52). Beyond that (or with double samples, REAL=double) the merged
- *    sum and the one-pass sum may differ by a few units in the 53rd bit,
- *    far below what the float image stores.
+ * bit once a pixel's samples span more than the 53 bits of a double (a
+ * firefly of 1e4 and samples of 1e-5 do). The sums here are exact
+ * fixed-point integers (image_fixed_t), so every order and grouping of
+ * the same samples gives the same bits: a render split by samples, by
+ * pixels or both, merged in any order, equals the single render bit for
+ * bit, in the float and in the double build. The rule: a sample's
+ * contribution is a function of the sample alone (its bits truncated
+ * below 2^-96, its square's below 2^-64), and sums of those are exact.
+ * The price is memory: 24 bytes a channel where a double sum took 8.
  * A weighted (filtered) sum would need a weight sum in place of the count;
  * svet's pixels are boxes, one sample one vote. */
 typedef struct {
     int width, height;
-    double *sum;         /* 3 per pixel: R G B sums of the finite samples */
-    uint64_t *count;     /* finite samples added to each pixel */
-    uint64_t *nonfinite; /* samples dropped from each pixel: NaN or Inf */
+    image_fixed_t *sum;  /* 3 per pixel: R G B sums of the added samples,
+                            units of 2^-IMAGE_SUM_Q */
+    uint64_t *count;     /* samples added to each pixel */
+    uint64_t *nonfinite; /* samples dropped from each pixel: NaN, Inf or
+                            beyond IMAGE_SAMPLE_MAX */
 } image_accum_t;
 
 /* Allocate an empty accumulation (all sums and counts zero). acc is zeroed
@@ -162,23 +240,26 @@ svet_status image_accum_alloc(image_accum_t *acc, int width, int height,
  * This function can't fail. */
 void image_accum_free(image_accum_t *acc);
 
-/* Add one sample of radiance L to pixel (x, y), or count it as non-finite
- * if any channel is NaN or infinite. The caller keeps (x, y) inside. Not
- * thread-safe for the same pixel: give threads disjoint pixels (rows or
- * tiles), as svet's renderer does. This function can't fail. */
-static inline void image_accum_add(image_accum_t *acc, int x, int y,
+/* Add one sample of radiance L to pixel (x, y), or count it as dropped
+ * if a channel is NaN, infinite or IMAGE_SAMPLE_MAX or more in magnitude;
+ * true if it was added. The caller keeps (x, y) inside. Not thread-safe
+ * for the same pixel: give threads disjoint pixels (rows or tiles), as
+ * svet's renderer does. This function can't fail. */
+static inline bool image_accum_add(image_accum_t *acc, int x, int y,
                                    RADIANCE L)
 {
     size_t i = (size_t)y * (size_t)acc->width + (size_t)x;
-    if (!rad_is_finite(L)) {
+    const double v[3] = { (double)L.r, (double)L.g, (double)L.b };
+    if (!(fabs(v[0]) < IMAGE_SAMPLE_MAX && fabs(v[1]) < IMAGE_SAMPLE_MAX &&
+          fabs(v[2]) < IMAGE_SAMPLE_MAX)) { /* also NaN */
         acc->nonfinite[i]++;
-        return;
+        return false;
     }
-    double *s = acc->sum + 3 * i;
-    s[0] += (double)L.r;
-    s[1] += (double)L.g;
-    s[2] += (double)L.b;
+    for (int c = 0; c < 3; c++)
+        image_fixed_add_double(&acc->sum[3 * i + (size_t)c], v[c],
+                               IMAGE_SUM_Q);
     acc->count[i]++;
+    return true;
 }
 
 /* dst += src: sums, counts and non-finite counts, pixel by pixel. Fails

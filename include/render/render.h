@@ -58,8 +58,9 @@ typedef struct render {
                                them one at a time, for the same image */
     integrator_t integrator;
     image_accum_t acc;      /* per-pixel sums and counts (image.h) */
-    double *sum2;           /* per pixel and channel: sum of squares of the
-                               samples, for the variance of the mean */
+    image_fixed_t *sum2;    /* per pixel and channel: sum of squares of the
+                               samples, for the variance of the mean, in
+                               units of 2^-IMAGE_SUM2_Q (image.h) */
     long spp_done;          /* samples [0, spp_done) of every pixel are in */
     integrator_stats_t stats;
     /* The scene's rendering method of Part II (scenepart.h: `render

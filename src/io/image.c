@@ -5,6 +5,7 @@
  */
 #include "io/image.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,12 +108,30 @@ svet_status image_copy(image_t *dst, const image_t *src, svet_error *err)
 
 /* --- accumulation -------------------------------------------------------- */
 
+double image_fixed_value(const image_fixed_t *s, int q)
+{
+    image_fixed_t t = *s;
+    const bool negative = t.w[2] >> 63;
+    if (negative) { /* the magnitude: ~t + 1 */
+        for (int k = 0; k < 3; k++)
+            t.w[k] = ~t.w[k];
+        const image_fixed_t one = { { 1, 0, 0 } };
+        image_fixed_add(&t, &one);
+    }
+    /* 0x1p128 and 0x1p64 scale exactly; ldexp by -q is exact above the
+     * subnormals, which a value of at least 2^-q never reaches */
+    double v = (double)t.w[2] * 0x1p128 + (double)t.w[1] * 0x1p64 +
+               (double)t.w[0];
+    v = ldexp(v, -q);
+    return negative ? -v : v;
+}
+
 svet_status image_accum_alloc(image_accum_t *acc, int width, int height,
                               svet_error *err)
 {
     memset(acc, 0, sizeof *acc);
     size_t sum_bytes = 0, count_bytes = 0;
-    svet_status st = image_check_size(width, height, 3, sizeof(double),
+    svet_status st = image_check_size(width, height, 3, sizeof(image_fixed_t),
                                       &sum_bytes, err);
     if (st == SVET_OK)
         st = image_check_size(width, height, 1, sizeof(uint64_t), &count_bytes,
@@ -153,7 +172,7 @@ svet_status image_accum_merge(image_accum_t *dst, const image_accum_t *src,
                               dst->width, dst->height);
     size_t n = (size_t)dst->width * (size_t)dst->height;
     for (size_t i = 0; i < 3 * n; i++)
-        dst->sum[i] += src->sum[i];
+        image_fixed_add(&dst->sum[i], &src->sum[i]);
     for (size_t i = 0; i < n; i++) {
         dst->count[i] += src->count[i];
         dst->nonfinite[i] += src->nonfinite[i];
@@ -179,7 +198,8 @@ svet_status image_accum_resolve(const image_accum_t *acc, image_t *out,
         double n_i = (double)acc->count[i];
         for (int c = 0; c < 3; c++)
             out->px[3 * i + (size_t)c] =
-                (float)(acc->sum[3 * i + (size_t)c] / n_i);
+                (float)(image_fixed_value(&acc->sum[3 * i + (size_t)c],
+                                          IMAGE_SUM_Q) / n_i);
     }
     if (empty)
         *empty = n_empty;

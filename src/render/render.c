@@ -151,13 +151,12 @@ RADIANCE render_sample(const render_t *r, int x, int y, long sample,
 /* Add sample L to pixel (x, y): its sum, count and sum of squares. */
 static void accumulate(render_t *r, int x, int y, RADIANCE L)
 {
-    image_accum_add(&r->acc, x, y, L);
-    if (rad_is_finite(L)) {
-        double *q = r->sum2 + 3 * ((size_t)y * (size_t)r->camera.width +
-                                   (size_t)x);
-        q[0] += (double)L.r * (double)L.r;
-        q[1] += (double)L.g * (double)L.g;
-        q[2] += (double)L.b * (double)L.b;
+    if (image_accum_add(&r->acc, x, y, L)) {
+        image_fixed_t *q = r->sum2 + 3 * ((size_t)y * (size_t)r->camera.width +
+                                          (size_t)x);
+        image_fixed_add_double(&q[0], (double)L.r * (double)L.r, IMAGE_SUM2_Q);
+        image_fixed_add_double(&q[1], (double)L.g * (double)L.g, IMAGE_SUM2_Q);
+        image_fixed_add_double(&q[2], (double)L.b * (double)L.b, IMAGE_SUM2_Q);
     }
 }
 
@@ -301,8 +300,8 @@ svet_status render_pass_until(render_t *r, long spp_end, int threads,
     /* The sums as they are, to put back if the pass is cut short: a
      * sample added cannot be taken out again exactly in floating point. */
     const size_t n = (size_t)r->camera.width * (size_t)r->camera.height;
-    double *sum = malloc(3 * n * sizeof *sum), *sum2 = malloc(3 * n *
-                                                              sizeof *sum2);
+    image_fixed_t *sum = malloc(3 * n * sizeof *sum),
+                  *sum2 = malloc(3 * n * sizeof *sum2);
     uint64_t *count = malloc(n * sizeof *count),
              *nonfinite = malloc(n * sizeof *nonfinite);
     *abandoned = false;
@@ -361,8 +360,11 @@ svet_status render_variance(const render_t *r, image_t *out, svet_error *err)
                     p[c] = 0;
                     continue;
                 }
-                double mean = r->acc.sum[3 * i + c] / n;
-                double s2 = (r->sum2[3 * i + c] - n * mean * mean) / (n - 1);
+                double mean = image_fixed_value(&r->acc.sum[3 * i + c],
+                                                IMAGE_SUM_Q) / n;
+                double s2 = (image_fixed_value(&r->sum2[3 * i + c],
+                                               IMAGE_SUM2_Q) - n * mean * mean)
+                            / (n - 1);
                 p[c] = (float)(s2 > 0 ? s2 / n : 0);
             }
         }

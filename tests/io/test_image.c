@@ -9,6 +9,7 @@
 #include "core/rng.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -169,8 +170,8 @@ START_TEST(merged_passes_equal_one_accumulation_bit_for_bit)
     ck_assert_int_eq(image_accum_merge(&cba, &b, &err), SVET_OK);
     ck_assert_int_eq(image_accum_merge(&cba, &a, &err), SVET_OK);
     size_t n = (size_t)W * H;
-    ck_assert_mem_eq(abc.sum, one.sum, 3 * n * sizeof(double));
-    ck_assert_mem_eq(cba.sum, one.sum, 3 * n * sizeof(double));
+    ck_assert_mem_eq(abc.sum, one.sum, 3 * n * sizeof(image_fixed_t));
+    ck_assert_mem_eq(cba.sum, one.sum, 3 * n * sizeof(image_fixed_t));
     ck_assert_mem_eq(abc.count, one.count, n * sizeof(uint64_t));
     image_t i1, i2;
     ck_assert_int_eq(image_accum_resolve(&one, &i1, NULL, &err), SVET_OK);
@@ -190,6 +191,70 @@ START_TEST(merged_passes_equal_one_accumulation_bit_for_bit)
 }
 END_TEST
 
+START_TEST(wide_range_sums_are_exact_in_any_order)
+{
+    /* Samples of 2^35, 2^-40 and -2^-40 and 1: a double sum of them
+     * rounds (2^35 + 2^-40 needs 76 bits), so its result depends on the
+     * order. The fixed-point sums must give the same bits forward,
+     * backward and split into two merged halves, and the exact value:
+     * k big + m small - j small + ones, worked out by hand. */
+    const double v[4] = { 0x1p35, 0x1p-40, -0x1p-40, 1.0 };
+    enum { N = 4000 };
+    image_accum_t fw, bw, h1, h2;
+    svet_error err;
+    image_accum_t *all[] = { &fw, &bw, &h1, &h2 };
+    for (int k = 0; k < 4; k++)
+        ck_assert_int_eq(image_accum_alloc(all[k], 1, 1, &err), SVET_OK);
+    /* sample s is v[s % 4], but the negative one only for s % 8 == 2
+     * (the positive small one otherwise), so the sum is positive */
+    double sample[N];
+    for (int s = 0; s < N; s++)
+        sample[s] = s % 8 == 6 ? v[1] : v[s % 4];
+    for (int s = 0; s < N; s++) {
+        image_accum_add(&fw, 0, 0, rad_grey((real)sample[s]));
+        image_accum_add(&bw, 0, 0, rad_grey((real)sample[N - 1 - s]));
+        image_accum_add(s % 3 ? &h1 : &h2, 0, 0, rad_grey((real)sample[s]));
+    }
+    ck_assert_int_eq(image_accum_merge(&h2, &h1, &err), SVET_OK);
+    ck_assert_mem_eq(fw.sum, bw.sum, 3 * sizeof(image_fixed_t));
+    ck_assert_mem_eq(fw.sum, h2.sum, 3 * sizeof(image_fixed_t));
+    uint64_t big = 0, small = 0, ones = 0; /* small: net count of 2^-40 */
+    for (int s = 0; s < N; s++) {
+        if (sample[s] == v[0])
+            big++;
+        else if (sample[s] == v[3])
+            ones++;
+        else if (sample[s] == v[1])
+            small++;
+        else
+            small--;
+    }
+    ck_assert_uint_eq(small, 1000 + 500 - 500);
+    /* the exact sum in units of 2^-96: big 2^131 + ones 2^96 + small 2^56,
+     * limb by limb (2^131 = 2^128 2^3, 2^96 = 2^64 2^32) */
+    const image_fixed_t *t = &fw.sum[1];
+    ck_assert_uint_eq(t->w[0], (small & 255) << 56);
+    ck_assert_uint_eq(t->w[1], (ones << 32) + (small >> 8));
+    ck_assert_uint_eq(t->w[2], big << 3);
+    /* its double: within an ulp of the correctly rounded value */
+    double ref = (double)big * 0x1p35 + (double)ones + (double)small * 0x1p-40;
+    ck_assert(fabs(image_fixed_value(t, IMAGE_SUM_Q) - ref) <= ref * 0x1p-52);
+    /* and a sum that fits a double comes back exactly: negatives too */
+    image_fixed_t z = { { 0, 0, 0 } };
+    image_fixed_add_double(&z, -3.25, IMAGE_SUM_Q);
+    image_fixed_add_double(&z, 0x1p-70, IMAGE_SUM_Q);
+    ck_assert(image_fixed_value(&z, IMAGE_SUM_Q) == -3.25 + 0x1p-70);
+    image_fixed_add_double(&z, 3.25, IMAGE_SUM_Q);
+    image_fixed_add_double(&z, -0x1p-70, IMAGE_SUM_Q);
+    ck_assert(z.w[0] == 0 && z.w[1] == 0 && z.w[2] == 0);
+    /* a sample at the window's edge is dropped, one just inside is not */
+    ck_assert(!image_accum_add(&fw, 0, 0, rad_grey((real)IMAGE_SAMPLE_MAX)));
+    ck_assert(image_accum_add(&fw, 0, 0, rad_grey((real)(0.5 * IMAGE_SAMPLE_MAX))));
+    for (int k = 0; k < 4; k++)
+        image_accum_free(all[k]);
+}
+END_TEST
+
 START_TEST(merge_refuses_a_different_size_and_leaves_dst_alone)
 {
     image_accum_t a, b;
@@ -201,7 +266,7 @@ START_TEST(merge_refuses_a_different_size_and_leaves_dst_alone)
     ck_assert_int_eq(image_accum_merge(&a, &b, &err), SVET_ERR_RANGE);
     ck_assert_ptr_nonnull(strstr(err.msg, "4 x 5"));
     ck_assert_uint_eq(a.count[0], 1);
-    ck_assert(a.sum[0] == 1.0);
+    ck_assert(image_fixed_value(&a.sum[0], IMAGE_SUM_Q) == 1.0);
     image_accum_free(&a);
     image_accum_free(&b);
     ck_assert_int_eq(image_accum_alloc(&b, 0, 5, &err), SVET_ERR_RANGE);
@@ -238,6 +303,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, accumulation_resolves_to_the_mean_and_counts_empty_pixels);
     tcase_add_test(tc, nonfinite_samples_are_counted_not_added);
     tcase_add_test(tc, merged_passes_equal_one_accumulation_bit_for_bit);
+    tcase_add_test(tc, wide_range_sums_are_exact_in_any_order);
     tcase_add_test(tc, merge_refuses_a_different_size_and_leaves_dst_alone);
     tcase_add_test(tc, quantize_round_trips_every_code_and_clamps);
     suite_add_tcase(s, tc);

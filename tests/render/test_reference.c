@@ -373,11 +373,11 @@ START_TEST(render_is_the_same_bits_for_any_threads_passes_and_runs)
     size_t n = (size_t)w * (size_t)h;
     const render_t *other[2] = { &b, &c };
     for (int k = 0; k < 2; k++) {
-        ck_assert(memcmp(a.acc.sum, other[k]->acc.sum, 3 * n * sizeof(double))
+        ck_assert(memcmp(a.acc.sum, other[k]->acc.sum, 3 * n * sizeof(image_fixed_t))
                   == 0);
         ck_assert(memcmp(a.acc.count, other[k]->acc.count,
                          n * sizeof(uint64_t)) == 0);
-        ck_assert(memcmp(a.sum2, other[k]->sum2, 3 * n * sizeof(double)) == 0);
+        ck_assert(memcmp(a.sum2, other[k]->sum2, 3 * n * sizeof(image_fixed_t)) == 0);
     }
     /* the written file holds the image's bits */
     image_t img, back;

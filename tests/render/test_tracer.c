@@ -339,9 +339,9 @@ START_TEST(every_shipped_scene_renders_the_same_with_the_list)
         ck_assert_msg(strncmp(r[1].accel_choice, "brute (auto", 11) == 0,
                       "%s", r[1].accel_choice);
         size_t n = (size_t)r[0].camera.width * (size_t)r[0].camera.height;
-        ck_assert_msg(memcmp(r[0].acc.sum, r[1].acc.sum, 3 * n * sizeof(double)) ==
+        ck_assert_msg(memcmp(r[0].acc.sum, r[1].acc.sum, 3 * n * sizeof(image_fixed_t)) ==
                               0 &&
-                          memcmp(r[0].sum2, r[1].sum2, 3 * n * sizeof(double)) == 0 &&
+                          memcmp(r[0].sum2, r[1].sum2, 3 * n * sizeof(image_fixed_t)) == 0 &&
                           memcmp(r[0].acc.count, r[1].acc.count,
                                  n * sizeof(uint64_t)) == 0,
                       "%s: the images differ", gl.gl_pathv[i]);
