@@ -239,6 +239,59 @@ START_TEST(beer_lambert_through_a_slab_per_channel)
 }
 END_TEST
 
+/* The furnace: a sphere of purely scattering medium (albedo 1, an
+ * invisible boundary, optical radius 1) under an environment of radiance
+ * 1 is everywhere lit by radiance 1, so every pixel's expected value is
+ * 1 (Pharr et al., pbrt-v3 sec. 15.2: no absorption, nothing is lost).
+ * The pixels are independent: their mean must lie within 4 of their own
+ * standard errors of 1, and that error must be small enough for the
+ * test to see a loss of a few per cent. */
+#define FURNACE "camera position 0 0 4 target 0 0 0 fov 40 width 8 height 8\n" \
+    "render spp 64 maxdepth 200 integrator volpath seed 5\n" \
+    "material black lambert rho 0\n" \
+    "environment radiance 1\n" \
+    "medium fog homogeneous sigma_a 0 sigma_s 1 phase hg g 0.4\n" \
+    "sphere centre 0 0 0 radius 1 material black medium fog invisible\n"
+
+START_TEST(a_scattering_sphere_in_a_furnace_keeps_radiance_one)
+{
+    image_t img;
+    render_text(FURNACE, 0, &img);
+    for (int k = 0; k < 3; k++) {
+        double sum = 0, sum2 = 0;
+        for (int y = 0; y < 8; y++)
+            for (int x = 0; x < 8; x++) {
+                double v = (double)image_at(&img, x, y)[k];
+                sum += v;
+                sum2 += v * v;
+            }
+        double mean = sum / 64, var = (sum2 / 64 - mean * mean) * 64 / 63;
+        double se = sqrt(var > 0 ? var / 64 : 0);
+        ck_assert_msg(se < 0.01, "channel %d: standard error %g", k, se);
+        ck_assert_msg(fabs(mean - 1) < 4 * se + 1e-6,
+                      "channel %d: mean %g, expected 1 (se %g)", k, mean, se);
+    }
+    image_free(&img);
+}
+END_TEST
+
+/* Scattering, shadow rays and MIS draw from the pixel's own stream: one
+ * thread and two give the same bits. */
+START_TEST(one_thread_and_two_give_the_same_bits)
+{
+    image_t a, b;
+    render_text(FURNACE, 1, &a);
+    render_text(FURNACE, 2, &b);
+    ck_assert_int_eq(a.width, b.width);
+    for (int y = 0; y < a.height; y++)
+        for (int x = 0; x < a.width; x++)
+            ck_assert(memcmp(image_at(&a, x, y), image_at(&b, x, y),
+                             3 * sizeof *image_at(&a, x, y)) == 0);
+    image_free(&a);
+    image_free(&b);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("medpart");
@@ -248,6 +301,8 @@ Suite *test_suite(void)
     tcase_add_test(tc, bad_media_name_file_line_and_column);
     tcase_add_test(tc, bad_vol_files_are_refused);
     tcase_add_test(tc, beer_lambert_through_a_slab_per_channel);
+    tcase_add_test(tc, a_scattering_sphere_in_a_furnace_keeps_radiance_one);
+    tcase_add_test(tc, one_thread_and_two_give_the_same_bits);
     suite_add_tcase(s, tc);
     return s;
 }
