@@ -292,6 +292,47 @@ START_TEST(one_thread_and_two_give_the_same_bits)
 }
 END_TEST
 
+/* Without media, volpath estimates what the path tracer does: the same
+ * closed room rendered both ways. The paired pixel differences are
+ * independent with mean 0; their mean must lie within 4 of its own
+ * standard errors of 0, and that error must be small against the
+ * image's mean for the test to see a difference. */
+#define ROOM(method) \
+    "camera position 0 0 0 target 0 0 -1 fov 60 width 12 height 12\n" \
+    "render spp 64 maxdepth 6 integrator " method " seed 7\n" \
+    "material grey lambert rho 0.6\n" \
+    "light point position 0 1 -1 intensity 2\n" \
+    "box min -2 -2 -4 max 2 2 2 material grey\n" \
+    "sphere centre 0 -1 -2 radius 0.7 material grey\n"
+
+START_TEST(without_media_volpath_agrees_with_the_path_tracer)
+{
+    image_t a, b;
+    render_text(ROOM("path"), 0, &a);
+    render_text(ROOM("volpath"), 0, &b);
+    const int n = a.width * a.height;
+    for (int k = 0; k < 3; k++) {
+        double sa = 0, sd = 0, sd2 = 0;
+        for (int y = 0; y < a.height; y++)
+            for (int x = 0; x < a.width; x++) {
+                double va = (double)image_at(&a, x, y)[k];
+                double d = (double)image_at(&b, x, y)[k] - va;
+                sa += va;
+                sd += d;
+                sd2 += d * d;
+            }
+        double ma = sa / n, md = sd / n;
+        double se = sqrt((sd2 / n - md * md) / (n - 1));
+        ck_assert_msg(se < 0.02 * ma, "channel %d: se %g of mean %g", k, se,
+                      ma);
+        ck_assert_msg(fabs(md) < 4 * se, "channel %d: volpath - path = %g "
+                      "(se %g, path's mean %g)", k, md, se, ma);
+    }
+    image_free(&a);
+    image_free(&b);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("medpart");
@@ -303,6 +344,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, beer_lambert_through_a_slab_per_channel);
     tcase_add_test(tc, a_scattering_sphere_in_a_furnace_keeps_radiance_one);
     tcase_add_test(tc, one_thread_and_two_give_the_same_bits);
+    tcase_add_test(tc, without_media_volpath_agrees_with_the_path_tracer);
     suite_add_tcase(s, tc);
     return s;
 }
