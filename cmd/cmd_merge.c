@@ -20,15 +20,22 @@ svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
                               const cmd_scene_opts_t *so,
                               unsigned long long *id, svet_error *err)
 {
-    FILE *f;
-    svet_status st = fileio_open_read(scene_path, &f, err);
-    if (st != SVET_OK)
-        return st;
+    /* FNV-1a over the scene file's bytes, then each file it names (a
+     * mesh, a texture, a grid: an edit between two parts is refused),
+     * then the seed, the size and the overrides */
     unsigned long long h = 1469598103934665603ULL; /* FNV-1a offset basis */
-    int c;
-    while ((c = getc(f)) != EOF)
-        h = (h ^ (unsigned char)c) * 1099511628211ULL;
-    fclose(f);
+    for (int i = -1; i < s->nfiles; i++) {
+        FILE *f;
+        svet_status st =
+            fileio_open_read(i < 0 ? scene_path : s->files[i], &f, err);
+        if (st != SVET_OK)
+            return st;
+        int c;
+        while ((c = getc(f)) != EOF)
+            h = (h ^ (unsigned char)c) * 1099511628211ULL;
+        fclose(f);
+        h = (h ^ (unsigned char)'|') * 1099511628211ULL;
+    }
     char buf[128];
     snprintf(buf, sizeof buf, "|seed %llu|size %d %d",
              (unsigned long long)s->render.seed, s->camera.width,

@@ -303,6 +303,12 @@ typedef struct scene {
     struct scene_part_slot *part_data;
     int npart_data;
 
+    /* The files the scene names (meshes, textures, grids) as opened, in
+     * the order read: their bytes are part of a split render's identity
+     * (svet render --samples). Owned */
+    char **files;
+    int nfiles;
+
     /* The per-hit shading a part installs (ch. 10's textures), called by
      * the integrator for an object whose `texture` field is set, once its
      * PATHPOINT is filled; NULL when no object has one, and an untextured

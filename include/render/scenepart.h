@@ -135,7 +135,8 @@ void scenefile_tok_copy(const tok_t *t, char *buf, size_t size);
 bool scenefile_tok_is(const tok_t *t, const char *w);
 
 /* The file a token names, relative to the scene file's directory unless
- * absolute, newly allocated (NULL: out of memory, err set). */
+ * absolute, newly allocated (NULL: out of memory, err set); kept in the
+ * scene's list of files too (scene_t.files), whose bytes identify it. */
 char *scenefile_path(scenefile_ctx *c, const tok_t *t, svet_error *err);
 
 /* --- a part's data in the scene ------------------------------------------- */

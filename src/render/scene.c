@@ -84,6 +84,9 @@ void scene_free(scene_t *s)
         if (s->part_data[i].free_fn)
             s->part_data[i].free_fn(s->part_data[i].data);
     free(s->part_data);
+    for (int i = 0; i < s->nfiles; i++)
+        free(s->files[i]);
+    free(s->files);
     scene_init(s);
 }
 

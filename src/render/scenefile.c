@@ -2032,11 +2032,10 @@ static svet_status st_mesh(ctx_t *c)
         if (st)
             return st;
     }
-    char *rel = tok_strdup(&v[MESH_FILE].word);
-    char *path = rel ? path_join(c->dir, rel) : NULL;
-    free(rel);
+    svet_error pe;
+    char *path = scenefile_path(c, &v[MESH_FILE].word, &pe);
     if (!path)
-        return fail(c, c->stmt_col, SVET_ERR_NOMEM, "out of memory");
+        return fail(c, c->stmt_col, pe.status, "%s", pe.msg);
     /* The loader opens the file itself; refuse what is not a regular file
      * first, so that /dev/zero or a FIFO cannot hang the reader. */
     struct stat sb;
@@ -2245,8 +2244,18 @@ char *scenefile_path(scenefile_ctx *c, const tok_t *t, svet_error *err)
     char *rel = tok_strdup(t);
     char *p = rel ? path_join(c->dir, rel) : NULL;
     free(rel);
-    if (!p)
+    scene_t *s = c->scene;
+    char **f = p ? realloc(s->files, (size_t)(s->nfiles + 1) * sizeof *f)
+                 : NULL;
+    char *kept = f ? strdup(p) : NULL;
+    if (f)
+        s->files = f;
+    if (!kept) {
+        free(p);
         svet_error_set(err, SVET_ERR_NOMEM, "out of memory");
+        return NULL;
+    }
+    s->files[s->nfiles++] = kept;
     return p;
 }
 

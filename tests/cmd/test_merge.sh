@@ -102,6 +102,22 @@ refuse "another seed" "different scenes, seeds or settings" merge $T/p2-0.exr $T
 $S render scenes/cbox.scn --spp 14 --set width=40 --set height=30 --set maxdepth=2 -q --samples 7:14 -o $T/set.exr || no "set part"
 refuse "another setting" "different scenes, seeds or settings" merge $T/p2-0.exr $T/set.exr -o $T/x.exr
 refuse "a non-part" "cannot open" merge $T/full.exr -o $T/x.exr
+# the files a scene names are part of its identity: a mesh edited
+# between two parts is refused, the same mesh merges
+cat > $T/tri.scn <<'EOF'
+camera position 0 0 3 target 0 0 0 width 8 height 8
+render spp 4
+material m lambert rho 0.5
+light point position 0 0 2 intensity 1
+mesh file tri.obj material m
+EOF
+printf 'v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n' > $T/tri.obj
+$S render $T/tri.scn -q --samples 0:2 -o $T/t0.exr || no "mesh part 0:2"
+$S render $T/tri.scn -q --samples 2:4 -o $T/t1.exr || no "mesh part 2:4"
+$S merge $T/t0.exr $T/t1.exr -o $T/tm.exr || no "the same mesh's parts"
+printf 'v -1 -1 0\nv 1 -1 0\nv 0 0.9 0\nf 1 2 3\n' > $T/tri.obj
+$S render $T/tri.scn -q --samples 2:4 -o $T/t2.exr || no "edited mesh part"
+refuse "an edited mesh" "different scenes, seeds or settings" merge $T/t0.exr $T/t2.exr -o $T/x.exr
 sed '7,$s/^[0-9a-f-]*/nan/' $T/p2-1.exr.part > $T/nan.exr.part; cp $T/p2-1.exr $T/nan.exr
 refuse "a NaN sum" "'nan' is not a sum" merge $T/p2-0.exr $T/nan.exr -o $T/x.exr
 head -c 300 $T/p2-1.exr.part > $T/cut.exr.part; cp $T/p2-1.exr $T/cut.exr
