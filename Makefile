@@ -106,7 +106,7 @@ VECTOOLS := $(VECSRCS:tools/%.c=$(BUILD)/tools/%)
 
 .SECONDARY:
 
-.PHONY: all lib test test-images check-tags check-links sanitize chapters figures \
+.PHONY: all lib test test-images check-tags check-links sanitize sanitize-all chapters figures \
         vectors noise-vectors check-vectors cc-lines clean install uninstall \
         help bench $(BENCHES)
 
@@ -205,6 +205,13 @@ sanitize:
 	$(MAKE) BUILD=build/sanitize-$(REAL)$(PLAIN_SUFFIX) OPT=-O1 LTO= \
 	    EXTRA_CFLAGS="$(SAN_FLAGS)" EXTRA_LDFLAGS="$(SAN_FLAGS)" \
 	    SVET_SANITIZE=1 test
+
+# All three builds a change must pass sanitized: float, double and the
+# plain build without the speed layers.
+sanitize-all:
+	$(MAKE) sanitize
+	$(MAKE) REAL=double sanitize
+	$(MAKE) SIMD=off sanitize
 
 # --- chapter programs ------------------------------------------------------
 # Each chapters/chNN/chapter.mk names the chapter, its programs, and for
@@ -495,6 +502,7 @@ help:
 	@echo "make test            every unit suite (REAL=double for the double build)"
 	@echo "make test-images     the suites that render whole scenes (e.g. SIMD=off)"
 	@echo "make sanitize        every suite under ASan and UBSan"
+	@echo "make sanitize-all    sanitize in float, REAL=double and SIMD=off"
 	@echo "make chNN            one chapter program, e.g. make ch01"
 	@echo "make cc-lines        build each chapter from its own one-line cc command"
 	@echo "make check-tags      the book's equations tagged in src/, include/; paths in *.md"
