@@ -181,6 +181,7 @@ test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
 	$(if $(SVET_MAIN),sh tests/cmd/test_merge.sh $(BUILD)/svet)
 	$(if $(SVET_MAIN),sh tests/cmd/test_render_parallel.sh $(BUILD)/svet)
+	$(if $(SVET_MAIN),sh tests/cmd/test_frames.sh $(BUILD)/svet)
 
 # `make test-images`: the suites that render or trace whole scenes (the
 # renderer, the references' Z-tests, the tracers, the grids, svet render),
@@ -528,7 +529,8 @@ help:
 -include $(OBJS:.o=.d) $(TESTS:=.d) $(TESTSUP_OBJS:.o=.d)
 
 # `make test-merge`: split renders (--samples, --crop) merged by svet merge
-# to the single render's bits, float and double (tests/cmd/test_merge.sh).
+# to the single render's bits, float and double (tests/cmd/test_merge.sh),
+# and animations frame by frame (tests/cmd/test_frames.sh).
 .PHONY: test-merge
 test-merge:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
@@ -536,3 +538,5 @@ test-merge:
 	sh tests/cmd/test_merge.sh build/float/svet
 	sh tests/cmd/test_merge.sh build/double/svet
 	sh tests/cmd/test_render_parallel.sh build/float/svet
+	sh tests/cmd/test_frames.sh build/float/svet
+	sh tests/cmd/test_frames.sh build/double/svet

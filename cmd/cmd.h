@@ -45,6 +45,9 @@ typedef struct {
     int crop[4];                 /* --crop X0:X1,Y0:Y1 */
     bool cropped, part;          /* --crop given; --crop or --samples */
     bool resume;                 /* --resume */
+    long frame_a, frame_b;       /* --frame K (K:K+1) or --frames A:B, the
+                                    frames A..B-1; frame_b 0: not given */
+    bool frame_count;            /* --frame-count */
     cmd_scene_opts_t so;         /* --threads, --seed, --set */
 } cmd_render_args_t;
 /* A part of a split render (svet render --samples/--crop, svet merge):
@@ -58,7 +61,7 @@ typedef struct {
 } cmd_part_t;
 
 /* The identity of a scene: FNV-1a (64 bits) of the scene file's bytes,
- * its seed, size and --set overrides; parts of different identities are
+ * its seed, size, frame (of an animation) and --set overrides; parts of different identities are
  * never merged. Fails with SVET_ERR_IO when the file cannot be read. */
 svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
                               const cmd_scene_opts_t *so,

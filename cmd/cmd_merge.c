@@ -15,6 +15,7 @@
 
 #include "cmd.h"
 #include "io/fileio.h"
+#include "render/animation.h"
 
 svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
                               const cmd_scene_opts_t *so,
@@ -40,6 +41,10 @@ svet_status cmd_part_identity(const char *scene_path, const scene_t *s,
     snprintf(buf, sizeof buf, "|seed %llu|size %d %d",
              (unsigned long long)s->render.seed, s->camera.width,
              s->camera.height);
+    /* a frame of an animation (animation.h): its number too */
+    if (animation_frame(s) >= 0)
+        snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "|frame %d",
+                 animation_frame(s));
     for (const char *p = buf; *p; p++)
         h = (h ^ (unsigned char)*p) * 1099511628211ULL;
     for (int i = 0; i < so->nsets; i++)

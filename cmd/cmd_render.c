@@ -3,8 +3,9 @@
  * in passes (ch. 5), and write the linear image (EXR) and a tone-mapped one
  * (PNG, ch. 6) side by side. SIGINT or SIGTERM abandons the current pass
  * within a tile's work and writes the last whole one (the image of that
- * many samples); a second signal ends the program at once.
- * Tests: tests/cmd/test_cmd_render.c
+ * many samples); a second signal ends the program at once. An animation
+ * (animation.h) renders frame by frame, each to its own files.
+ * Tests: tests/cmd/test_cmd_render.c, tests/cmd/test_frames.sh
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -20,6 +21,7 @@
 #include "cmdutil.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
+#include "render/animation.h"
 #include "render/render.h"
 #include "render/scenefile.h"
 #include "render/scenepart.h"
@@ -60,6 +62,9 @@ void cmd_render_help(FILE *f)
 "      --crop X0:X1,Y0:Y1  only the pixels X0..X1-1, Y0..Y1-1\n"
 "                          (either makes a part: FILE.exr.part beside the\n"
 "                          EXR holds its exact sums for svet merge)\n"
+"      --frame K           of an animation: only frame K (0-based)\n"
+"      --frames A:B        of an animation: frames A..B-1 (default: all)\n"
+"      --frame-count       print the number of frames (0: no animation)\n"
 "      --half              write the EXR as half floats (default: float)\n"
 "      --set KEY=VALUE     any scene setting, as scenefile_override() takes:\n"
 "                          maxdepth, integrator, roulette, accel, tonemap, ...\n"
@@ -71,6 +76,13 @@ void cmd_render_help(FILE *f)
 "summary line (time, samples per second, rays per second) at the end.\n"
 "The image depends only on the scene, the seed and the sample count: the\n"
 "same for any number of threads or passes.\n"
+"\n"
+"Each frame of an animation is written to its own files: every output\n"
+"name (-o, --png, --variance, the scene's `output`, the default) is a\n"
+"pattern in which one %%d, %%Nd or %%0Nd (N a digit) is the frame number\n"
+"and %%%% a %%; a name without one gets -%%04d before its extension\n"
+"(out/anim.exr: out/anim-0007.exr). Frame k has the seed\n"
+"seed ^ splitmix64(k) and the same bits alone or among other frames.\n"
 "\n"
 "exit codes: 0 done; 1 bad command line; 2 the scene or a file it names is\n"
 "missing or malformed; 3 an output could not be written; 4 interrupted\n"
@@ -289,6 +301,33 @@ static int opt_crop(void *args, const char *cmd, const char *opt,
     return SVET_EXIT_OK;
 }
 
+/* --frame K, --frames A:B (the frames A..B-1) */
+static int opt_frames(void *args, const char *cmd, const char *opt,
+                      const char *v)
+{
+    cmd_render_args_t *o = args;
+    long a, b;
+    if (!strcmp(opt, "--frame")) {
+        if (!cmd_parse_long(v, 0, ANIMATION_MAX_FRAMES - 1, &a))
+            return cmd_bad_value(cmd, opt, v);
+        b = a + 1;
+    } else {
+        const char *colon = strchr(v, ':');
+        char left[32];
+        size_t n = colon ? (size_t)(colon - v) : 0;
+        if (!colon || n >= sizeof left)
+            return cmd_bad_value(cmd, opt, v);
+        memcpy(left, v, n);
+        left[n] = '\0';
+        if (!cmd_parse_long(left, 0, ANIMATION_MAX_FRAMES - 1, &a) ||
+            !cmd_parse_long(colon + 1, 1, ANIMATION_MAX_FRAMES, &b) ||
+            b <= a)
+            return cmd_bad_value(cmd, opt, v);
+    }
+    o->frame_a = a, o->frame_b = b;
+    return SVET_EXIT_OK;
+}
+
 static int opt_time_limit(void *args, const char *cmd, const char *opt,
                           const char *v)
 {
@@ -323,6 +362,9 @@ static const cmd_option_t options[] = {
     { "--samples", NULL, true, CMD_CALL, 0, opt_samples },
     { "--crop", NULL, true, CMD_CALL, 0, opt_crop },
     { "--time-limit", NULL, true, CMD_CALL, 0, opt_time_limit },
+    { "--frame", NULL, true, CMD_CALL, 0, opt_frames },
+    { "--frames", NULL, true, CMD_CALL, 0, opt_frames },
+    { "--frame-count", NULL, false, CMD_SET_TRUE, AT(frame_count), NULL },
     { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
 };
 #undef AT
@@ -344,40 +386,155 @@ int cmd_render_parse(int argc, char **argv, cmd_render_args_t *o)
     return CMD_RUN;
 }
 
-int cmd_render(int argc, char **argv)
+/* The name of frame k's file from pattern `name` (cmd_render_help): one
+ * %d, %Nd or %0Nd (N a digit) is the frame number, %% a %; without one,
+ * -%04d goes before the extension of the file's name (or at its end).
+ * NULL with *why set when the pattern is bad, or out of memory (*why
+ * NULL). */
+static char *frame_name(const char *name, int k, const char **why)
 {
-    cmd_render_args_t o;
-    int rc = cmd_render_parse(argc, argv, &o);
-    if (rc != CMD_RUN)
-        return rc;
-    const char *scene_path = o.scene, *opt_exr = o.exr, *opt_png = o.png,
-               *opt_var = o.var;
+    *why = NULL;
+    size_t n = strlen(name);
+    char num[32];
+    const char *conv = NULL; /* the conversion's '%' */
+    size_t conv_len = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (name[i] != '%')
+            continue;
+        if (name[i + 1] == '%') {
+            i++;
+            continue;
+        }
+        size_t j = i + 1;
+        bool zero = name[j] == '0';
+        j += zero;
+        int width = 0;
+        if (name[j] >= '1' && name[j] <= '9')
+            width = name[j++] - '0';
+        if (name[j] != 'd' || (zero && !width)) {
+            *why = "a '%' starts the frame number %d, %Nd or %0Nd (N a "
+                   "digit 1-9), or is %%";
+            return NULL;
+        }
+        if (conv) {
+            *why = "it has two frame numbers: one %d at the most";
+            return NULL;
+        }
+        conv = name + i;
+        conv_len = j + 1 - i;
+        snprintf(num, sizeof num, zero ? "%0*d" : "%*d", width, k);
+        i = j;
+    }
+    /* without a conversion: -%04d before the extension of the name's last
+     * component (not a leading dot) */
+    size_t at = n;
+    if (!conv) {
+        const char *base = strrchr(name, '/');
+        base = base ? base + 1 : name;
+        const char *dot = strrchr(base, '.');
+        if (dot && dot > base)
+            at = (size_t)(dot - name);
+        snprintf(num, sizeof num, "-%04d", k);
+    } else {
+        at = (size_t)(conv - name);
+    }
+    char *out = malloc(n + strlen(num) + 1);
+    if (!out)
+        return NULL;
+    char *w = out;
+    for (size_t i = 0; i < n; i++) {
+        if (i == at) {
+            w += sprintf(w, "%s", num);
+            if (conv) {
+                i += conv_len - 1;
+                continue;
+            }
+        }
+        if (name[i] == '%' && name[i + 1] == '%')
+            i++;
+        *w++ = name[i];
+    }
+    if (at == n)
+        w += sprintf(w, "%s", num);
+    *w = '\0';
+    return out;
+}
 
+/* The outputs of frame k (-1: not an animation): *exr, *png and *var
+ * (NULL without --variance) malloc'ed, from the options or the scene.
+ * The exit code; a bad pattern is a bad command line (or a bad scene, in
+ * the scene's `output`), with nothing written. */
+static int frame_names(const cmd_render_args_t *o, const scene_t *s, int k,
+                       char **exr, char **png, char **var)
+{
+    char *e = o->exr ? strdup(o->exr) : default_exr(s, o->scene);
+    char *p = o->png ? strdup(o->png)
+            : (!o->exr && s->render.output_png) ? strdup(s->render.output_png)
+            : NULL;
+    char *v = o->var ? strdup(o->var) : NULL;
+    const bool scene_png = !o->png && p;
+    int rc = SVET_EXIT_OK;
+    if (!e || (!p && (o->png || scene_png)) || (!v && o->var))
+        rc = SVET_EXIT_OUTPUT;
+    const struct { char **name; const char *what; bool scene; } f[] = {
+        { &e, "the EXR output", !o->exr && s->render.output_exr },
+        { &p, "the PNG output", scene_png },
+        { &v, "the variance output", false },
+    };
+    for (int i = 0; i < 3 && rc == SVET_EXIT_OK && k >= 0; i++) {
+        if (!*f[i].name)
+            continue;
+        const char *why;
+        char *x = frame_name(*f[i].name, k, &why);
+        if (!x && why)
+            rc = cmd_error("render", f[i].scene ? SVET_EXIT_INPUT
+                                                : SVET_EXIT_USAGE,
+                           "%s: %s '%s' is a bad frame pattern: %s "
+                           "(nothing was written)", o->scene, f[i].what,
+                           *f[i].name, why);
+        else if (!x)
+            rc = SVET_EXIT_OUTPUT;
+        free(*f[i].name);
+        *f[i].name = x;
+    }
+    if (rc == SVET_EXIT_OK && !p && !(p = cmd_replace_ext(e, ".png")))
+        rc = SVET_EXIT_OUTPUT;
+    if (rc == SVET_EXIT_OUTPUT)
+        fprintf(stderr, "svet render: out of memory\n");
+    if (rc != SVET_EXIT_OK) {
+        free(e), free(p), free(v);
+        e = p = v = NULL;
+    }
+    *exr = e, *png = p, *var = v;
+    return rc;
+}
+
+/* Render the loaded scene (frame `frame` of its animation, or -1) to the
+ * outputs o names, expanded for the frame; the exit code. */
+static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
+                         int frame)
+{
+    const char *scene_path = o->scene;
+    char *opt_var = NULL;
     svet_error err;
     svet_error_clear(&err);
-    scene_t scene;
-    rc = cmd_scene_load("render", &scene, scene_path, &o.so);
-    if (rc != SVET_EXIT_OK) {
-        scene_free(&scene);
-        return rc;
-    }
-    if (o.spp > 0)
-        scene.render.spp = o.spp;
-    if (o.time_limit >= 0)
-        scene.render.time_limit = o.time_limit;
-    if (o.checkpoint)
-        scene.render.checkpoint = true;
-    if (o.passes > 0)
-        scene.render.passes = (int)o.passes;
+    int rc = SVET_EXIT_OK;
+    if (o->spp > 0)
+        scene->render.spp = o->spp;
+    if (o->time_limit >= 0)
+        scene->render.time_limit = o->time_limit;
+    if (o->checkpoint)
+        scene->render.checkpoint = true;
+    if (o->passes > 0)
+        scene->render.passes = (int)o->passes;
 
-    char *exr = opt_exr ? strdup(opt_exr) : default_exr(&scene, scene_path);
-    char *png = opt_png ? strdup(opt_png)
-              : (!opt_exr && scene.render.output_png)
-                  ? strdup(scene.render.output_png)
-                  : exr ? cmd_replace_ext(exr, ".png") : NULL;
+    char *exr = NULL, *png = NULL;
     render_t r;
     bool r_live = false;
     char *part_path = NULL;
+    rc = frame_names(o, scene, frame, &exr, &png, &opt_var);
+    if (rc != SVET_EXIT_OK)
+        goto done;
     if (!exr || !png) {
         fprintf(stderr, "svet render: out of memory\n");
         rc = SVET_EXIT_OUTPUT;
@@ -390,31 +547,31 @@ int cmd_render(int argc, char **argv)
     rc = cmd_check_outputs("render", outs, 3, ins, 1);
     if (rc != SVET_EXIT_OK)
         goto done;
-    if (scene_validate(&scene, &err) != SVET_OK ||
-        render_init(&r, &scene, &err) != SVET_OK) {
+    if (scene_validate(scene, &err) != SVET_OK ||
+        render_init(&r, scene, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);
         rc = SVET_EXIT_INPUT;
         goto done;
     }
     r_live = true;
     cmd_part_t part = { 0 };
-    if (o.part || o.checkpoint) {
-        const int W = scene.camera.width, H = scene.camera.height;
-        if (o.cropped && (o.crop[1] > W || o.crop[3] > H)) {
+    if (o->part || o->checkpoint) {
+        const int W = scene->camera.width, H = scene->camera.height;
+        if (o->cropped && (o->crop[1] > W || o->crop[3] > H)) {
             fprintf(stderr, "svet render: --crop %d:%d,%d:%d: outside the "
-                    "%dx%d image\n", o.crop[0], o.crop[1], o.crop[2],
-                    o.crop[3], W, H);
+                    "%dx%d image\n", o->crop[0], o->crop[1], o->crop[2],
+                    o->crop[3], W, H);
             rc = SVET_EXIT_USAGE;
             goto done;
         }
         part.width = W, part.height = H;
-        part.from = o.to > 0 ? o.from : 0;
-        part.to = o.to > 0 ? o.to : scene.render.spp;
-        part.x0 = o.cropped ? o.crop[0] : 0;
-        part.x1 = o.cropped ? o.crop[1] : W;
-        part.y0 = o.cropped ? o.crop[2] : 0;
-        part.y1 = o.cropped ? o.crop[3] : H;
-        if (cmd_part_identity(scene_path, &scene, &o.so, &part.identity,
+        part.from = o->to > 0 ? o->from : 0;
+        part.to = o->to > 0 ? o->to : scene->render.spp;
+        part.x0 = o->cropped ? o->crop[0] : 0;
+        part.x1 = o->cropped ? o->crop[1] : W;
+        part.y0 = o->cropped ? o->crop[2] : 0;
+        part.y1 = o->cropped ? o->crop[3] : H;
+        if (cmd_part_identity(scene_path, scene, &o->so, &part.identity,
                               &err) != SVET_OK) {
             fprintf(stderr, "svet render: %s\n", err.msg);
             rc = SVET_EXIT_INPUT;
@@ -430,9 +587,9 @@ int cmd_render(int argc, char **argv)
         r.crop_x0 = part.x0, r.crop_x1 = part.x1;
         r.crop_y0 = part.y0, r.crop_y1 = part.y1;
         r.spp_done = part.from; /* sample indices from FROM on */
-        scene.render.spp = part.to;
+        scene->render.spp = part.to;
     }
-    if (o.resume) {
+    if (o->resume) {
         cmd_part_file_t q;
         memset(&q, 0, sizeof q);
         rc = cmd_part_read(exr, &q);
@@ -470,17 +627,17 @@ int cmd_render(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
-    const long total = scene.render.spp, first = r.spp_done;
-    long npass = scene.render.passes > 1 ? scene.render.passes
+    const long total = scene->render.spp, first = r.spp_done;
+    long npass = scene->render.passes > 1 ? scene->render.passes
                  : (total - first < 16 ? total - first : 16);
     if (npass > total - first)
         npass = total - first;
-    outputs_t out = { exr, png, opt_var, o.half,
-                      o.part || o.checkpoint ? &part : NULL };
+    outputs_t out = { exr, png, opt_var, o->half,
+                      o->part || o->checkpoint ? &part : NULL };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
-                      !o.quiet && isatty(STDERR_FILENO) };
+                      !o->quiet && isatty(STDERR_FILENO) };
     bool interrupted = false;
-    long written = o.resume ? -1 : first; /* the samples on disk */
+    long written = o->resume ? -1 : first; /* the samples on disk */
     for (long k = 1; k <= npass; k++) {
         long end = first + (long)((double)(total - first) * (double)k /
                                   (double)npass);
@@ -490,7 +647,7 @@ int cmd_render(int argc, char **argv)
         /* a signal abandons the pass at the next tile: what is written
          * is then the last whole pass, the image of r.spp_done samples */
         bool abandoned;
-        if (render_pass_until(&r, end, scene.render.threads, on_tile, &pr,
+        if (render_pass_until(&r, end, scene->render.threads, on_tile, &pr,
                               &stop_requested, &abandoned, &err) != SVET_OK) {
             fprintf(stderr, "\nsvet render: %s: %s\n", scene_path, err.msg);
             rc = SVET_EXIT_RENDER;
@@ -500,11 +657,11 @@ int cmd_render(int argc, char **argv)
             interrupted = true;
             break;
         }
-        if (scene.render.time_limit > 0 &&
-            cmd_now() - pr.t0 >= scene.render.time_limit)
+        if (scene->render.time_limit > 0 &&
+            cmd_now() - pr.t0 >= scene->render.time_limit)
             break;
-        if (scene.render.checkpoint && k < npass) {
-            if (cmd_render_write(&r, &scene, &out, &err) != SVET_OK) {
+        if (scene->render.checkpoint && k < npass) {
+            if (cmd_render_write(&r, scene, &out, &err) != SVET_OK) {
                 fprintf(stderr, "\nsvet render: %s\n", err.msg);
                 rc = SVET_EXIT_OUTPUT;
                 goto done;
@@ -515,7 +672,7 @@ int cmd_render(int argc, char **argv)
     double secs = cmd_now() - pr.t0;
     if (pr.tty)
         fputc('\n', stderr);
-    if (r.spp_done == first && !o.resume) {
+    if (r.spp_done == first && !o->resume) {
         /* stopped in the first pass: an image of no samples would only
          * replace a good earlier one */
         fprintf(stderr, "svet render: %s: interrupted before the first pass "
@@ -524,19 +681,19 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
     if (r.spp_done != written &&
-        cmd_render_write(&r, &scene, &out, &err) != SVET_OK) {
+        cmd_render_write(&r, scene, &out, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s\n", err.msg);
         rc = SVET_EXIT_OUTPUT;
         goto done;
     }
     uint64_t nonfinite = image_accum_nonfinite(&r.acc);
-    if (!o.quiet) {
-        double samples = (double)r.spp_done * (double)scene.camera.width *
-                         (double)scene.camera.height;
+    if (!o->quiet) {
+        double samples = (double)r.spp_done * (double)scene->camera.width *
+                         (double)scene->camera.height;
         fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s: %.3g "
                         "samples/s, %.3g rays/s; %s%s%s; wrote %s and "
                         "%s%s%s\n",
-                scene_path, scene.camera.width, scene.camera.height,
+                scene_path, scene->camera.width, scene->camera.height,
                 r.spp_done, secs, samples / secs,
                 (double)r.stats.rays / secs,
                 r.method ? r.method->describe : "", r.method ? "; " : "",
@@ -555,7 +712,73 @@ done:
         render_free(&r);
     free(exr);
     free(png);
+    free(opt_var);
     free(part_path);
+    return rc;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    cmd_render_args_t o;
+    int rc = cmd_render_parse(argc, argv, &o);
+    if (rc != CMD_RUN)
+        return rc;
+    scene_t scene;
+    rc = cmd_scene_load("render", &scene, o.scene, &o.so);
+    if (rc != SVET_EXIT_OK) {
+        scene_free(&scene);
+        return rc;
+    }
+    const int n = animation_frames(&scene);
+    if (o.frame_count) {
+        printf("%d\n", n);
+        scene_free(&scene);
+        return SVET_EXIT_OK;
+    }
+    const bool some = o.frame_b > 0;
+    const long a = some ? o.frame_a : 0, b = some ? o.frame_b : n;
+    if (some && n == 0)
+        rc = cmd_error("render", SVET_EXIT_USAGE, "%s: --frame(s): the "
+                       "scene has no animation ('animation frames N'); "
+                       "nothing was written", o.scene);
+    else if (some && b > n)
+        rc = cmd_error("render", SVET_EXIT_USAGE, "%s: --frame%s %ld%s%.0ld: "
+                       "the animation has frames 0..%d; nothing was "
+                       "written", o.scene, b - a > 1 ? "s" : "", a,
+                       b - a > 1 ? ":" : "", b - a > 1 ? b : 0, n - 1);
+    /* every frame's camera and output names before any frame renders */
+    svet_error err;
+    svet_error_clear(&err);
+    for (long k = a; k < b && rc == SVET_EXIT_OK; k++)
+        if (animation_set_frame(&scene, (int)k, &err) != SVET_OK)
+            rc = cmd_error("render", SVET_EXIT_INPUT, "%s: %s; nothing was "
+                           "written", o.scene, err.msg);
+    if (rc == SVET_EXIT_OK && n > 0) {
+        char *e, *p, *v;
+        rc = frame_names(&o, &scene, (int)a, &e, &p, &v);
+        if (rc == SVET_EXIT_OK)
+            free(e), free(p), free(v);
+    }
+    if (rc != SVET_EXIT_OK || n == 0) {
+        if (rc == SVET_EXIT_OK)
+            rc = render_loaded(&o, &scene, -1);
+        scene_free(&scene);
+        return rc;
+    }
+    /* frame by frame, each from the scene read afresh: frame k is the
+     * same whichever frames come before it */
+    for (long k = a; k < b && rc == SVET_EXIT_OK; k++) {
+        if (k > a) {
+            scene_free(&scene);
+            rc = cmd_scene_load("render", &scene, o.scene, &o.so);
+        }
+        if (rc == SVET_EXIT_OK &&
+            animation_set_frame(&scene, (int)k, &err) != SVET_OK)
+            rc = cmd_error("render", SVET_EXIT_INPUT, "%s: %s", o.scene,
+                           err.msg);
+        if (rc == SVET_EXIT_OK)
+            rc = render_loaded(&o, &scene, (int)k);
+    }
     scene_free(&scene);
     return rc;
 }

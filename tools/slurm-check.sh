@@ -3,7 +3,10 @@
 # CI; tools/slurm/README.md): munged, slurmctld and slurmd from a generated
 # slurm.conf in a temporary directory, then render-array.sbatch (4 parts of
 # the Cornell box) and merge.sbatch after it (--dependency=afterok); the
-# merged EXR must be the bytes of a single render. Installs nothing: it
+# merged EXR must be the bytes of a single render; then frames.sbatch over
+# 3 frames of scenes/anim/orbit.scn, one per task, and again in 2 parts
+# per frame with frames-merge.sbatch after it (afterok): every frame the
+# bytes of svet render --frame K. Installs nothing: it
 # needs Debian's slurm-wlm and munge (apt-get install -y slurm-wlm munge).
 # Everything it starts it stops, by pid file, and the directory goes.
 # Usage: sh tools/slurm-check.sh SVET   (make slurm-check)
@@ -87,3 +90,32 @@ done
 $S render scenes/cbox.scn --spp 64 -q -o $D/single.exr || fail "single render"
 cmp $D/out/cbox.exr $D/single.exr || fail "merged image differs from the single render"
 echo "slurm-check: 4 array tasks and a dependent merge: the single render's bits"
+# an animation: 3 frames, one per task; then 2 parts per frame and a merge
+# array after them
+wait_jobs() {
+    i=0
+    while squeue -h -j "$1" 2>/dev/null | grep -q .; do
+        i=$((i + 1)); [ $i -gt 600 ] && fail "the jobs $1 did not end in 300 s"
+        sleep 0.5
+    done
+}
+unset PARTS
+export SCENE=scenes/anim/orbit.scn OUT="$D/out/orbit-%04d.exr" FIRST=5 \
+    RENDER_OPTS="--set resolution=64x64 --spp 16"
+f=$(sbatch --parsable --array=0-2 --export=ALL --chdir="$PWD" \
+    -o $D/frame-%a.log tools/slurm/frames.sbatch) || fail "sbatch frames"
+wait_jobs "$f"
+export PARTS=2 SPP=16 OUT="$D/out/orbitp-%04d.exr"
+f=$(sbatch --parsable --array=0-5 --export=ALL --chdir="$PWD" \
+    -o $D/framepart-%a.log tools/slurm/frames.sbatch) || fail "sbatch frame parts"
+m=$(sbatch --parsable --array=0-2 --dependency=afterok:$f --export=ALL \
+    --chdir="$PWD" -o $D/framemerge-%a.log tools/slurm/frames-merge.sbatch) ||
+    fail "sbatch frame merges"
+wait_jobs "$f,$m"
+for k in 5 6 7; do
+    $S render $SCENE $RENDER_OPTS --frame $k -q -o $D/one.exr || fail "frame $k"
+    n=$(printf %04d $k)
+    cmp $D/out/orbit-$n.exr $D/one-$n.exr || fail "frame $k of the array differs"
+    cmp $D/out/orbitp-$n.exr $D/one-$n.exr || fail "frame $k in 2 parts differs"
+done
+echo "slurm-check: 3 frames, one per task, and in 2 parts each merged per frame: the bits of svet render --frame K"

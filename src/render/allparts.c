@@ -12,6 +12,7 @@
 #include "medium/medpart.h"
 #include "mesh/objmesh.h"
 #include "photon/photon.h"
+#include "render/animation.h"
 #include "render/scenepart.h"
 #include "texture/texpart.h"
 
@@ -22,10 +23,12 @@ static const accel_ops_t *const accels[] = { &batch_accel,
                                              &grid_hierarchical_accel, NULL };
 
 /* Part II: photon maps (ch. 8), the irradiance cache (ch. 9), textures
- * (ch. 10), media (ch. 11), each a scenepart.h scene_part_t */
+ * (ch. 10), media (ch. 11), each a scenepart.h scene_part_t; and the
+ * animations of svet render (animation.h) */
 static const scene_part_t *const parts[] = { &photon_part, &irr_part,
                                              &texpart_part,
-                                             &medium_part, NULL };
+                                             &medium_part,
+                                             &animation_part, NULL };
 
 static const scene_features_t all = {
     .accel = &accel_layer, /* ch. 7: the acceleration layer */
