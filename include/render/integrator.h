@@ -70,6 +70,44 @@ RADIANCE integrator_direct(const integrator_t *it, const PATHPOINT *pp,
                            const struct material *m, const VECTOR3 wo,
                            bool mis, pcg32_t *g, integrator_stats_t *st);
 
+/* What scatters light at the point of a light sample (integrator_nee): a
+ * surface's material m, seen along wo (pp's local frame), or, when m is
+ * NULL, the caller's eval: f per unit solid angle toward wi (world, unit;
+ * any cosine included) and, when pdf is not NULL, the pdf of the caller's
+ * own sampling of wi there (a medium's phase function, ch. 11). two: light
+ * from both sides counts (a surface that transmits; a medium). */
+typedef struct {
+    const struct material *m;
+    const real *wo;
+    bool two;
+    RADIANCE (*eval)(const void *ctx, const VECTOR3 wi, real *pdf);
+    const void *ctx;
+} integrator_scatter_t;
+
+/* The transmittance of the shadow ray *sr over (0, tmax) from pp toward
+ * the light sample ls, skip its two end surfaces: black when blocked,
+ * less than 1 through a medium (ch. 11). It may draw from g and counts
+ * the rays it traces in st. */
+typedef RADIANCE (*integrator_shadow_fn)(const void *ctx,
+                                         const integrator_t *it,
+                                         const PATHPOINT *pp, const ray_t *sr,
+                                         real tmax,
+                                         const COBJECT *const skip[2],
+                                         const light_sample_t *ls, pcg32_t *g,
+                                         integrator_stats_t *st);
+
+/* Next-event estimation at pp, the one the path tracer makes at surfaces
+ * (integrator_direct) and ch. 11's estimators at surfaces and points of
+ * a medium: one light chosen by power, sampled once, f from sc, the
+ * shadow ray's transmittance from shadow (NULL: the tracer's occlusion
+ * test, 0 or 1), weighted against sc's own sampling by the power
+ * heuristic when mis (else weight 1). Draws 3 numbers from g, then what
+ * shadow draws; black without lights. This function can't fail. */
+RADIANCE integrator_nee(const integrator_t *it, const PATHPOINT *pp,
+                        const integrator_scatter_t *sc, bool mis,
+                        integrator_shadow_fn shadow, const void *shadow_ctx,
+                        pcg32_t *g, integrator_stats_t *st);
+
 /* The power heuristic with beta = 2 for two strategies with densities a
  * (the one used) and b: a^2 / (a^2 + b^2), computed without overflow;
  * 0 when a is 0. */

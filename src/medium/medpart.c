@@ -366,12 +366,41 @@ static svet_status finish(scenefile_ctx *c)
     return SVET_OK;
 }
 
+/* --- `volsingle step H` ----------------------------------------------------- */
+
+enum { VS_STEP, VS_N };
+static const spec_t volsingle_spec[VS_N] = {
+    [VS_STEP] = { "step", V_NUM, F_POSITIVE, 0, 0, NULL },
+};
+
+static svet_status volsingle_statement(scenefile_ctx *c)
+{
+    val_t v[VS_N];
+    svet_status st = scenefile_keys(c, "volsingle", volsingle_spec, VS_N, v,
+                                    false);
+    if (st)
+        return st;
+    medpart_data_t *d = data_of(c);
+    if (!d)
+        return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
+                              "out of memory");
+    if (v[VS_STEP].set) {
+        if (!isfinite(v[VS_STEP].v[0]))
+            return scenefile_fail(c, v[VS_STEP].col, SVET_ERR_RANGE,
+                                  "the step must be finite");
+        d->step = v[VS_STEP].v[0];
+    }
+    return SVET_OK;
+}
+
 static const scene_statement_t statements[] = {
     { "medium", medium_statement },
+    { "volsingle", volsingle_statement },
     { NULL, NULL }
 };
 
-static const render_method_t *const methods[] = { &volpath_method, NULL };
+static const render_method_t *const methods[] = { &volpath_method,
+                                                   &volsingle_method, NULL };
 
 const scene_part_t medium_part = {
     .name = "medium",

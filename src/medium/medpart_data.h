@@ -8,6 +8,7 @@
 #define SVET_MEDPART_DATA_H
 
 #include "medium/medpart.h"
+#include "render/integrator.h"
 
 /* A named medium; its grid (when it has one) is owned here. */
 typedef struct {
@@ -31,9 +32,95 @@ typedef struct {
     side_t **sides;
     int nsides;
     int global;             /* index of the global medium, -1: none */
+    real step;              /* `volsingle step`, 0: not given */
 } medpart_data_t;
 
-/* `render integrator volpath` (volpath.c). */
+/* volsingle's step when the scene gives none, in scene units. */
+#define MEDPART_DEFAULT_STEP REAL_C(0.05)
+
+/* `render integrator volpath` (volpath.c) and `volsingle` (volsingle.c). */
 extern const render_method_t volpath_method;
+extern const render_method_t volsingle_method;
+
+/* --- what volsingle.c takes from volpath.c ------------------------------ */
+
+/* Where a segment to infinity ends in a medium: any positive extinction
+ * makes exp(-sigma_t VOLPATH_FAR) 0, and a zero one gives 1 where an
+ * infinite length would give exp(-0 inf), NaN. */
+#define VOLPATH_FAR REAL_C(1e30)
+
+/* The most invisible boundaries one segment may cross before the path
+ * is given up (a ray caught between coincident surfaces). */
+#define VOLPATH_MAX_CROSSINGS 256
+
+/* What both methods prepare: the camera's medium and whether shadow rays
+ * must look for invisible boundaries. */
+typedef struct {
+    const medium_t *global; /* the camera's medium: the scene's, or NULL */
+    bool invisible;         /* some boundary is invisible: shadow rays
+                               must find where they cross it */
+    real step;              /* > 0: volsingle's march step; 0: volpath */
+} volpath_state_t;
+
+svet_status volpath_prepare(void **out, const struct render *r, int threads,
+                            svet_error *err);
+void volpath_free(void *state);
+
+/* The medium a ray leaving a surface of obj (normal ng) in direction w
+ * is in: the side's for a boundary, else med, the one it was in. */
+const medium_t *volpath_medium_after(const COBJECT *obj, const VECTOR3 ng,
+                                     const VECTOR3 w, const medium_t *med);
+
+/* Transmittance over t in [0, len] of ray r (unit dir) in med (NULL:
+ * vacuum); len may be infinite only in a homogeneous medium. */
+RADIANCE volpath_segment_tr(const medium_t *med, const ray_t *r,
+                            const VECTOR3 dir, real len, pcg32_t *g);
+
+/* The walk of both methods (render_method_t.li): distance sampling in
+ * media for volpath, the march (volsingle_march) when s->step > 0. */
+RADIANCE volpath_li(const void *state, const struct render *r,
+                    const ray_t *camera, long sample, pcg32_t *g,
+                    integrator_stats_t *st);
+
+/* The PATHPOINT of a point of a medium at distance t along r (unit dir):
+ * no surface, its frame around dir. */
+void volpath_medium_point(PATHPOINT *pp, const ray_t *r, const VECTOR3 dir,
+                          real t);
+
+/* The point a light is sampled from: the ray's medium there, the surface
+ * (NULL: a point of the medium) and the direction the ray travelled. */
+typedef struct {
+    const volpath_state_t *s;
+    const medium_t *med;
+    const COBJECT *obj;
+    VECTOR3 dir;
+} volpath_at_t;
+
+/* integrator_shadow_fn with ctx a volpath_at_t: the shadow ray's
+ * transmittance, through invisible boundaries (ratio tracking in grids,
+ * Novak et al. 2014). */
+RADIANCE volpath_shadow(const void *ctx, const integrator_t *it,
+                        const PATHPOINT *pp, const ray_t *sr, real tmax,
+                        const COBJECT *const skip[2],
+                        const light_sample_t *ls, pcg32_t *g,
+                        integrator_stats_t *st);
+
+/* Next-event estimation (integrator_nee) at a surface of material m (wo
+ * in pp's local frame) or, with m NULL, at a point of at->med scattering
+ * by its phase function; shadow rays by volpath_shadow. */
+RADIANCE volpath_direct(const volpath_at_t *at, const integrator_t *it,
+                        const PATHPOINT *pp, const struct material *m,
+                        const VECTOR3 wo, bool mis, pcg32_t *g,
+                        integrator_stats_t *st);
+
+
+/* The light singly scattered toward the ray's origin along ray (unit
+ * dir) over [0, len] in med (len VOLPATH_FAR: to infinity, homogeneous
+ * media only), marched with step s->step, a light sampled at each point
+ * when nee; *tr the segment's transmittance. Draws from g. */
+RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
+                         const medium_t *med, const ray_t *ray,
+                         const VECTOR3 dir, real len, bool nee, pcg32_t *g,
+                         integrator_stats_t *st, RADIANCE *tr);
 
 #endif

@@ -26,26 +26,11 @@
 #include "render/integrator.h"
 #include "render/render.h"
 
-/* Where a segment to infinity ends in a medium: any positive extinction
- * makes exp(-sigma_t VOLPATH_FAR) 0, and a zero one gives 1 where an
- * infinite length would give exp(-0 inf), NaN. */
-#define VOLPATH_FAR REAL_C(1e30)
-
-/* The most invisible boundaries one segment may cross before the path
- * is given up (a ray caught between coincident surfaces). */
-#define VOLPATH_MAX_CROSSINGS 256
-
-typedef struct {
-    const medium_t *global; /* the camera's medium: the scene's, or NULL */
-    bool invisible;         /* some boundary is invisible: shadow rays
-                               must find where they cross it */
-} state_t;
-
-static svet_status prepare(void **out, const render_t *r, int threads,
-                           svet_error *err)
+svet_status volpath_prepare(void **out, const render_t *r, int threads,
+                            svet_error *err)
 {
     (void)threads;
-    state_t *s = calloc(1, sizeof *s);
+    volpath_state_t *s = calloc(1, sizeof *s);
     if (!s)
         return svet_error_set(err, SVET_ERR_NOMEM, "volpath: out of memory");
     s->global = medpart_global(r->scene);
@@ -56,15 +41,15 @@ static svet_status prepare(void **out, const render_t *r, int threads,
     return SVET_OK;
 }
 
-static void state_free(void *p)
+void volpath_free(void *p)
 {
     free(p);
 }
 
 /* The medium a ray leaving a surface of obj (normal ng) in direction w
  * is in: the side's for a boundary, else the medium it was in. */
-static const medium_t *medium_after(const COBJECT *obj, const VECTOR3 ng,
-                                    const VECTOR3 w, const medium_t *med)
+const medium_t *volpath_medium_after(const COBJECT *obj, const VECTOR3 ng,
+                                     const VECTOR3 w, const medium_t *med)
 {
     if (!obj->inside)
         return med;
@@ -73,8 +58,8 @@ static const medium_t *medium_after(const COBJECT *obj, const VECTOR3 ng,
 
 /* Transmittance over t in [0, len] of ray r (unit dir) in med; len may be
  * infinite only in a homogeneous medium (the global medium is one). */
-static RADIANCE segment_tr(const medium_t *med, const ray_t *r,
-                           const VECTOR3 dir, real len, pcg32_t *g)
+RADIANCE volpath_segment_tr(const medium_t *med, const ray_t *r,
+                            const VECTOR3 dir, real len, pcg32_t *g)
 {
     if (!med)
         return rad_grey(1);
@@ -85,12 +70,12 @@ static RADIANCE segment_tr(const medium_t *med, const ray_t *r,
 /* The transmittance of the shadow ray sr over (0, tmax) toward the light
  * sample ls, starting in med: 0 when a surface blocks it; through
  * invisible boundaries, changing medium at each. */
-static RADIANCE shadow(const state_t *s, const integrator_t *it, ray_t sr,
-                       real tmax, const COBJECT *from, const COBJECT *to,
+static RADIANCE shadow(const volpath_state_t *s, const integrator_t *it,
+                       ray_t sr, real tmax, const COBJECT *const ends[2],
                        const light_sample_t *ls, const medium_t *med,
                        pcg32_t *g, integrator_stats_t *st)
 {
-    const COBJECT *skip[2] = { from, to };
+    const COBJECT *skip[2] = { ends[0], ends[1] };
     VECTOR3 dir;
     if (!s->invisible) {
         /* no boundary to cross: one medium all along */
@@ -98,7 +83,7 @@ static RADIANCE shadow(const state_t *s, const integrator_t *it, ray_t sr,
         if (it->tracer.occluded(it->tracer.ctx, &sr, 0, tmax, skip))
             return rad_grey(0);
         real len = vec_normalize(dir, sr.d);
-        return segment_tr(med, &sr, dir, tmax * len, g);
+        return volpath_segment_tr(med, &sr, dir, tmax * len, g);
     }
     RADIANCE tr = rad_grey(1);
     for (int k = 0; k < VOLPATH_MAX_CROSSINGS; k++) {
@@ -108,7 +93,7 @@ static RADIANCE shadow(const state_t *s, const integrator_t *it, ray_t sr,
         bool hit = it->tracer.intersect(it->tracer.ctx, &sr, 0, tmax, skip,
                                         &h, &obj);
         real len = vec_normalize(dir, sr.d);
-        tr = rad_mul(tr, segment_tr(med, &sr, dir, (hit ? h.t : tmax) * len,
+        tr = rad_mul(tr, volpath_segment_tr(med, &sr, dir, (hit ? h.t : tmax) * len,
                                     g));
         if (!hit)
             return tr;
@@ -116,7 +101,7 @@ static RADIANCE shadow(const state_t *s, const integrator_t *it, ray_t sr,
             return rad_grey(0);
         PATHPOINT pp;
         cobject_fill(obj, &sr, &h, &pp);
-        med = medium_after(obj, pp.ng, sr.d, med);
+        med = volpath_medium_after(obj, pp.ng, sr.d, med);
         if (ls->infinite) {
             ray_spawn(&sr, pp.cross_point, pp.p_error, pp.ng, ls->wi);
             tmax = (real)INFINITY;
@@ -129,66 +114,47 @@ static RADIANCE shadow(const state_t *s, const integrator_t *it, ray_t sr,
     return rad_grey(0);
 }
 
-/* Next-event estimation at pp: at a surface of material m (obj not NULL;
- * wo in the local frame) or at a scattering event of a medium of phase ph
- * reached along dir (obj NULL). One light chosen by power, sampled once,
- * its shadow ray's transmittance, and the power heuristic against BSDF or
- * phase sampling. Returns the contribution before the path throughput. */
-static RADIANCE direct(const state_t *s, const integrator_t *it,
-                       const PATHPOINT *pp, const COBJECT *obj,
-                       const material_t *m, const VECTOR3 wo,
-                       const phase_t *ph, const VECTOR3 dir,
-                       const medium_t *med, pcg32_t *g,
-                       integrator_stats_t *st)
+RADIANCE volpath_shadow(const void *ctx, const integrator_t *it,
+                        const PATHPOINT *pp, const ray_t *sr, real tmax,
+                        const COBJECT *const skip[2],
+                        const light_sample_t *ls, pcg32_t *g,
+                        integrator_stats_t *st)
 {
-    real upick = pcg32_real(g), u[2];
-    u[0] = pcg32_real(g);
-    u[1] = pcg32_real(g);
-    real pmf;
-    const light_t *l = lightset_pick(it->lights, upick, &pmf);
-    if (!l || !(pmf > 0))
-        return rad_grey(0);
-    const bool two = obj ? m->transmits : true;
-    light_sample_t ls;
-    if (!light_sample(l, pp, two, u, &ls))
-        return rad_grey(0);
-    real pb = 0;
-    RADIANCE f;
-    if (obj) {
-        VECTOR3 wi;
-        frame_to_local(wi, ls.wi, pp->u, pp->v, pp->n);
-        f = rad_scale(material_eval_pdf(m, wi, wo, ls.delta ? NULL : &pb),
-                      fabs(wi[Z]));
-        med = medium_after(obj, pp->ng, ls.wi, med);
-    } else {
-        /* light travels along -wi, then along -dir: cos = wi . dir */
-        pb = phase_eval(ph, SVECTOR3(ls.wi, dir));
-        f = rad_grey(pb);
-    }
-    if (rad_is_black(f) || rad_is_black(ls.Li))
-        return rad_grey(0);
-    ray_t sr;
-    real tmax;
-    if (ls.infinite) {
-        ray_spawn(&sr, pp->cross_point, pp->p_error, pp->ng, ls.wi);
-        tmax = (real)INFINITY;
-    } else {
-        tmax = ray_spawn_to(&sr, pp->cross_point, pp->p_error, pp->ng, ls.p,
-                            ls.p_error, ls.n);
-    }
-    const COBJECT *to = ls.infinite || !l->emission ? NULL : l->emission->obj;
-    RADIANCE tr = shadow(s, it, sr, tmax, obj, to, &ls, med, g, st);
-    if (rad_is_black(tr))
-        return rad_grey(0);
-    real w = ls.delta ? 1 : integrator_mis_weight(pmf * ls.pdf_mis, pb);
-    return rad_mul(rad_mul(f, rad_mul(ls.Li, tr)),
-                   rad_grey(w / (pmf * ls.pdf)));
+    const volpath_at_t *at = ctx;
+    const medium_t *med = at->obj ? volpath_medium_after(at->obj, pp->ng, ls->wi,
+                                                 at->med)
+                                  : at->med;
+    return shadow(at->s, it, *sr, tmax, skip, ls, med, g, st);
 }
 
-/* The PATHPOINT of a scattering event at distance t along r (unit dir):
- * a point with no surface, its frame around dir. */
-static void medium_point(PATHPOINT *pp, const ray_t *r, const VECTOR3 dir,
-                         real t)
+/* The phase function as what scatters toward a light (integrator_nee):
+ * light travels along -wi, then along -dir, so cos = wi . dir; the phase
+ * is sampled exactly, so its pdf is its value. */
+static RADIANCE phase_toward(const void *ctx, const VECTOR3 wi, real *pdf)
+{
+    const volpath_at_t *at = ctx;
+    real p = phase_eval(&at->med->phase, SVECTOR3(wi, at->dir));
+    if (pdf)
+        *pdf = p;
+    return rad_grey(p);
+}
+
+RADIANCE volpath_direct(const volpath_at_t *at, const integrator_t *it,
+                        const PATHPOINT *pp, const material_t *m,
+                        const VECTOR3 wo, bool mis, pcg32_t *g,
+                        integrator_stats_t *st)
+{
+    integrator_scatter_t sc = { m, wo, true, phase_toward, at };
+    if (m) {
+        sc.two = m->transmits;
+        sc.eval = NULL;
+        sc.ctx = NULL;
+    }
+    return integrator_nee(it, pp, &sc, mis, volpath_shadow, at, g, st);
+}
+
+void volpath_medium_point(PATHPOINT *pp, const ray_t *r, const VECTOR3 dir,
+                          real t)
 {
     memset(pp, 0, sizeof *pp);
     vec_add_scaled(pp->cross_point, r->o, t, dir);
@@ -199,11 +165,12 @@ static void medium_point(PATHPOINT *pp, const ray_t *r, const VECTOR3 dir,
     pp->r_dist = t;
 }
 
-static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
-                   long sample, pcg32_t *g, integrator_stats_t *st)
+RADIANCE volpath_li(const void *state, const render_t *r,
+                    const ray_t *camera, long sample, pcg32_t *g,
+                    integrator_stats_t *st)
 {
     (void)sample;
-    const state_t *s = state;
+    const volpath_state_t *s = state;
     const integrator_t *it = &r->integrator;
     const scene_t *sc = r->scene;
     st->paths++;
@@ -228,7 +195,19 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
                                         (real)INFINITY, skip, &h, &obj);
         VECTOR3 dir;
         real len = vec_normalize(dir, ray.d);
-        if (med) {
+        if (med && s->step > 0) {
+            /* volsingle: the light scattered once along this segment,
+             * and on with its transmittance */
+            RADIANCE tr = rad_grey(1);
+            L = rad_add(L, rad_mul(beta, volsingle_march(
+                                             s, it, med, &ray, dir,
+                                             hit ? h.t * len : VOLPATH_FAR,
+                                             nee && depth < it->max_depth, g,
+                                             st, &tr)));
+            beta = rad_mul(beta, tr);
+            if (rad_is_black(beta))
+                break;
+        } else if (med) {
             real t;
             RADIANCE w;
             bool scattered = medium_sample(med, ray.o, dir,
@@ -241,11 +220,14 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
                 if (depth >= it->max_depth)
                     break;
                 PATHPOINT *pp = cur;
-                medium_point(pp, &ray, dir, t);
-                if (nee)
-                    L = rad_add(L, rad_mul(beta, direct(s, it, pp, NULL, NULL,
-                                                        NULL, &med->phase,
-                                                        dir, med, g, st)));
+                volpath_medium_point(pp, &ray, dir, t);
+                if (nee) {
+                    volpath_at_t at = { s, med, NULL, { dir[X], dir[Y],
+                                                        dir[Z] } };
+                    L = rad_add(L, rad_mul(beta, volpath_direct(&at, it, pp,
+                                                                NULL, NULL,
+                                                                true, g, st)));
+                }
                 real u[2] = { pcg32_real(g), pcg32_real(g) };
                 VECTOR3 wo;
                 real pdf = phase_sample(&med->phase, dir, u, wo);
@@ -281,7 +263,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
             /* no surface: the ray goes straight on, into the other side */
             if (++crossings > VOLPATH_MAX_CROSSINGS)
                 break;
-            med = medium_after(obj, pp->ng, dir, med);
+            med = volpath_medium_after(obj, pp->ng, dir, med);
             ray_spawn(&ray, pp->cross_point, pp->p_error, pp->ng, dir);
             skip[0] = obj;
             continue;
@@ -309,9 +291,11 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
             m = sc->shade(sc, obj, &ray, depth, pp, &shaded);
         VECTOR3 wo;
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
-        if (nee && !material_is_specular(m))
-            L = rad_add(L, rad_mul(beta, direct(s, it, pp, obj, m, wo, NULL,
-                                                dir, med, g, st)));
+        if (nee && !material_is_specular(m)) {
+            volpath_at_t at = { s, med, obj, { dir[X], dir[Y], dir[Z] } };
+            L = rad_add(L, rad_mul(beta, volpath_direct(&at, it, pp, m, wo,
+                                                        true, g, st)));
+        }
         real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
         brdf_sample_t bs;
         if (!material_sample(m, wo, u, &bs))
@@ -319,7 +303,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
         beta = rad_mul(beta, bs.weight);
         VECTOR3 wi;
         frame_to_world(wi, bs.wi, pp->u, pp->v, pp->n);
-        med = medium_after(obj, pp->ng, wi, med);
+        med = volpath_medium_after(obj, pp->ng, wi, med);
         cur = prev;
         prev = pp;
         prev_delta = bs.delta;
@@ -350,8 +334,8 @@ const render_method_t volpath_method = {
     .name = "volpath",
     .describe = "volumetric path tracing (ch. 11): distance sampling, "
                 "ratio tracking, light sampling with MIS",
-    .prepare = prepare,
+    .prepare = volpath_prepare,
     .begin_pass = NULL,
-    .li = li,
-    .free = state_free,
+    .li = volpath_li,
+    .free = volpath_free,
 };

@@ -53,15 +53,17 @@ static void draw2(real u[2], pcg32_t *g)
     u[1] = pcg32_real(g);
 }
 
-/* Next-event estimation at pp (material m, which transmits when two is
- * true): one light, chosen by power, sampled once,
- * weighted against BSDF sampling by the power heuristic (unless the light
- * is a point or BSDF sampling is off). Returns the contribution before the
- * path throughput. Always draws 3 numbers, so the numbers of later bounces
- * do not depend on what happened here. */
+/* Next-event estimation at pp (integrator.h, integrator_nee): one light,
+ * chosen by power, sampled once, weighted against the point's own
+ * sampling by the power heuristic (unless the light is a point or that
+ * sampling's hits are not counted). Returns the contribution before the
+ * path throughput. Always draws 3 numbers (and then what shadow draws),
+ * so the numbers of later bounces do not depend on what happened here. */
 static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
-                             const material_t *m, bool two, const VECTOR3 wo,
-                             bool mis, pcg32_t *g, integrator_stats_t *st)
+                             const integrator_scatter_t *sc, bool mis,
+                             integrator_shadow_fn shadow,
+                             const void *shadow_ctx, pcg32_t *g,
+                             integrator_stats_t *st)
 {
     real upick = pcg32_real(g), u[2];
     draw2(u, g);
@@ -70,16 +72,22 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     if (!l || !(pmf > 0))
         return rad_grey(0);
     light_sample_t ls;
-    if (!light_sample(l, pp, two, u, &ls))
+    if (!light_sample(l, pp, sc->two, u, &ls))
         return rad_grey(0);
-    VECTOR3 wi;
-    frame_to_local(wi, ls.wi, pp->u, pp->v, pp->n);
-    /* the MIS weight needs material_pdf(m, wi, wo), pb: not for a point
-     * light (a delta, weight 1) nor when BSDF hits are not counted, and
-     * then it is not made (NULL) */
+    /* the MIS weight needs the pdf pb of the point's own sampling of wi:
+     * not for a point light (a delta, weight 1) nor when those samples'
+     * hits are not counted, and then it is not made (NULL) */
     const bool weigh = !ls.delta && mis;
-    real pb = 0;
-    RADIANCE f = material_eval_pdf(m, wi, wo, weigh ? &pb : NULL);
+    real pb = 0, cosine = 1;
+    RADIANCE f;
+    if (sc->m) {
+        VECTOR3 wi;
+        frame_to_local(wi, ls.wi, pp->u, pp->v, pp->n);
+        f = material_eval_pdf(sc->m, wi, sc->wo, weigh ? &pb : NULL);
+        cosine = fabs(wi[Z]);
+    } else {
+        f = sc->eval(sc->ctx, ls.wi, weigh ? &pb : NULL);
+    }
     if (rad_is_black(f) || rad_is_black(ls.Li))
         return rad_grey(0);
     /* visibility: a shadow ray between the two points, each offset off its
@@ -97,17 +105,37 @@ static RADIANCE direct_light(const integrator_t *it, const PATHPOINT *pp,
     const COBJECT *skip[2] = {
         pp->IntersectObj, ls.infinite || !l->emission ? NULL : l->emission->obj
     };
-    st->rays++;
-    if (it->tracer.occluded(it->tracer.ctx, &sr, 0, tmax, skip))
-        return rad_grey(0);
+    RADIANCE tr = rad_grey(1);
+    if (shadow) {
+        tr = shadow(shadow_ctx, it, pp, &sr, tmax, skip, &ls, g, st);
+        if (rad_is_black(tr))
+            return rad_grey(0);
+    } else {
+        st->rays++;
+        if (it->tracer.occluded(it->tracer.ctx, &sr, 0, tmax, skip))
+            return rad_grey(0);
+    }
     real w = 1;
     if (weigh) {
         real pl = pmf * ls.pdf_mis; /* light_pdf(l, pp, two, ls.wi, ls.p, ls.n) */
         w = integrator_mis_weight(pl, pb);
     }
     /* f L |cos| / p, with p = pmf * pdf (the point light's pdf is 1) */
-    real scale = w * fabs(wi[Z]) / (pmf * ls.pdf);
-    return rad_scale(rad_mul(f, ls.Li), scale);
+    real scale = w * cosine / (pmf * ls.pdf);
+    RADIANCE c = rad_scale(rad_mul(f, ls.Li), scale);
+    return shadow ? rad_mul(c, tr) : c;
+}
+
+RADIANCE integrator_nee(const integrator_t *it, const PATHPOINT *pp,
+                        const integrator_scatter_t *sc, bool mis,
+                        integrator_shadow_fn shadow, const void *shadow_ctx,
+                        pcg32_t *g, integrator_stats_t *st)
+{
+    if (!it->lights) {
+        (void)pcg32_real(g); (void)pcg32_real(g); (void)pcg32_real(g);
+        return rad_grey(0);
+    }
+    return direct_light(it, pp, sc, mis, shadow, shadow_ctx, g, st);
 }
 
 RADIANCE integrator_direct(const integrator_t *it, const PATHPOINT *pp,
@@ -118,7 +146,8 @@ RADIANCE integrator_direct(const integrator_t *it, const PATHPOINT *pp,
         (void)pcg32_real(g); (void)pcg32_real(g); (void)pcg32_real(g);
         return rad_grey(0);
     }
-    return direct_light(it, pp, m, m->transmits, wo, mis, g, st);
+    const integrator_scatter_t sc = { m, wo, m->transmits, NULL, NULL };
+    return direct_light(it, pp, &sc, mis, NULL, NULL, g, st);
 }
 
 /* The camera ray's first hit, as the caller found it
@@ -267,7 +296,8 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         VECTOR3 wo;
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
         if (nee && !material_is_specular(m)) {
-            RADIANCE Ld = direct_light(it, pp, m, two, wo, bsdf_hits, g,
+            const integrator_scatter_t sc = { m, wo, two, NULL, NULL };
+            RADIANCE Ld = direct_light(it, pp, &sc, bsdf_hits, NULL, NULL, g,
                                        st);
             /* with bsdf_hits false the light sample's weight is 1 */
             L = rad_add(L, rad_mul(beta, Ld));

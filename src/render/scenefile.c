@@ -948,6 +948,7 @@ static svet_status integrator_of(ctx_t *c, const tok_t *t,
         { "ppm", "the progressive photon maps of ch. 8" },
         { "irradiance", "the irradiance cache of ch. 9" },
         { "volpath", "the participating media of ch. 11" },
+        { "volsingle", "the participating media of ch. 11" },
     };
     for (size_t i = 0; i < sizeof later / sizeof *later; i++)
         if (tok_is(t, later[i].name))
@@ -2105,6 +2106,7 @@ static const struct {
     { "irradiance", "ch. 9 (irradiance caching)" },
     { "texture", "ch. 10 (textures)" },
     { "medium", "ch. 11 (participating media)" },
+    { "volsingle", "ch. 11 (participating media)" },
     { "sky", "ch. 12 (the atmosphere)" },
     { "sun", "ch. 12 (the atmosphere)" },
     { "smoke", "ch. 13 (smoke)" },

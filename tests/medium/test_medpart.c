@@ -242,36 +242,46 @@ END_TEST
 /* The furnace: a sphere of purely scattering medium (albedo 1, an
  * invisible boundary, optical radius 1) under an environment of radiance
  * 1 is everywhere lit by radiance 1, so every pixel's expected value is
- * 1 (Pharr et al., pbrt-v3 sec. 15.2: no absorption, nothing is lost).
- * The pixels are independent: their mean must lie within 4 of their own
- * standard errors of 1, and that error must be small enough for the
- * test to see a loss of a few per cent. */
-#define FURNACE "camera position 0 0 4 target 0 0 0 fov 40 width 8 height 8\n" \
+ * 1 (Pharr et al., pbrt-v3 sec. 15.2: no absorption, nothing is lost),
+ * whatever the phase function: HG at g = -0.5 (backward), 0 and 0.8
+ * (forward). The pixels are independent:
+ * their mean must lie within 4 of their own standard errors of 1, and
+ * that error must be small enough for the test to see a loss of a few
+ * per cent. */
+#define FURNACE_G(g) \
+    "camera position 0 0 4 target 0 0 0 fov 40 width 8 height 8\n" \
     "render spp 64 maxdepth 200 integrator volpath seed 5\n" \
     "material black lambert rho 0\n" \
     "environment radiance 1\n" \
-    "medium fog homogeneous sigma_a 0 sigma_s 1 phase hg g 0.4\n" \
+    "medium fog homogeneous sigma_a 0 sigma_s 1 phase hg g " g "\n" \
     "sphere centre 0 0 0 radius 1 material black medium fog invisible\n"
+#define FURNACE FURNACE_G("0.4")
 
 START_TEST(a_scattering_sphere_in_a_furnace_keeps_radiance_one)
 {
-    image_t img;
-    render_text(FURNACE, 0, &img);
-    for (int k = 0; k < 3; k++) {
-        double sum = 0, sum2 = 0;
-        for (int y = 0; y < 8; y++)
-            for (int x = 0; x < 8; x++) {
-                double v = (double)image_at(&img, x, y)[k];
-                sum += v;
-                sum2 += v * v;
-            }
-        double mean = sum / 64, var = (sum2 / 64 - mean * mean) * 64 / 63;
-        double se = sqrt(var > 0 ? var / 64 : 0);
-        ck_assert_msg(se < 0.01, "channel %d: standard error %g", k, se);
-        ck_assert_msg(fabs(mean - 1) < 4 * se + 1e-6,
-                      "channel %d: mean %g, expected 1 (se %g)", k, mean, se);
+    static const char *const scenes[] = { FURNACE_G("-0.5"), FURNACE_G("0"),
+                                          FURNACE_G("0.8") };
+    for (int i = 0; i < 3; i++) {
+        image_t img;
+        render_text(scenes[i], 0, &img);
+        for (int k = 0; k < 3; k++) {
+            double sum = 0, sum2 = 0;
+            for (int y = 0; y < 8; y++)
+                for (int x = 0; x < 8; x++) {
+                    double v = (double)image_at(&img, x, y)[k];
+                    sum += v;
+                    sum2 += v * v;
+                }
+            double mean = sum / 64, var = (sum2 / 64 - mean * mean) * 64 / 63;
+            double se = sqrt(var > 0 ? var / 64 : 0);
+            ck_assert_msg(se < 0.01, "scene %d, channel %d: standard error "
+                          "%g", i, k, se);
+            ck_assert_msg(fabs(mean - 1) < 4 * se + 1e-6,
+                          "scene %d, channel %d: mean %g, expected 1 (se %g)",
+                          i, k, mean, se);
+        }
+        image_free(&img);
     }
-    image_free(&img);
 }
 END_TEST
 

@@ -228,7 +228,7 @@ START_TEST(a_byte_order_mark_at_the_start_is_skipped)
               SVET_ERR_PARSE, "t.scn:2:1: unknown keyword '???sphere': "
               "expected one of camera, render, output, tonemap, material, "
               "light, environment, sphere, plane, disk, parallelogram, "
-              "triangle, box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, animation, key");
+              "triangle, box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, volsingle, animation, key");
 }
 END_TEST
 
@@ -947,7 +947,7 @@ static const struct {
     { "\n  teapot\n", SVET_ERR_PARSE,
       "t.scn:2:3: unknown keyword 'teapot': expected one of camera, render, "
       "output, tonemap, material, light, environment, sphere, plane, disk, "
-      "parallelogram, triangle, box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, animation, key" },
+      "parallelogram, triangle, box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, volsingle, animation, key" },
     { M "sphere centre 0 0 0 radus 1 material m\n", SVET_ERR_PARSE,
       "t.scn:2:21: unknown parameter of sphere 'radus' (did you mean "
       "'radius'?)" },
@@ -1221,7 +1221,7 @@ START_TEST(long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks)
               "'zzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzz...': expected one "
               "of camera, render, output, tonemap, material, light, "
               "environment, sphere, plane, disk, parallelogram, triangle, "
-              "box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, animation, key");
+              "box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, volsingle, animation, key");
     parse_err("camer\xc3\xa9 1\n", SVET_ERR_PARSE,
               "t.scn:1:1: unknown keyword 'camer?" "?' (did you mean "
               "'camera'?)");
