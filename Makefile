@@ -425,6 +425,13 @@ ab-grid: build/float/bench/bench_grid
 	$(if $(BASE),,$(error ab-grid: give BASE=COMMIT))
 	sh tools/ab-grid.sh build/float/bench/bench_grid $(BASE) $(KINDS) $(PAIRS)
 
+# `make cloud-vol`: rewrite scenes/cloud.vol, the density grid of
+# scenes/cloud.scn, with tools/makecloud.c (the float build's bytes are
+# the committed ones).
+.PHONY: cloud-vol
+cloud-vol: build/float/tools/makecloud
+	build/float/tools/makecloud scenes/cloud.vol
+
 # `make bitcheck [BASE=COMMIT]`: every scenes/*.scn renders to the same
 # bytes with SIMD=on and SIMD=off, at 1 and 2 threads, in float and in
 # double (tools/bitcheck.sh, 64 x 64 at 8 spp); with BASE, also the same

@@ -71,12 +71,16 @@ static const medium_t *medium_after(const COBJECT *obj, const VECTOR3 ng,
     return SVECTOR3(w, ng) < 0 ? obj->inside->m : obj->outside->m;
 }
 
-/* Transmittance over t in [0, len] of ray r (unit dir) in med; len may be
- * infinite only in a homogeneous medium (the global medium is one). */
+/* Transmittance over t in [0, len] of ray r (unit dir) in med. Only a
+ * homogeneous medium (the global medium is one) reaches infinity; a ray
+ * in a bounded medium that finds no exit has slipped past its boundary by
+ * rounding (started within the intersection's epsilon of it), and is
+ * taken to be outside: tracking to infinity under a grid's clamped
+ * border density would not end. */
 static RADIANCE segment_tr(const medium_t *med, const ray_t *r,
                            const VECTOR3 dir, real len, pcg32_t *g)
 {
-    if (!med)
+    if (!med || !(len < VOLPATH_FAR || medium_is_homogeneous(med)))
         return rad_grey(1);
     return medium_tr(med, r->o, dir, len < VOLPATH_FAR ? len : VOLPATH_FAR,
                      g);
@@ -228,6 +232,8 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
                                         (real)INFINITY, skip, &h, &obj);
         VECTOR3 dir;
         real len = vec_normalize(dir, ray.d);
+        if (med && !hit && !medium_is_homogeneous(med))
+            med = NULL; /* slipped out of a bounded medium (segment_tr) */
         if (med) {
             real t;
             RADIANCE w;
