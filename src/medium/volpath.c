@@ -248,13 +248,22 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
                     break;
                 PATHPOINT *pp = cur;
                 medium_point(pp, &ray, dir, t);
+                /* the component that scatters, by its sigma_s (medium.h);
+                 * a one-component medium draws nothing for it */
+                const phase_t *ph = &med->phase;
+                if (med->ncomponents > 0) {
+                    RADIANCE wc;
+                    ph = &medium_scatterer(med, pp->cross_point,
+                                           pcg32_real(g), &wc)->phase;
+                    beta = rad_mul(beta, wc);
+                }
                 if (nee)
                     L = rad_add(L, rad_mul(beta, direct(s, it, pp, NULL, NULL,
-                                                        NULL, &med->phase,
-                                                        dir, med, g, st)));
+                                                        NULL, ph, dir, med, g,
+                                                        st)));
                 real u[2] = { pcg32_real(g), pcg32_real(g) };
                 VECTOR3 wo;
-                real pdf = phase_sample(&med->phase, dir, u, wo);
+                real pdf = phase_sample(ph, dir, u, wo);
                 /* the phase is sampled exactly: the weight p / pdf is 1 */
                 cur = prev;
                 prev = pp;
