@@ -9,7 +9,8 @@
 # sample counts of SPP_LIST, and `svet converge --report` turns each
 # series into a table. Writes docs/tradeoffs-media.md.
 # usage: sh tools/tradeoffs-media.sh   (environment: SVET (build/float/svet),
-#        SPP_LIST (1,2,4,...,128), THREADS (0), REF_SPP (2048), OUT, DOC)
+#        SPP_LIST (1,2,4,...,128), THREADS (0), REF_SPP (2048), OUT, DOC,
+#        DOC_ONLY=1 to write the document from the last run's series)
 set -eu
 svet=${SVET:-build/float/svet}
 spps=${SPP_LIST:-1,2,4,8,16,32,64,128}
@@ -21,7 +22,9 @@ doc=${DOC:-docs/tradeoffs-media.md}
 mkdir -p "$out"
 t0=$(date +%s)
 load0=$(cut -d' ' -f1-3 /proc/loadavg)
-for name in smoky-cbox cloud; do
+# DOC_ONLY=1: write the document again from the last run's series.
+[ "${DOC_ONLY:-0}" = 1 ] && set -- || set -- smoky-cbox cloud
+for name in "$@"; do
     scene=scenes/$name.scn
     case $name in smoky-cbox) res=64x64 ;; cloud) res=80x60 ;; esac
     if [ ! -f "$out/$name-ref.exr" ]; then
@@ -46,8 +49,14 @@ for name in smoky-cbox cloud; do
         "$out/$name/roulette=off.csv" "$out/$name/maxdepth=2.csv" \
         > "$out/$name.md"
 done
-t1=$(date +%s)
-load1=$(cut -d' ' -f1-3 /proc/loadavg)
+if [ "${DOC_ONLY:-0}" = 1 ]; then
+    . "$out/run.env"
+else
+    t1=$(date +%s)
+    load1=$(cut -d' ' -f1-3 /proc/loadavg)
+    printf "t0=%s; t1=%s; load0='%s'; load1='%s'\n" "$t0" "$t1" "$load0" \
+        "$load1" > "$out/run.env"
+fi
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
 {
     echo "# Media (ch. 11): volumetric path tracing, error against time"
@@ -67,6 +76,14 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
         echo "## $name (scenes/$name.scn)"
         echo
         cat "$out/$name.md"
+        echo
+        echo "The baseline's series: relative RMSE (the reference's noise"
+        echo "removed) against samples per pixel and seconds."
+        echo
+        echo "| spp | seconds | relative RMSE |"
+        echo "|---:|---:|---:|"
+        grep -v '^#' "$out/$name/baseline.csv" | awk -F, 'NR > 1 {
+            printf "| %d | %.3g | %.3g |\n", $2, $3, $16 }'
     done
 } > "$doc"
 echo "tradeoffs-media: wrote $doc" >&2
