@@ -6,7 +6,8 @@
  * below, so the file is the same on every run of the same build; the
  * committed scenes/cloud.vol is the float build's (`make cloud-vol`).
  * usage: makecloud OUT.vol [N]   (N cells per axis, default 32)
- * Tests: tests/medium/test_medpart.c reads the committed file.
+ * Tests: tests/render/test_tracer.c and make bitcheck render
+ * scenes/cloud.scn, which reads the committed file.
  */
 #include <stdio.h>
 #include <stdlib.h>
