@@ -416,6 +416,13 @@ reference:
 tradeoffs-photon: build/float/svet
 	sh tools/tradeoffs-photon.sh
 
+# `make tradeoffs-media`: volpath's error against time on the smoky Cornell
+# box and the cloud (tools/tradeoffs-media.sh; writes
+# docs/tradeoffs-media.md, about 10 minutes on 2 cores).
+.PHONY: tradeoffs-media
+tradeoffs-media: build/float/svet
+	sh tools/tradeoffs-media.sh
+
 # `make count-render`: instructions per camera sample (callgrind), the
 # load-independent figure of bench/results/render.md.
 count-render: $(BUILD)/svet
@@ -432,6 +439,30 @@ count-grid: $(BUILD)/bench/bench_grid
 ab-grid: build/float/bench/bench_grid
 	$(if $(BASE),,$(error ab-grid: give BASE=COMMIT))
 	sh tools/ab-grid.sh build/float/bench/bench_grid $(BASE) $(KINDS) $(PAIRS)
+
+# `make cloud-vol`: rewrite scenes/cloud.vol, the density grid of
+# scenes/cloud.scn, with tools/makecloud.c (the float build's bytes are
+# the committed ones).
+.PHONY: cloud-vol
+cloud-vol: build/float/tools/makecloud
+	build/float/tools/makecloud scenes/cloud.vol
+
+# `make bench-media [MITSUBA_PYTHON=python3] [MEDIA_SPP=64]`: the smoky
+# Cornell box and the cloud by svet's volpath and by Mitsuba 3's
+# (tools/mitsuba/media.py; bench/results/media.md). Optional: without a
+# Python that imports mitsuba and numpy it says so and succeeds.
+.PHONY: bench-media
+bench-media: build/float/svet
+	@py=$${MITSUBA_PYTHON:-python3}; \
+	if ! $$py -c 'import mitsuba, numpy' >/dev/null 2>&1; then \
+	    echo "make bench-media: $$py has no mitsuba (optional: python3 -m" \
+	        "venv V && V/bin/pip install mitsuba numpy, then" \
+	        "MITSUBA_PYTHON=V/bin/python); skipped"; exit 0; fi; \
+	$$py tools/mitsuba/media.py build/float/svet --spp $(or $(MEDIA_SPP),64) \
+	    > out-media.md.tmp && { mkdir -p bench/results; \
+	    { echo "# Media: svet's volpath against Mitsuba 3"; echo; \
+	      cat out-media.md.tmp; } > bench/results/media.md; \
+	    rm -f out-media.md.tmp; cat bench/results/media.md; }
 
 # `make bitcheck [BASE=COMMIT]`: every scenes/*.scn renders to the same
 # bytes with SIMD=on and SIMD=off, at 1 and 2 threads, in float and in

@@ -25,7 +25,24 @@
 /* A density given as a function, with a bound no value exceeds. */
 typedef real (*medium_density_fn)(const void *ctx, const VECTOR3 p);
 
-typedef struct {
+/* A medium made of components (the design of ch. 12's air of molecules
+ * and aerosols and ch. 13's smoke in air): a medium with ncomponents > 0
+ * is the sum of components[0 .. ncomponents - 1], each a one-component
+ * medium with its own sigma_a, sigma_s, density (1, a grid, or a function
+ * with its bound) and phase; its own coefficients, density and phase are
+ * then unused. At a point, sigma_t and sigma_s are the sums of the
+ * components' (each times its density); transmittance and delta tracking
+ * run under the sum of the components' majorants (exact when every
+ * component is homogeneous); a scattering event belongs to component i
+ * with probability proportional to its sigma_s at the point (the mean of
+ * its channels), whose phase then scatters (medium_scatterer). With the
+ * same phase everywhere, two components are the one medium of their
+ * summed coefficients. A component has no components of its own. */
+#define MEDIUM_MAX_COMPONENTS 8
+
+typedef struct medium_s medium_t;
+
+struct medium_s {
     RADIANCE sigma_a, sigma_s; /* per unit length at density 1 */
     RADIANCE emission;         /* emitted radiance per unit length at
                                   density 1 (sigma_a times the radiance of
@@ -36,28 +53,55 @@ typedef struct {
     medium_density_fn fn;
     const void *fn_ctx;
     real fn_max;               /* fn's bound, >= every value of fn */
-} medium_t;
+    /* 0: the medium is the one component above; else the sum of these
+       (see MEDIUM_MAX_COMPONENTS) */
+    int ncomponents;
+    const medium_t *components;
+};
 
 /* A homogeneous medium of the given coefficients and isotropic phase. */
 medium_t medium_homogeneous(RADIANCE sigma_a, RADIANCE sigma_s);
 
+/* The sum of the n one-component media c[0 .. n-1] (not copied: they must
+ * outlive the result). Check it with medium_check. Can't fail. */
+medium_t medium_mix(const medium_t *c, int n);
+
 /* Check the coefficients: finite and >= 0, emission finite and >= 0, HG's
  * g in (-PHASE_MAX_G, PHASE_MAX_G), a density grid's values >= 0 and a
  * function's bound finite and > 0. The message says which value is wrong;
- * the caller adds the file and line. Returns SVET_ERR_RANGE. */
+ * the caller adds the file and line. Returns SVET_ERR_RANGE.
+ * A sum is checked component by component, and refused with more than
+ * MEDIUM_MAX_COMPONENTS or with a component that has components. */
 svet_status medium_check(const medium_t *m, svet_error *err);
 
-/* true when the density is 1 everywhere. */
+/* true when the density is 1 everywhere (of every component). */
 bool medium_is_homogeneous(const medium_t *m);
 
-/* The density at p: 1, the grid's trilinear value, or fn's. */
+/* The density at p: 1, the grid's trilinear value, or fn's (of the
+ * medium's own fields: a sum's components each have their own). */
 real medium_density(const medium_t *m, const VECTOR3 p);
 
 /* The largest density anywhere: 1, the grid's largest value, fn_max. */
 real medium_density_max(const medium_t *m);
 
-/* sigma_t = sigma_a + sigma_s at density 1. */
+/* sigma_t = sigma_a + sigma_s at density 1 (summed over components). */
 RADIANCE medium_sigma_t(const medium_t *m);
+
+/* sigma_s at density 1 (summed over components). */
+RADIANCE medium_sigma_s(const medium_t *m);
+
+/* sigma_t and sigma_s at the point p: each component's at density 1
+ * times its density at p, summed. Can't fail. */
+void medium_coeffs_at(const medium_t *m, const VECTOR3 p, RADIANCE *sigma_t,
+                      RADIANCE *sigma_s);
+
+/* The component that scatters at p (m itself when it has none), picked
+ * from u in [0, 1) with probability P_i proportional to the mean of the
+ * channels of its sigma_s at p; *weight (may be NULL) is sigma_s_i /
+ * (P_i sigma_s) per channel, which a path's throughput is multiplied by
+ * (1 when the components' sigma_s are proportional). Can't fail. */
+const medium_t *medium_scatterer(const medium_t *m, const VECTOR3 p, real u,
+                                 RADIANCE *weight);
 
 /* Transmittance over a distance d of a homogeneous medium: Beer-Lambert,
  * exp(-sigma_t d) per channel. Can't fail. */

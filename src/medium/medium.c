@@ -1,7 +1,8 @@
 /*
  * medium.c - the participating media of ch. 11: coefficients and their
  * checks, Beer-Lambert transmittance, ratio tracking, and distance
- * sampling exactly (homogeneous) or by delta tracking (gridded).
+ * sampling exactly (homogeneous) or by delta tracking (gridded), for one
+ * component or a sum of them (medium.h).
  * Tests: tests/medium/test_medium.c
  */
 #include "medium/medium.h"
@@ -9,7 +10,15 @@
 medium_t medium_homogeneous(RADIANCE sigma_a, RADIANCE sigma_s)
 {
     medium_t m = { sigma_a, sigma_s, rad_grey(0), { PHASE_ISOTROPIC, 0 },
-                   NULL, NULL, NULL, 0 };
+                   NULL, NULL, NULL, 0, 0, NULL };
+    return m;
+}
+
+medium_t medium_mix(const medium_t *c, int n)
+{
+    medium_t m = medium_homogeneous(rad_grey(0), rad_grey(0));
+    m.ncomponents = n;
+    m.components = c;
     return m;
 }
 
@@ -18,7 +27,31 @@ static bool nonneg(RADIANCE c)
     return rad_is_finite(c) && c.r >= 0 && c.g >= 0 && c.b >= 0;
 }
 
+static svet_status check_one(const medium_t *m, svet_error *err);
+
 svet_status medium_check(const medium_t *m, svet_error *err)
+{
+    if (m->ncomponents == 0)
+        return check_one(m, err);
+    if (m->ncomponents < 0 || m->ncomponents > MEDIUM_MAX_COMPONENTS ||
+        !m->components)
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "a medium is the sum of 1 to %d components, "
+                              "not %d", MEDIUM_MAX_COMPONENTS,
+                              m->ncomponents);
+    for (int i = 0; i < m->ncomponents; i++) {
+        if (m->components[i].ncomponents != 0)
+            return svet_error_set(err, SVET_ERR_RANGE,
+                                  "component %d has components of its own",
+                                  i + 1);
+        svet_status st = check_one(&m->components[i], err);
+        if (st)
+            return st;
+    }
+    return SVET_OK;
+}
+
+static svet_status check_one(const medium_t *m, svet_error *err)
 {
     if (!nonneg(m->sigma_a))
         return svet_error_set(err, SVET_ERR_RANGE,
@@ -59,7 +92,13 @@ svet_status medium_check(const medium_t *m, svet_error *err)
     return SVET_OK;
 }
 
-bool medium_is_homogeneous(const medium_t *m) { return !m->grid && !m->fn; }
+bool medium_is_homogeneous(const medium_t *m)
+{
+    for (int i = 0; i < m->ncomponents; i++)
+        if (!medium_is_homogeneous(&m->components[i]))
+            return false;
+    return m->ncomponents > 0 || (!m->grid && !m->fn);
+}
 
 real medium_density(const medium_t *m, const VECTOR3 p)
 {
@@ -81,7 +120,83 @@ real medium_density_max(const medium_t *m)
 
 RADIANCE medium_sigma_t(const medium_t *m)
 {
-    return rad_add(m->sigma_a, m->sigma_s);
+    if (m->ncomponents == 0)
+        return rad_add(m->sigma_a, m->sigma_s);
+    RADIANCE st = rad_grey(0);
+    for (int i = 0; i < m->ncomponents; i++)
+        st = rad_add(st, medium_sigma_t(&m->components[i]));
+    return st;
+}
+
+RADIANCE medium_sigma_s(const medium_t *m)
+{
+    if (m->ncomponents == 0)
+        return m->sigma_s;
+    RADIANCE ss = rad_grey(0);
+    for (int i = 0; i < m->ncomponents; i++)
+        ss = rad_add(ss, m->components[i].sigma_s);
+    return ss;
+}
+
+void medium_coeffs_at(const medium_t *m, const VECTOR3 p, RADIANCE *sigma_t,
+                      RADIANCE *sigma_s)
+{
+    if (m->ncomponents == 0) {
+        real rho = medium_density(m, p);
+        *sigma_t = rad_scale(medium_sigma_t(m), rho);
+        *sigma_s = rad_scale(m->sigma_s, rho);
+        return;
+    }
+    *sigma_t = *sigma_s = rad_grey(0);
+    for (int i = 0; i < m->ncomponents; i++) {
+        RADIANCE st, ss;
+        medium_coeffs_at(&m->components[i], p, &st, &ss);
+        *sigma_t = rad_add(*sigma_t, st);
+        *sigma_s = rad_add(*sigma_s, ss);
+    }
+}
+
+static real rad_mean(RADIANCE c) { return (c.r + c.g + c.b) / 3; }
+
+const medium_t *medium_scatterer(const medium_t *m, const VECTOR3 p, real u,
+                                 RADIANCE *weight)
+{
+    if (weight)
+        *weight = rad_grey(1);
+    if (m->ncomponents == 0)
+        return m;
+    /* the discrete distribution P_i = mean sigma_s_i(p) / sum of them */
+    RADIANCE ss[MEDIUM_MAX_COMPONENTS], total = rad_grey(0);
+    real mean[MEDIUM_MAX_COMPONENTS], sum = 0;
+    int n = m->ncomponents, last = 0;
+    for (int i = 0; i < n; i++) {
+        RADIANCE st;
+        medium_coeffs_at(&m->components[i], p, &st, &ss[i]);
+        total = rad_add(total, ss[i]);
+        mean[i] = rad_mean(ss[i]);
+        sum += mean[i];
+        if (mean[i] > 0)
+            last = i;
+    }
+    if (!(sum > 0))
+        return &m->components[0];
+    real target = u * sum, acc = 0;
+    int k = last; /* rounding: u near 1 falls to the last possible one */
+    for (int i = 0; i < n; i++) {
+        acc += mean[i];
+        if (target < acc && mean[i] > 0) {
+            k = i;
+            break;
+        }
+    }
+    if (weight) {
+        real pk = mean[k] / sum;
+        RADIANCE w = rad_make(total.r > 0 ? ss[k].r / (pk * total.r) : 0,
+                              total.g > 0 ? ss[k].g / (pk * total.g) : 0,
+                              total.b > 0 ? ss[k].b / (pk * total.b) : 0);
+        *weight = w;
+    }
+    return &m->components[k];
 }
 
 static RADIANCE rad_exp_neg(RADIANCE a)
@@ -99,7 +214,13 @@ RADIANCE medium_tr_homogeneous(const medium_t *m, real d)
  * largest density. */
 static real majorant(const medium_t *m)
 {
-    return rad_max(medium_sigma_t(m)) * medium_density_max(m);
+    if (m->ncomponents == 0)
+        return rad_max(medium_sigma_t(m)) * medium_density_max(m);
+    /* the sum of the components' bounds bounds their sum */
+    real mu = 0;
+    for (int i = 0; i < m->ncomponents; i++)
+        mu += majorant(&m->components[i]);
+    return mu;
 }
 
 static void point_at(const VECTOR3 o, const VECTOR3 d, real t, VECTOR3 p)
@@ -120,7 +241,7 @@ RADIANCE medium_tr(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
     /* ratio tracking (Novak et al. 2014, eq. 8): tentative collisions at
      * the majorant's rate, each multiplying the estimate by the chance
      * 1 - sigma_t(x) / mu that it was a null collision */
-    RADIANCE tr = rad_grey(1), st = medium_sigma_t(m);
+    RADIANCE tr = rad_grey(1);
     real t = 0;
     for (;;) {
         t -= log(1 - pcg32_real(g)) / mu;
@@ -128,9 +249,10 @@ RADIANCE medium_tr(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
             return tr;
         VECTOR3 p;
         point_at(o, dir, t, p);
-        real rho = medium_density(m, p);
-        tr = rad_mul(tr, rad_make(1 - st.r * rho / mu, 1 - st.g * rho / mu,
-                                  1 - st.b * rho / mu));
+        RADIANCE sig, ss;
+        medium_coeffs_at(m, p, &sig, &ss);
+        tr = rad_mul(tr, rad_make(1 - sig.r / mu, 1 - sig.g / mu,
+                                  1 - sig.b / mu));
         if (rad_max(tr) <= 0)
             return rad_grey(0);
     }
@@ -153,7 +275,8 @@ bool medium_sample(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
         real pdf = scattered ? (st.r * tr.r + st.g * tr.g + st.b * tr.b) / 3
                              : (tr.r + tr.g + tr.b) / 3;
         *t = d;
-        *weight = pdf > 0 ? rad_scale(scattered ? rad_mul(m->sigma_s, tr) : tr,
+        *weight = pdf > 0 ? rad_scale(scattered ? rad_mul(medium_sigma_s(m), tr)
+                                                : tr,
                                       1 / pdf)
                           : rad_grey(0);
         return scattered;
@@ -182,15 +305,15 @@ bool medium_sample(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
         }
         VECTOR3 p;
         point_at(o, dir, s, p);
-        real rho = medium_density(m, p);
-        RADIANCE sig = rad_scale(st, rho);
+        RADIANCE sig, ss;
+        medium_coeffs_at(m, p, &sig, &ss);
         real h = hero == 0 ? sig.r : hero == 1 ? sig.g : sig.b;
         real pr = h / mu; /* the chance this collision is real */
         if (pcg32_real(g) < pr) {
             /* real: weight sigma_s(x) / sigma_t(x) in the hero channel's
              * terms, i.e. sigma_s / h per channel times the pass ratio */
             *t = s;
-            *weight = rad_mul(w, rad_scale(rad_scale(m->sigma_s, rho), 1 / h));
+            *weight = rad_mul(w, rad_scale(ss, 1 / h));
             return true;
         }
         /* null: each channel's chance of a null collision over the hero's */

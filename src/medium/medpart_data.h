@@ -94,6 +94,7 @@ typedef struct {
     const medium_t *med;
     const COBJECT *obj;
     VECTOR3 dir;
+    const phase_t *ph; /* the scattering component's phase; NULL: med's */
 } volpath_at_t;
 
 /* integrator_shadow_fn with ctx a volpath_at_t: the shadow ray's

@@ -56,12 +56,16 @@ const medium_t *volpath_medium_after(const COBJECT *obj, const VECTOR3 ng,
     return SVECTOR3(w, ng) < 0 ? obj->inside->m : obj->outside->m;
 }
 
-/* Transmittance over t in [0, len] of ray r (unit dir) in med; len may be
- * infinite only in a homogeneous medium (the global medium is one). */
+/* Transmittance over t in [0, len] of ray r (unit dir) in med. Only a
+ * homogeneous medium (the global medium is one) reaches infinity; a ray
+ * in a bounded medium that finds no exit has slipped past its boundary by
+ * rounding (started within the intersection's epsilon of it), and is
+ * taken to be outside: tracking to infinity under a grid's clamped
+ * border density would not end. */
 RADIANCE volpath_segment_tr(const medium_t *med, const ray_t *r,
                             const VECTOR3 dir, real len, pcg32_t *g)
 {
-    if (!med)
+    if (!med || !(len < VOLPATH_FAR || medium_is_homogeneous(med)))
         return rad_grey(1);
     return medium_tr(med, r->o, dir, len < VOLPATH_FAR ? len : VOLPATH_FAR,
                      g);
@@ -133,7 +137,8 @@ RADIANCE volpath_shadow(const void *ctx, const integrator_t *it,
 static RADIANCE phase_toward(const void *ctx, const VECTOR3 wi, real *pdf)
 {
     const volpath_at_t *at = ctx;
-    real p = phase_eval(&at->med->phase, SVECTOR3(wi, at->dir));
+    real p = phase_eval(at->ph ? at->ph : &at->med->phase,
+                       SVECTOR3(wi, at->dir));
     if (pdf)
         *pdf = p;
     return rad_grey(p);
@@ -195,6 +200,8 @@ RADIANCE volpath_li(const void *state, const render_t *r,
                                         (real)INFINITY, skip, &h, &obj);
         VECTOR3 dir;
         real len = vec_normalize(dir, ray.d);
+        if (med && !hit && !medium_is_homogeneous(med))
+            med = NULL; /* slipped out of its medium (volpath_segment_tr) */
         if (med && s->step > 0) {
             /* volsingle: the light scattered once along this segment,
              * and on with its transmittance */
@@ -221,16 +228,25 @@ RADIANCE volpath_li(const void *state, const render_t *r,
                     break;
                 PATHPOINT *pp = cur;
                 volpath_medium_point(pp, &ray, dir, t);
+                /* the component that scatters, by its sigma_s (medium.h);
+                 * a one-component medium draws nothing for it */
+                const phase_t *ph = &med->phase;
+                if (med->ncomponents > 0) {
+                    RADIANCE wc;
+                    ph = &medium_scatterer(med, pp->cross_point,
+                                           pcg32_real(g), &wc)->phase;
+                    beta = rad_mul(beta, wc);
+                }
                 if (nee) {
                     volpath_at_t at = { s, med, NULL, { dir[X], dir[Y],
-                                                        dir[Z] } };
+                                                        dir[Z] }, ph };
                     L = rad_add(L, rad_mul(beta, volpath_direct(&at, it, pp,
                                                                 NULL, NULL,
                                                                 true, g, st)));
                 }
                 real u[2] = { pcg32_real(g), pcg32_real(g) };
                 VECTOR3 wo;
-                real pdf = phase_sample(&med->phase, dir, u, wo);
+                real pdf = phase_sample(ph, dir, u, wo);
                 /* the phase is sampled exactly: the weight p / pdf is 1 */
                 cur = prev;
                 prev = pp;
@@ -292,7 +308,8 @@ RADIANCE volpath_li(const void *state, const render_t *r,
         VECTOR3 wo;
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
         if (nee && !material_is_specular(m)) {
-            volpath_at_t at = { s, med, obj, { dir[X], dir[Y], dir[Z] } };
+            volpath_at_t at = { s, med, obj, { dir[X], dir[Y], dir[Z] },
+                                NULL };
             L = rad_add(L, rad_mul(beta, volpath_direct(&at, it, pp, m, wo,
                                                         true, g, st)));
         }

@@ -99,7 +99,8 @@ RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
             continue;
         PATHPOINT pp;
         volpath_medium_point(&pp, ray, dir, t);
-        volpath_at_t at = { s, med, NULL, { dir[X], dir[Y], dir[Z] } };
+        volpath_at_t at = { s, med, NULL, { dir[X], dir[Y], dir[Z] },
+                            NULL };
         /* no phase sampling follows: the light sample takes it all */
         RADIANCE Ld = volpath_direct(&at, it, &pp, NULL, NULL, false, g, st);
         if (rad_is_black(Ld))

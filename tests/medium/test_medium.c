@@ -3,10 +3,15 @@
  * tracking unbiased through a grid whose optical depth has a closed form
  * (a linear ramp); distance sampling, exact (homogeneous) and by delta
  * tracking (the ramp), giving each channel's probabilities of passing and
- * of scattering before any distance in expectation; bad coefficients.
+ * of scattering before any distance in expectation; bad coefficients;
+ * media made of components: two homogeneous ones are exactly the medium
+ * of their summed coefficients, two gridded ones scatter and transmit as
+ * their sum does, and the scattering component is picked in proportion
+ * to its sigma_s (a chi-square test).
  * Statistical checks: fixed seeds, four standard errors of the sample.
  */
 #include "testutil.h"
+#include "chi2.h"
 #include "medium/medium.h"
 
 #include <math.h>
@@ -104,7 +109,7 @@ static void check_sampling(const medium_t *m, const VECTOR3 o,
                            double (*dep)(double), double (*rho)(double),
                            double tmax, uint64_t seed)
 {
-    RADIANCE ss = m->sigma_s, st = medium_sigma_t(m);
+    RADIANCE ss = medium_sigma_s(m), st = medium_sigma_t(m);
     const double sig_s[3] = { (double)ss.r, (double)ss.g, (double)ss.b };
     const double sig_t[3] = { (double)st.r, (double)st.g, (double)st.b };
     const double t0s[3] = { 0.5, 2, tmax };
@@ -184,6 +189,162 @@ START_TEST(bad_coefficients_are_refused)
 }
 END_TEST
 
+/* Two homogeneous components of the same phase against the one medium of
+ * their summed coefficients. The values are dyadic, so every sum is exact
+ * and the two must agree to the bit: transmittance, and every distance
+ * and weight sampled from the same stream. */
+START_TEST(homogeneous_components_are_their_sum_exactly)
+{
+    medium_t c[2] = {
+        medium_homogeneous(rad_make(REAL_C(0.25), REAL_C(0.5), REAL_C(0.125)),
+                           rad_make(REAL_C(0.5), REAL_C(0.25), 1)),
+        medium_homogeneous(rad_make(REAL_C(0.125), REAL_C(0.25), REAL_C(0.5)),
+                           rad_make(1, REAL_C(0.5), REAL_C(0.25))),
+    };
+    medium_t mix = medium_mix(c, 2);
+    medium_t one = medium_homogeneous(
+        rad_make(REAL_C(0.375), REAL_C(0.75), REAL_C(0.625)),
+        rad_make(REAL_C(1.5), REAL_C(0.75), REAL_C(1.25)));
+    ck_assert_int_eq(medium_check(&mix, NULL), SVET_OK);
+    ck_assert(medium_is_homogeneous(&mix));
+    VECTOR3 o = { 0, 0, 0 }, dir = { 0, 0, 1 };
+    pcg32_t g1, g2;
+    pcg32_seed(&g1, 81, 1);
+    pcg32_seed(&g2, 81, 1);
+    for (int i = 0; i <= 40; i++) {
+        real d = (real)i * REAL_C(0.23);
+        RADIANCE a = medium_tr(&mix, o, dir, d, &g1),
+                 b = medium_tr(&one, o, dir, d, &g2);
+        ck_assert(a.r == b.r && a.g == b.g && a.b == b.b);
+    }
+    for (int i = 0; i < 10000; i++) {
+        real t1, t2;
+        RADIANCE w1, w2;
+        bool h1 = medium_sample(&mix, o, dir, 2, &g1, &t1, &w1);
+        bool h2 = medium_sample(&one, o, dir, 2, &g2, &t2, &w2);
+        ck_assert(h1 == h2 && t1 == t2);
+        ck_assert(w1.r == w2.r && w1.g == w2.g && w1.b == w2.b);
+    }
+    test_report_cases("homogeneous_components_are_their_sum_exactly", 10041);
+}
+END_TEST
+
+/* Two components on the ramp grid, of different coefficients: delta
+ * tracking (under the sum of their majorants) and ratio tracking must
+ * give the closed forms of their summed coefficients (check_sampling
+ * reads the sums through medium_sigma_t and medium_sigma_s). */
+START_TEST(gridded_components_scatter_and_transmit_as_their_sum)
+{
+    make_ramp();
+    medium_t c[2] = {
+        medium_homogeneous(rad_make(REAL_C(0.05), REAL_C(0.02), 0),
+                           rad_make(REAL_C(0.05), REAL_C(0.03), REAL_C(0.2))),
+        medium_homogeneous(rad_make(0, REAL_C(0.03), 0),
+                           rad_make(REAL_C(0.05), REAL_C(0.02), REAL_C(0.1))),
+    };
+    c[0].grid = c[1].grid = &ramp;
+    medium_t mix = medium_mix(c, 2);
+    ck_assert_int_eq(medium_check(&mix, NULL), SVET_OK);
+    ck_assert(!medium_is_homogeneous(&mix));
+    VECTOR3 o = { 1, REAL_C(0.5), REAL_C(0.5) }, dir = { 1, 0, 0 };
+    check_sampling(&mix, o, depth, ramp_rho, 5, 4);
+    pcg32_t g;
+    pcg32_seed(&g, 82, 1);
+    stat3_t s = { { 0 }, { 0 }, 0 };
+    for (int i = 0; i < 200000; i++)
+        add(&s, medium_tr(&mix, o, dir, 5, &g));
+    const double st[3] = { 0.15, 0.1, 0.3 };
+    double e[3];
+    for (int k = 0; k < 3; k++)
+        e[k] = exp(-st[k] * depth(5));
+    expect_mean(&s, e, "ratio tracking of the sum");
+    volgrid_free(&ramp);
+}
+END_TEST
+
+/* The scattering component at a point is picked in proportion to the
+ * mean of its sigma_s there: a chi-square test of the picks of three
+ * components (one gridded, so the proportions depend on the point), and
+ * the weight makes each pick's expectation sigma_s_i / sigma_s exactly. */
+START_TEST(the_scatterer_is_picked_in_proportion_to_sigma_s)
+{
+    make_ramp();
+    medium_t c[3] = {
+        medium_homogeneous(rad_grey(REAL_C(0.1)),
+                           rad_make(REAL_C(0.2), REAL_C(0.4), REAL_C(0.6))),
+        medium_homogeneous(rad_grey(0), rad_grey(REAL_C(0.5))),
+        medium_homogeneous(rad_grey(REAL_C(0.3)), rad_make(REAL_C(0.1), 0, 0)),
+    };
+    c[1].grid = &ramp;
+    c[1].phase.kind = PHASE_HG;
+    c[1].phase.g = REAL_C(0.5);
+    medium_t mix = medium_mix(c, 3);
+    ck_assert_int_eq(medium_check(&mix, NULL), SVET_OK);
+    VECTOR3 p = { REAL_C(3.7), REAL_C(0.5), REAL_C(0.5) };
+    double rho = 0.2 + 0.3 * 3.7; /* the ramp, linear between its centres */
+    double mean[3] = { 0.4, 0.5 * rho, 0.1 / 3 }, sum = 0;
+    for (int i = 0; i < 3; i++)
+        sum += mean[i];
+    enum { N = 60000 };
+    double obs[3] = { 0, 0, 0 }, expct[3];
+    pcg32_t g;
+    pcg32_seed(&g, 83, 1);
+    for (int n = 0; n < N; n++) {
+        RADIANCE w;
+        const medium_t *k = medium_scatterer(&mix, p, pcg32_real(&g), &w);
+        int i = (int)(k - c);
+        ck_assert(i >= 0 && i < 3);
+        obs[i]++;
+        /* w P_i = sigma_s_i / sigma_s, channel by channel */
+        RADIANCE ss = k->sigma_s;
+        double r = i == 1 ? rho : 1, pi = mean[i] / sum;
+        double tot[3] = { 0.2 + 0.5 * rho + 0.1, 0.4 + 0.5 * rho,
+                          0.6 + 0.5 * rho };
+        double want[3] = { (double)ss.r * r / tot[0], (double)ss.g * r / tot[1],
+                           (double)ss.b * r / tot[2] };
+        double got[3] = { (double)w.r * pi, (double)w.g * pi, (double)w.b * pi };
+        for (int ch = 0; ch < 3; ch++)
+            ck_assert_msg(fabs(got[ch] - want[ch]) < 1e-4,
+                          "component %d channel %d: w P = %g, expected %g", i,
+                          ch, got[ch], want[ch]);
+    }
+    for (int i = 0; i < 3; i++)
+        expct[i] = N * mean[i] / sum;
+    chi2_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    chi2_config_defaults(&cfg);
+    chi2_result res = chi2_from_counts(obs, expct, 3, &cfg);
+    ck_assert_msg(res.passed, "%s (counts %g %g %g, expected %g %g %g)",
+                  res.message, obs[0], obs[1], obs[2], expct[0], expct[1],
+                  expct[2]);
+    /* one component: itself, weight 1 */
+    RADIANCE w;
+    ck_assert_ptr_eq(medium_scatterer(&c[0], p, REAL_C(0.7), &w), &c[0]);
+    ck_assert(w.r == 1 && w.g == 1 && w.b == 1);
+    volgrid_free(&ramp);
+}
+END_TEST
+
+START_TEST(bad_sums_are_refused)
+{
+    svet_error e;
+    medium_t c[MEDIUM_MAX_COMPONENTS + 1];
+    for (int i = 0; i <= MEDIUM_MAX_COMPONENTS; i++)
+        c[i] = medium_homogeneous(rad_grey(0), rad_grey(1));
+    medium_t m = medium_mix(c, MEDIUM_MAX_COMPONENTS + 1);
+    ck_assert_int_eq(medium_check(&m, &e), SVET_ERR_RANGE);
+    ck_assert_ptr_nonnull(strstr(e.msg, "components"));
+    m = medium_mix(c, MEDIUM_MAX_COMPONENTS);
+    ck_assert_int_eq(medium_check(&m, &e), SVET_OK);
+    c[1].sigma_s = rad_make(0, -1, 0);
+    ck_assert_int_eq(medium_check(&m, &e), SVET_ERR_RANGE);
+    ck_assert_ptr_nonnull(strstr(e.msg, "sigma_s"));
+    c[1] = medium_mix(c + 2, 2); /* nested */
+    ck_assert_int_eq(medium_check(&m, &e), SVET_ERR_RANGE);
+    ck_assert_ptr_nonnull(strstr(e.msg, "of its own"));
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("medium (" REAL_NAME ")");
@@ -192,6 +353,10 @@ Suite *test_suite(void)
     tcase_add_test(tc, ratio_tracking_is_unbiased_through_a_ramp);
     tcase_add_test(tc, distance_sampling_homogeneous_and_by_delta_tracking);
     tcase_add_test(tc, bad_coefficients_are_refused);
+    tcase_add_test(tc, homogeneous_components_are_their_sum_exactly);
+    tcase_add_test(tc, gridded_components_scatter_and_transmit_as_their_sum);
+    tcase_add_test(tc, the_scatterer_is_picked_in_proportion_to_sigma_s);
+    tcase_add_test(tc, bad_sums_are_refused);
     suite_add_tcase(s, tc);
     return s;
 }
