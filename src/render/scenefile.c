@@ -2276,7 +2276,10 @@ char *scenefile_path(scenefile_ctx *c, const tok_t *t, svet_error *err)
     scene_t *s = c->scene;
     char **f = p ? realloc(s->files, (size_t)(s->nfiles + 1) * sizeof *f)
                  : NULL;
-    char *kept = f ? strdup(p) : NULL;
+    size_t size = p ? strlen(p) + 1 : 0;
+    char *kept = f ? malloc(size) : NULL;
+    if (kept)
+        memcpy(kept, p, size);
     if (f)
         s->files = f;
     if (!kept) {
