@@ -69,7 +69,7 @@ START_TEST(irradiance_statement_messages)
 }
 END_TEST
 
-/* --- helpers ------------------------------------------------------------ */
+/* --- a scene set up for the method --------------------------------------- */
 
 typedef struct {
     scene_t s;
