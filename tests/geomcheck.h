@@ -61,7 +61,7 @@ long geomcheck_hits_are_finite(const COBJECT *obj, int n_rays, real scale,
 long geomcheck_sampling_matches_area(const COBJECT *obj, int n, bool uniform,
                                      uint64_t seed);
 
-/* Helpers for tests: a uniform random unit vector; a uniform direction in
+/* For the tests: a uniform random unit vector; a uniform direction in
  * the hemisphere around n. */
 void geomcheck_random_dir(VECTOR3 w, pcg32_t *g);
 void geomcheck_random_hemisphere(VECTOR3 w, const VECTOR3 n, pcg32_t *g);

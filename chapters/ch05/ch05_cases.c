@@ -28,6 +28,7 @@
 #include <unistd.h>
 
 #include "../chapter.h"
+#include "../chapter_image.h"
 #include "stats/converge.h"
 #include "io/fileio.h"
 #include "stats/imgcompare.h"
@@ -186,24 +187,6 @@ static void display_params(const scene_t *s, tonemap_params_t *tp)
     tp->stops = (double)s->render.tonemap.exposure;
     tp->curve = (tonemap_curve_t)s->render.tonemap.curve;
     tp->gamma = (double)s->render.tonemap.gamma;
-}
-
-/* DIR/STEM.pfm (linear) and DIR/STEM.ppm (display codes, 8 bits); the
- * display image goes to *shown for the side-by-side picture. */
-static svet_status write_pair(const char *dir, const char *stem,
-                              const image_t *img, const tonemap_params_t *tp,
-                              image_t *shown, svet_error *err)
-{
-    char path[1200];
-    snprintf(path, sizeof path, "%s/%s.pfm", dir, stem);
-    svet_status st = netpbm_write_pfm(path, img, err);
-    if (st == SVET_OK)
-        st = tonemap_apply(img, shown, tp, NULL, err);
-    if (st == SVET_OK) {
-        snprintf(path, sizeof path, "%s/%s.ppm", dir, stem);
-        st = netpbm_write_ppm(path, shown, 8, err);
-    }
-    return st;
 }
 
 /* The relative error image |a - b| / sqrt(b^2 + eps) of img against ref
@@ -381,7 +364,8 @@ static svet_status run_case(const case_t *c, const opts_t *o, row_t *rows,
         char stem[256];
         snprintf(stem, sizeof stem, "%s_%s", c->name, STRATEGY[k].name);
         if (st == SVET_OK)
-            st = write_pair(o->dir, stem, &run.img, &tp, &top[npanels], err);
+            st = chapter_write_pair(o->dir, stem, &run.img, &tp,
+                                    &top[npanels], err);
         if (st == SVET_OK)
             st = error_panel(&run.img, &ref, &rel[k], &bottom[npanels], err);
         if (st == SVET_OK) {
@@ -409,7 +393,8 @@ static svet_status run_case(const case_t *c, const opts_t *o, row_t *rows,
     if (st == SVET_OK) {
         char stem[256], path[1200];
         snprintf(stem, sizeof stem, "%s_reference", c->name);
-        st = write_pair(o->dir, stem, &ref.img, &tp, &top[npanels], err);
+        st = chapter_write_pair(o->dir, stem, &ref.img, &tp, &top[npanels],
+                                err);
         if (st == SVET_OK)
             st = error_panel(NULL, &ref, &rel[ST_COUNT], &bottom[npanels],
                              err);

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "../chapter.h"
+#include "../chapter_image.h"
 #include "colour/tonemap.h"
 #include "io/netpbm.h"
 #include "photon/photon.h"
@@ -58,27 +59,6 @@ static svet_status load(scene_t *s, double scale, const char *const *set,
     return st;
 }
 
-/* DIR/STEM.pfm and, with the scene's exposure and an sRGB curve,
- * DIR/STEM.ppm */
-static svet_status write_pair(const char *dir, const char *stem,
-                              const image_t *img, svet_error *e)
-{
-    char path[1200];
-    snprintf(path, sizeof path, "%s/%s.pfm", dir, stem);
-    svet_status st = netpbm_write_pfm(path, img, e);
-    image_t shown = { 0 };
-    tonemap_params_t tp;
-    tonemap_defaults(&tp, TONEMAP_LINEAR);
-    if (st == SVET_OK)
-        st = tonemap_apply(img, &shown, &tp, NULL, e);
-    if (st == SVET_OK) {
-        snprintf(path, sizeof path, "%s/%s.ppm", dir, stem);
-        st = netpbm_write_ppm(path, &shown, 8, e);
-    }
-    image_free(&shown);
-    return st;
-}
-
 /* Render the scene with settings `set` (NULL-terminated) and write it. */
 static svet_status render_to(const char *dir, const char *stem, double scale,
                              long spp, int threads, const char *const *set,
@@ -96,7 +76,7 @@ static svet_status render_to(const char *dir, const char *stem, double scale,
         if (st == SVET_OK)
             st = render_image(&r, &img, e);
         if (st == SVET_OK)
-            st = write_pair(dir, stem, &img, e);
+            st = chapter_write_pair(dir, stem, &img, NULL, NULL, e);
         image_free(&img);
         render_free(&r);
         printf("  %s: %ld samples per pixel\n", stem, spp);
@@ -144,7 +124,7 @@ static svet_status dots(const char *dir, double scale, int threads,
         }
     }
     if (st == SVET_OK) {
-        st = write_pair(dir, "ch08_photons", &img, e);
+        st = chapter_write_pair(dir, "ch08_photons", &img, NULL, NULL, e);
         printf("  ch08_photons: %zu global and %zu caustic photons (a tenth "
                "of the scene's counts)\n", g.n, c.n);
     }

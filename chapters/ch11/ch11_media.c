@@ -24,6 +24,7 @@
 #include <time.h>
 
 #include "../chapter.h"
+#include "../chapter_image.h"
 #include "colour/tonemap.h"
 #include "io/netpbm.h"
 #include "medium/medium.h"
@@ -187,26 +188,6 @@ static svet_status load(scene_t *s, double scale, const char *integrator,
     return st;
 }
 
-/* DIR/STEM.pfm and DIR/STEM.ppm (linear tone mapping, sRGB curve) */
-static svet_status write_pair(const char *dir, const char *stem,
-                              const image_t *img, svet_error *e)
-{
-    char path[1200];
-    snprintf(path, sizeof path, "%s/%s.pfm", dir, stem);
-    svet_status st = netpbm_write_pfm(path, img, e);
-    image_t shown = { 0 };
-    tonemap_params_t tp;
-    tonemap_defaults(&tp, TONEMAP_LINEAR);
-    if (st == SVET_OK)
-        st = tonemap_apply(img, &shown, &tp, NULL, e);
-    if (st == SVET_OK) {
-        snprintf(path, sizeof path, "%s/%s.ppm", dir, stem);
-        st = netpbm_write_ppm(path, &shown, 8, e);
-    }
-    image_free(&shown);
-    return st;
-}
-
 /* Render with `integrator`: spp samples when spp > 0, else one sample
  * per pixel at a time until `seconds` have passed; *spp_done and
  * *secs say how many and how long. */
@@ -264,7 +245,8 @@ static int equal_time(const char *dir, double scale, double seconds,
     printf("ch11: the volpath reference, %ld samples per pixel\n", ref_spp);
     if (render_for("volpath", scale, ref_spp, 0, threads, &ref, &n, &secs,
                    &e) != SVET_OK ||
-        write_pair(dir, "ch11_reference", &ref, &e) != SVET_OK)
+        chapter_write_pair(dir, "ch11_reference", &ref, NULL, NULL, &e) !=
+            SVET_OK)
         return fail("reference", &e);
     chapter_file_t cf;
     FILE *f = chapter_open(&cf, "ch11_media", dir, "equal_time.csv");
@@ -282,7 +264,7 @@ static int equal_time(const char *dir, double scale, double seconds,
         snprintf(stem, sizeof stem, "ch11_%s", methods[i]);
         if (render_for(methods[i], scale, 0, seconds, threads, &img, &n,
                        &secs, &e) != SVET_OK ||
-            write_pair(dir, stem, &img, &e) != SVET_OK) {
+            chapter_write_pair(dir, stem, &img, NULL, NULL, &e) != SVET_OK) {
             rc = fail(methods[i], &e);
             break;
         }

@@ -107,6 +107,16 @@ int scenefile_eol_col(const scenefile_ctx *c);
 svet_status scenefile_name(scenefile_ctx *c, const char *what, char *buf,
                            int *col);
 
+/* The next token as the kind of a statement `STMT NAME KIND key ...`
+ * (`texture`, `medium`): one of the words kinds[] (NULL-terminated),
+ * whose index goes to *kind; the token is passed. A missing or unknown
+ * kind fails with SVET_ERR_PARSE at its column (the end of the line when
+ * missing), listing the kinds: "medium 'fog' expects a kind: homogeneous
+ * or grid, not 'gas'". */
+svet_status scenefile_kind(scenefile_ctx *c, const char *stmt,
+                           const char *name, const char *const *kinds,
+                           int *kind);
+
 /* Read the rest of the line as keys of statement stmt (spec's nspec keys,
  * values into vals[nspec]), with the core's checks and messages: unknown
  * keys with "did you mean", a key given twice, missing required keys,

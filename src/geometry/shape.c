@@ -1,5 +1,5 @@
 /*
- * shape.c - helpers shared by the primitives of app. D: allocation, input
+ * shape.c - what the primitives of app. D share: allocation, input
  * checks, scale-safe cross products and the PATHPOINT frame (app. A).
  * Tests: tests/geometry/test_shape.c
  */

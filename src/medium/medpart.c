@@ -124,7 +124,7 @@ static svet_status load_grid(scenefile_ctx *c, named_medium_t *nm,
 
 static svet_status medium_statement(scenefile_ctx *c)
 {
-    char name[SCENE_MAX_NAME + 1], show[SCENE_MAX_NAME + 1];
+    char name[SCENE_MAX_NAME + 1];
     int col = 1;
     svet_status st = scenefile_name(c, "medium", name, &col);
     if (st)
@@ -136,21 +136,10 @@ static svet_status medium_statement(scenefile_ctx *c)
         if (!strcmp(d->media[i]->name, name))
             return scenefile_fail(c, col, SVET_ERR_PARSE,
                                   "medium '%s' is already defined", name);
-    int n;
-    const tok_t *t = scenefile_tokens(c, &n);
-    int kind = -1;
-    for (int i = 0; n > 0 && i < K_N; i++)
-        if (scenefile_tok_is(&t[0], kinds[i]))
-            kind = i;
-    if (kind < 0) {
-        scenefile_tok_copy(n > 0 ? &t[0] : t, show, sizeof show);
-        return scenefile_fail(c, n > 0 ? t[0].col : scenefile_eol_col(c),
-                              SVET_ERR_PARSE,
-                              "medium '%s' expects a kind: homogeneous or "
-                              "grid%s%s%s", name, n > 0 ? ", not '" : "",
-                              n > 0 ? show : "", n > 0 ? "'" : "");
-    }
-    scenefile_skip(c, 1);
+    int kind;
+    st = scenefile_kind(c, "medium", name, kinds, &kind);
+    if (st)
+        return st;
     val_t v[M_N];
     char stmt[64];
     snprintf(stmt, sizeof stmt, "medium %s", kinds[kind]);

@@ -22,8 +22,6 @@
 #include "materials/material.h"
 #include "core/sample.h"
 
-/* --- helpers -------------------------------------------------------------- */
-
 void integrator_init(integrator_t *it, const scene_t *s,
                      const lightset_t *lights, tracer_t tracer)
 {

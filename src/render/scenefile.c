@@ -2203,6 +2203,33 @@ svet_status scenefile_name(scenefile_ctx *c, const char *what, char *buf,
     return SVET_OK;
 }
 
+svet_status scenefile_kind(scenefile_ctx *c, const char *stmt,
+                           const char *name, const char *const *kinds,
+                           int *kind)
+{
+    const tok_t *t = c->pos < c->ntok ? &c->tok[c->pos] : NULL;
+    for (int i = 0; t && kinds[i]; i++)
+        if (tok_is(t, kinds[i])) {
+            *kind = i;
+            c->pos++;
+            return SVET_OK;
+        }
+    /* the kinds as a list, "a, b or c" */
+    char list[512] = "", show[SCENE_MAX_NAME + 1] = "";
+    size_t len = 0;
+    for (int i = 0; kinds[i] && len < sizeof list; i++) {
+        const char *sep = i == 0 ? "" : kinds[i + 1] ? ", " : " or ";
+        int w = snprintf(list + len, sizeof list - len, "%s%s", sep,
+                         kinds[i]);
+        len += w > 0 ? (size_t)w : 0;
+    }
+    if (t)
+        tok_copy(t, show, sizeof show);
+    return fail(c, t ? t->col : c->eol_col, SVET_ERR_PARSE,
+                "%s '%s' expects a kind: %s%s%s%s", stmt, name, list,
+                t ? ", not '" : "", show, t ? "'" : "");
+}
+
 svet_status scenefile_keys(scenefile_ctx *c, const char *stmt,
                            const spec_t *spec, int nspec, val_t *vals,
                            bool stop_at_plus)
@@ -2249,7 +2276,10 @@ char *scenefile_path(scenefile_ctx *c, const tok_t *t, svet_error *err)
     scene_t *s = c->scene;
     char **f = p ? realloc(s->files, (size_t)(s->nfiles + 1) * sizeof *f)
                  : NULL;
-    char *kept = f ? strdup(p) : NULL;
+    size_t size = p ? strlen(p) + 1 : 0;
+    char *kept = f ? malloc(size) : NULL;
+    if (kept)
+        memcpy(kept, p, size);
     if (f)
         s->files = f;
     if (!kept) {

@@ -190,7 +190,7 @@ static svet_status load_image(scenefile_ctx *c, texture_t *t, const val_t *v)
 
 static svet_status texture_statement(scenefile_ctx *c)
 {
-    char name[SCENE_MAX_NAME + 1], show[SCENE_MAX_NAME + 1];
+    char name[SCENE_MAX_NAME + 1];
     int col = 1;
     svet_status st = scenefile_name(c, "texture", name, &col);
     if (st)
@@ -202,23 +202,10 @@ static svet_status texture_statement(scenefile_ctx *c)
         if (!strcmp(d->tex[i].name, name))
             return scenefile_fail(c, col, SVET_ERR_PARSE,
                                   "texture '%s' is already defined", name);
-    int n;
-    const tok_t *t = scenefile_tokens(c, &n);
-    int kind = -1;
-    for (int i = 0; n > 0 && i < K_N; i++)
-        if (scenefile_tok_is(&t[0], kinds[i]))
-            kind = i;
-    if (kind < 0) {
-        scenefile_tok_copy(n > 0 ? &t[0] : t, show, sizeof show);
-        return scenefile_fail(c, n > 0 ? t[0].col : scenefile_eol_col(c),
-                              SVET_ERR_PARSE,
-                              "texture '%s' expects a kind: image, checker, "
-                              "noise, fbm, turbulence, marble, wood, granite,"
-                              " waves, ripples, bricks, orange_peel or "
-                              "dents%s%s%s", name, n > 0 ? ", not '" : "",
-                              n > 0 ? show : "", n > 0 ? "'" : "");
-    }
-    scenefile_skip(c, 1);
+    int kind;
+    st = scenefile_kind(c, "texture", name, kinds, &kind);
+    if (st)
+        return st;
     val_t v[T_N];
     char stmt[96];
     snprintf(stmt, sizeof stmt, "texture %s", kinds[kind]);

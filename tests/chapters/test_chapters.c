@@ -22,6 +22,7 @@ static const char *const PROGS[] = {
     "ch04_montecarlo", "ch05_cases", "ch06_display", "ch07_grids",
     "ch08_photons",
     "ch10_textures",
+    "ch11_media",
 };
 #define NPROGS ((int)(sizeof PROGS / sizeof PROGS[0]))
 

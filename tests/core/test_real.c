@@ -1,5 +1,5 @@
 /*
- * test_real.c - the inline helpers of include/core/real.h that stand in for
+ * test_real.c - the inline functions of include/core/real.h that stand in for
  * libm in hot paths (real_max/min, real_next_up/down, real_pow2,
  * real_ldexp, real_ilogb), each checked against the libm function it
  * replaces, over random bit patterns and every special value.

@@ -673,7 +673,7 @@ START_TEST(every_pdf_integrates_to_one)
                       (int)cases[i].s.kind, (double)cases[i].s.a,
                       (double)cases[i].s.b, integral, err);
     }
-    /* And the assertion helper of chi2.h on one of them. */
+    /* And chi2.h's assertion on one of them. */
     dpair q = make_pair(spec(D_COSINE, 0, 0), spec(D_COSINE, 0, 0));
     chi2_assert_pdf_normalised(spec_pdf, &q, 0, 1e-6);
     test_report_cases("every_pdf_integrates_to_one", n + 1);

@@ -1,5 +1,5 @@
 /*
- * test_shape.c - the helpers the primitives of app. D share: one-block
+ * test_shape.c - what the primitives of app. D share (shape.c): one-block
  * allocation, input checks, the scale-safe unit cross product and the
  * PATHPOINT frame (app. A).
  */

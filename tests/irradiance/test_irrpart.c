@@ -5,6 +5,7 @@
  * count, and the cache approaching fresh gathers as a falls.
  */
 #include "testutil.h"
+#include "scenecheck.h"
 #include "irradiance/irrpart.h"
 #include "render/allparts.h"
 #include "render/render.h"
@@ -14,19 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static svet_status parse(scene_t *s, const char *text, svet_error *e)
-{
-    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
-                                scene_features_all(), e);
-}
-
-static void parse_ok(scene_t *s, const char *text)
-{
-    svet_error e;
-    svet_status st = parse(s, text, &e);
-    ck_assert_msg(st == SVET_OK, "%s", e.msg);
-}
 
 /* --- the statement ---------------------------------------------------------- */
 
@@ -42,7 +30,7 @@ static void refused(const char *line, const char *where, const char *what)
     snprintf(text, sizeof text, "%s%s\n", base, line);
     scene_t s;
     svet_error e;
-    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
+    ck_assert_int_ne(scenecheck_parse(&s, text, &e), SVET_OK);
     ck_assert_msg(strstr(e.msg, where) && strstr(e.msg, what), "%s: %s",
                   line, e.msg);
 }
@@ -64,7 +52,7 @@ START_TEST(irradiance_statement_messages)
     refused("irradiance acc 0.1", "t.scn:4:12:", "unknown");
     scene_t s;
     svet_error e;
-    parse_ok(&s, base);
+    scenecheck_parse_ok(&s, base);
     ck_assert_int_eq(scenefile_override(&s, "irradiance.a=0.3", &e), SVET_OK);
     ck_assert_int_eq(scenefile_override(&s, "irradiance.gradients=off", &e),
                      SVET_OK);
@@ -81,7 +69,7 @@ START_TEST(irradiance_statement_messages)
 }
 END_TEST
 
-/* --- helpers ------------------------------------------------------------ */
+/* --- a scene set up for the method --------------------------------------- */
 
 typedef struct {
     scene_t s;
@@ -92,7 +80,7 @@ typedef struct {
 static void setup(setup_t *u, const char *text, int threads)
 {
     svet_error e;
-    parse_ok(&u->s, text);
+    scenecheck_parse_ok(&u->s, text);
     ck_assert_msg(render_init(&u->r, &u->s, &e) == SVET_OK, "%s", e.msg);
     ck_assert_msg(irr_method.prepare(&u->state, &u->r, threads, &e) ==
                       SVET_OK, "%s", e.msg);
@@ -238,7 +226,7 @@ static void render_small(const char *text, int threads, long spp,
 {
     scene_t s;
     svet_error e;
-    parse_ok(&s, text);
+    scenecheck_parse_ok(&s, text);
     render_t r;
     ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
     ck_assert_int_eq(render_pass(&r, spp, threads, NULL, NULL), SVET_OK);

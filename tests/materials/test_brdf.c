@@ -18,7 +18,7 @@
 #define LEN(a) ((int)(sizeof(a) / sizeof *(a)))
 #define EPS ((double)REAL_EPSILON)
 
-/* --- shared helpers ------------------------------------------------------ */
+/* --- what the tests share ------------------------------------------------ */
 
 /* The unit direction at cos(theta) = c (sign = side) and azimuth phi. */
 static void dir(VECTOR3 w, real c, real phi)

@@ -7,6 +7,7 @@
  * Beer-Lambert's exp(-sigma_a d) in each channel.
  */
 #include "testutil.h"
+#include "scenecheck.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -19,29 +20,10 @@
 #include "render/render.h"
 #include "render/scenefile.h"
 
-static svet_status parse(scene_t *s, const char *text, svet_error *e)
-{
-    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
-                                scene_features_all(), e);
-}
-
-/* Parse text, expect failure with a message that starts with `where` and
- * holds `what`. */
-static void refused(const char *text, const char *where, const char *what)
-{
-    scene_t s;
-    svet_error e;
-    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
-    ck_assert_msg(strncmp(e.msg, where, strlen(where)) == 0 &&
-                      strstr(e.msg, what),
-                  "expected '%s ... %s', got '%s'", where, what, e.msg);
-}
-
 static void accepted(const char *text)
 {
     scene_t s;
-    svet_error e;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
+    scenecheck_parse_ok(&s, text);
     scene_free(&s);
 }
 
@@ -63,12 +45,12 @@ START_TEST(media_and_boundaries_parse)
     /* the objects point at their sides, the global medium is found */
     scene_t s;
     svet_error e;
-    ck_assert_int_eq(parse(&s, HEAD
-                           "medium fog homogeneous sigma_a 0.1 global\n"
-                           "medium smoke homogeneous sigma_s 1\n"
-                           "sphere centre 0 0 0 radius 1 material m "
-                           "medium smoke invisible\n"
-                           "sphere centre 0 0 5 radius 1 material m\n", &e),
+    ck_assert_int_eq(scenecheck_parse(&s, HEAD
+                         "medium fog homogeneous sigma_a 0.1 global\n"
+                         "medium smoke homogeneous sigma_s 1\n"
+                         "sphere centre 0 0 0 radius 1 material m "
+                         "medium smoke invisible\n"
+                         "sphere centre 0 0 5 radius 1 material m\n", &e),
                      SVET_OK);
     const medium_t *fog = medpart_global(&s);
     ck_assert_ptr_nonnull(fog);
@@ -85,25 +67,31 @@ END_TEST
 
 START_TEST(bad_media_name_file_line_and_column)
 {
-    refused(HEAD "medium a homogeneous sigma_a -1\n", "t.scn:3:",
-            "must not be negative");
-    refused(HEAD "medium a homogeneous sigma_s 1 nan 1\n", "t.scn:3:", "");
-    refused(HEAD "medium a homogeneous sigma_s 1 phase hg g 1\n",
-            "t.scn:3:41:", "g must be in (-1, 1)");
-    refused(HEAD "medium a homogeneous sigma_s 1 phase hg g -1.5\n",
-            "t.scn:3:41:", "g must be in (-1, 1)");
-    refused(HEAD "medium a homogeneous sigma_s 1 g 0.5\n", "t.scn:3:32:",
-            "phase hg");
-    refused(HEAD "medium a fluffy\n", "t.scn:3:10:", "expects a kind");
-    refused(HEAD "medium a homogeneous sigma_s 1\nmedium a homogeneous\n",
-            "t.scn:4:8:", "already defined");
-    refused(HEAD "medium smoke homogeneous sigma_s 1\n"
-                 "sphere centre 0 0 0 radius 1 material m medium smoek\n",
-            "t.scn:4:48:", "did you mean 'smoke'");
-    refused(HEAD "sphere centre 0 0 0 radius 1 material m medium x\n",
-            "t.scn:3:48:", "unknown medium 'x'");
-    refused(HEAD "sphere centre 0 0 0 radius 1 material m invisible\n",
-            "t.scn:3:41:", "needs 'medium NAME'");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_a -1\n", "t.scn:3:",
+                       "must not be negative");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_s 1 nan 1\n",
+                       "t.scn:3:", "");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_s 1 phase hg g 1\n",
+                       "t.scn:3:41:", "g must be in (-1, 1)");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_s 1 phase hg g -1.5\n",
+                       "t.scn:3:41:", "g must be in (-1, 1)");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_s 1 g 0.5\n",
+                       "t.scn:3:32:", "phase hg");
+    scenecheck_refused(HEAD "medium a fluffy\n", "t.scn:3:10:",
+                       "expects a kind");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_s 1\n"
+                            "medium a homogeneous\n",
+                       "t.scn:4:8:", "already defined");
+    scenecheck_refused(HEAD "medium smoke homogeneous sigma_s 1\n"
+                            "sphere centre 0 0 0 radius 1 material m "
+                            "medium smoek\n",
+                       "t.scn:4:48:", "did you mean 'smoke'");
+    scenecheck_refused(HEAD "sphere centre 0 0 0 radius 1 material m "
+                            "medium x\n",
+                       "t.scn:3:48:", "unknown medium 'x'");
+    scenecheck_refused(HEAD "sphere centre 0 0 0 radius 1 material m "
+                            "invisible\n",
+                       "t.scn:3:41:", "needs 'medium NAME'");
     static const char *const open[] = {
         "plane point 0 0 0 normal 0 1 0",
         "disk centre 0 0 0 normal 0 1 0 radius 1",
@@ -118,13 +106,14 @@ START_TEST(bad_media_name_file_line_and_column)
         snprintf(text, sizeof text,
                  HEAD "medium a homogeneous sigma_s 1\n%s material m "
                       "medium a\n", open[i]);
-        refused(text, "t.scn:4:", "must be a closed surface");
+        scenecheck_refused(text, "t.scn:4:", "must be a closed surface");
     }
-    refused(HEAD "medium a grid sigma_s 1\n", "t.scn:3:1:", "needs 'file'");
-    refused(HEAD "medium a grid sigma_s 1 file missing.vol\n", "t.scn:3:",
-            "missing.vol");
-    refused(HEAD "medium a homogeneous sigma_s 1 file x.vol\n",
-            "t.scn:3:32:", "takes no 'file'");
+    scenecheck_refused(HEAD "medium a grid sigma_s 1\n", "t.scn:3:1:",
+                       "needs 'file'");
+    scenecheck_refused(HEAD "medium a grid sigma_s 1 file missing.vol\n",
+                       "t.scn:3:", "missing.vol");
+    scenecheck_refused(HEAD "medium a homogeneous sigma_s 1 file x.vol\n",
+                       "t.scn:3:32:", "takes no 'file'");
 }
 END_TEST
 
@@ -166,37 +155,22 @@ START_TEST(bad_vol_files_are_refused)
     accepted(text);
     snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\"\n",
              trunc);
-    refused(text, "t.scn:3:", "trunc.vol");
+    scenecheck_refused(text, "t.scn:3:", "trunc.vol");
     snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\"\n",
              huge);
-    refused(text, "t.scn:3:", "huge.vol");
+    scenecheck_refused(text, "t.scn:3:", "huge.vol");
     snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\" "
              "min 0 0 0\n", good);
-    refused(text, "t.scn:3:", "both 'min' and 'max'");
+    scenecheck_refused(text, "t.scn:3:", "both 'min' and 'max'");
     snprintf(text, sizeof text, HEAD "medium a grid sigma_s 1 file \"%s\" "
              "global\n", good);
-    refused(text, "t.scn:3:", "bound it by a shape");
+    scenecheck_refused(text, "t.scn:3:", "bound it by a shape");
     remove(good);
     remove(trunc);
     remove(huge);
     rmdir(dir);
 }
 END_TEST
-
-/* Render text at its own spp with `threads` threads into img. */
-static void render_text(const char *text, int threads, image_t *img)
-{
-    scene_t s;
-    svet_error e;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
-    render_t r;
-    ck_assert_int_eq(render_init(&r, &s, &e), SVET_OK);
-    ck_assert_int_eq(render_pass(&r, s.render.spp, threads, NULL, NULL),
-                     SVET_OK);
-    ck_assert_int_eq(render_image(&r, img, &e), SVET_OK);
-    render_free(&r);
-    scene_free(&s);
-}
 
 /* A square light of radiance 1 seen along z through a slab 1 thick of
  * purely absorbing medium (invisible boundary), with a field of view of
@@ -211,7 +185,7 @@ static void render_text(const char *text, int threads, image_t *img)
 START_TEST(beer_lambert_through_a_slab_per_channel)
 {
     image_t img;
-    render_text(SLAB, 0, &img);
+    scenecheck_render(SLAB, 0, &img);
     const double sig[3] = { 0.5, 1, 2 };
     double T[3], P = 0;
     for (int k = 0; k < 3; k++) {
@@ -263,7 +237,7 @@ START_TEST(a_scattering_sphere_in_a_furnace_keeps_radiance_one)
                                           FURNACE_G("0.8") };
     for (int i = 0; i < 3; i++) {
         image_t img;
-        render_text(scenes[i], 0, &img);
+        scenecheck_render(scenes[i], 0, &img);
         for (int k = 0; k < 3; k++) {
             double sum = 0, sum2 = 0;
             for (int y = 0; y < 8; y++)
@@ -290,8 +264,8 @@ END_TEST
 START_TEST(one_thread_and_two_give_the_same_bits)
 {
     image_t a, b;
-    render_text(FURNACE, 1, &a);
-    render_text(FURNACE, 2, &b);
+    scenecheck_render(FURNACE, 1, &a);
+    scenecheck_render(FURNACE, 2, &b);
     ck_assert_int_eq(a.width, b.width);
     for (int y = 0; y < a.height; y++)
         for (int x = 0; x < a.width; x++)
@@ -319,8 +293,8 @@ END_TEST
 START_TEST(without_media_volpath_agrees_with_the_path_tracer)
 {
     image_t a, b;
-    render_text(ROOM("path"), 0, &a);
-    render_text(ROOM("volpath"), 0, &b);
+    scenecheck_render(ROOM("path"), 0, &a);
+    scenecheck_render(ROOM("volpath"), 0, &b);
     const int n = a.width * a.height;
     for (int k = 0; k < 3; k++) {
         double sa = 0, sd = 0, sd2 = 0;

@@ -10,6 +10,7 @@
  * statement and its override.
  */
 #include "testutil.h"
+#include "scenecheck.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -24,12 +25,6 @@
 #include "../../src/medium/medpart_data.h"
 
 static const double PI = 3.14159265358979323846;
-
-static svet_status parse(scene_t *s, const char *text, svet_error *e)
-{
-    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
-                                scene_features_all(), e);
-}
 
 /* The slab: z in [-1, 0] (thickness d = 1) of homogeneous medium behind
  * an invisible boundary, wide enough that every shadow ray leaves it
@@ -104,7 +99,7 @@ static void sample_slab(const char *text, int n, double mean[3],
 {
     scene_t s;
     svet_error e;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, text, &e) == SVET_OK, "%s", e.msg);
     render_t r;
     ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
     double sum[3] = { 0, 0, 0 }, sum2[3] = { 0, 0, 0 };
@@ -275,25 +270,11 @@ END_TEST
     "plane point 0 -1 0 normal 0 1 0 material grey\n" \
     "sphere centre 0 0 0 radius 0.8 material black medium cloud invisible\n"
 
-static void render_text(const char *text, int threads, image_t *img)
-{
-    scene_t s;
-    svet_error e;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
-    render_t r;
-    ck_assert_int_eq(render_init(&r, &s, &e), SVET_OK);
-    ck_assert_int_eq(render_pass(&r, s.render.spp, threads, NULL, NULL),
-                     SVET_OK);
-    ck_assert_int_eq(render_image(&r, img, &e), SVET_OK);
-    render_free(&r);
-    scene_free(&s);
-}
-
 START_TEST(one_thread_and_two_give_the_same_bits)
 {
     image_t a, b;
-    render_text(FOGGY, 1, &a);
-    render_text(FOGGY, 2, &b);
+    scenecheck_render(FOGGY, 1, &a);
+    scenecheck_render(FOGGY, 2, &b);
     ck_assert_int_eq(a.width, b.width);
     double sum = 0;
     for (int y = 0; y < a.height; y++)
@@ -312,7 +293,7 @@ START_TEST(the_step_statement_and_its_override)
 {
     scene_t s;
     svet_error e;
-    ck_assert_msg(parse(&s, FOGGY, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, FOGGY, &e) == SVET_OK, "%s", e.msg);
     ck_assert_msg(scenefile_override(&s, "volsingle.step=0.5", &e) ==
                       SVET_OK, "%s", e.msg);
     scene_free(&s);
@@ -323,7 +304,7 @@ START_TEST(the_step_statement_and_its_override)
         { "volsingle step nan\n", "t.scn:1:" },
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        ck_assert_int_ne(parse(&s, bad[i][0], &e), SVET_OK);
+        ck_assert_int_ne(scenecheck_parse(&s, bad[i][0], &e), SVET_OK);
         ck_assert_msg(strncmp(e.msg, bad[i][1], strlen(bad[i][1])) == 0,
                       "'%s': %s", bad[i][0], e.msg);
     }

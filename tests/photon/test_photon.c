@@ -13,6 +13,7 @@
  * messages.
  */
 #include "testutil.h"
+#include "scenecheck.h"
 #include "photon/photon.h"
 #include "render/allparts.h"
 #include "render/render.h"
@@ -22,19 +23,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static svet_status parse(scene_t *s, const char *text, svet_error *e)
-{
-    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
-                                scene_features_all(), e);
-}
-
-static void parse_ok(scene_t *s, const char *text)
-{
-    svet_error e;
-    svet_status st = parse(s, text, &e);
-    ck_assert_msg(st == SVET_OK, "%s", e.msg);
-}
 
 /* --- power balance ---------------------------------------------------------- */
 
@@ -51,7 +39,7 @@ static const char box_scene[] =
 static void box_render(scene_t *s, render_t *r)
 {
     svet_error e;
-    parse_ok(s, box_scene);
+    scenecheck_parse_ok(s, box_scene);
     ck_assert_msg(render_init(r, s, &e) == SVET_OK, "%s", e.msg);
 }
 
@@ -166,7 +154,7 @@ START_TEST(environment_photons_give_pi_L_on_an_open_plane)
     scene_t s;
     render_t r;
     svet_error e;
-    parse_ok(&s, text);
+    scenecheck_parse_ok(&s, text);
     ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
     const uint64_t n = 100000;
     photonmap_t m;
@@ -417,7 +405,7 @@ static void render_with(const char *text, const char *method, long spp,
                         int threads, long passes, image_t *img)
 {
     scene_t s;
-    parse_ok(&s, text);
+    scenecheck_parse_ok(&s, text);
     svet_error e;
     char set[64];
     snprintf(set, sizeof set, "integrator=%s", method);
@@ -583,7 +571,7 @@ static void refused(const char *line, const char *what)
     snprintf(text, sizeof text, "%s\n%s\n", box_scene, line);
     scene_t s;
     svet_error e;
-    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
+    ck_assert_int_ne(scenecheck_parse(&s, text, &e), SVET_OK);
     ck_assert_msg(strstr(e.msg, "t.scn:7:") && strstr(e.msg, what),
                   "%s: %s", line, e.msg);
 }
@@ -606,7 +594,7 @@ START_TEST(photonmap_statement_messages)
     refused("photonmap gathr 4", "did you mean 'gather'");
     refused("photonmap precompute -1", "precompute");
     scene_t s;
-    parse_ok(&s, box_scene);
+    scenecheck_parse_ok(&s, box_scene);
     svet_error e;
     ck_assert_int_eq(scenefile_override(&s, "photonmap.k=20", &e), SVET_OK);
     ck_assert_int_eq(scenefile_override(&s, "photonmap.gather=0", &e),

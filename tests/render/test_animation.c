@@ -8,6 +8,7 @@
  * with its message. Frames rendered and merged: tests/cmd/test_frames.sh.
  */
 #include "testutil.h"
+#include "scenecheck.h"
 #include "core/rng.h"
 #include "render/allparts.h"
 #include "render/animation.h"
@@ -17,12 +18,6 @@
 
 #define BALL "material m lambert rho 0.5\n" \
              "sphere centre 0 0 -3 radius 1 material m\n"
-
-static svet_status parse(scene_t *s, const char *text, svet_error *e)
-{
-    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
-                                scene_features_all(), e);
-}
 
 static void vec_is(const VECTOR3 v, real x, real y, real z)
 {
@@ -50,7 +45,7 @@ START_TEST(a_frame_has_the_camera_of_its_keys)
 {
     scene_t s;
     svet_error e;
-    ck_assert_msg(parse(&s, anim, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, anim, &e) == SVET_OK, "%s", e.msg);
     ck_assert_int_eq(animation_frames(&s), 10);
     ck_assert_int_eq(animation_frame(&s), -1);
     /* frame 2: position t = 2/8 of -1 -> 1; target at its key; fov held
@@ -86,7 +81,7 @@ START_TEST(a_frame_has_its_own_seed_whatever_came_before)
 {
     scene_t s;
     svet_error e;
-    ck_assert_msg(parse(&s, anim, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, anim, &e) == SVET_OK, "%s", e.msg);
     ck_assert_int_eq(animation_set_frame(&s, 3, &e), SVET_OK);
     ck_assert(s.render.seed == (77 ^ splitmix64(3)));
     ck_assert_int_eq(animation_set_frame(&s, 5, &e), SVET_OK);
@@ -94,7 +89,7 @@ START_TEST(a_frame_has_its_own_seed_whatever_came_before)
     ck_assert(animation_frame_seed(77, 0) == (77 ^ 0xe220a8397b1dcdafULL));
     /* a fresh read set straight to frame 5 is the same scene */
     scene_t t;
-    ck_assert_msg(parse(&t, anim, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&t, anim, &e) == SVET_OK, "%s", e.msg);
     ck_assert_int_eq(animation_set_frame(&t, 5, &e), SVET_OK);
     ck_assert(t.render.seed == s.render.seed);
     ck_assert(memcmp(&t.camera, &s.camera, sizeof t.camera) == 0);
@@ -113,7 +108,7 @@ START_TEST(a_scene_without_animation_has_no_frames)
 {
     scene_t s;
     svet_error e;
-    ck_assert_msg(parse(&s, BALL, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, BALL, &e) == SVET_OK, "%s", e.msg);
     ck_assert_int_eq(animation_frames(&s), 0);
     ck_assert_int_eq(animation_frame(&s), -1);
     uint64_t seed = s.render.seed;
@@ -121,8 +116,7 @@ START_TEST(a_scene_without_animation_has_no_frames)
     ck_assert(strstr(e.msg, "no animation") != NULL);
     ck_assert(s.render.seed == seed);
     /* frames without keys: the camera statement's camera in every one */
-    ck_assert_msg(parse(&s, "animation frames 3\n" BALL, &e) == SVET_OK,
-                  "%s", e.msg);
+    scenecheck_parse_ok(&s, "animation frames 3\n" BALL);
     ck_assert_int_eq(animation_set_frame(&s, 2, &e), SVET_OK);
     vec_is(s.camera.position, 0, 0, 0);
     scene_free(&s);
@@ -168,7 +162,7 @@ START_TEST(bad_animations_are_refused_with_their_messages)
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         scene_t s;
         svet_error e;
-        ck_assert_msg(parse(&s, bad[i].text, &e) != SVET_OK,
+        ck_assert_msg(scenecheck_parse(&s, bad[i].text, &e) != SVET_OK,
                       "accepted: %s", bad[i].text);
         ck_assert_msg(strstr(e.msg, bad[i].msg) != NULL,
                       "case %zu: '%s' is not in '%s'", i, bad[i].msg, e.msg);
@@ -190,7 +184,7 @@ START_TEST(a_frame_with_a_degenerate_camera_is_refused)
         "animation frames 3\n"
         "key 0 camera position 0 0 -1\n"
         "key 2 camera position 0 0 1\n" BALL;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, text, &e) == SVET_OK, "%s", e.msg);
     ck_assert_int_eq(animation_set_frame(&s, 0, &e), SVET_OK);
     ck_assert_int_eq(animation_set_frame(&s, 1, &e), SVET_ERR_RANGE);
     ck_assert_msg(strncmp(e.msg, "frame 1: ", 9) == 0, "%s", e.msg);

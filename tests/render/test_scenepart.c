@@ -4,8 +4,9 @@
  * settings statement read with the core's key machinery, `--set
  * glow.level=...`, its data kept and freed with the scene, and a `render
  * integrator glow` method whose prepare, begin_pass and li the renderer
- * calls in that order, and a `halo` key on the shapes. Without the part,
- * its keywords and keys are refused.
+ * calls in that order, a `glowshape NAME KIND` statement of three kinds,
+ * and a `halo` key on the shapes. Without the part, its keywords and keys
+ * are refused.
  */
 #include "testutil.h"
 #include "render/render.h"
@@ -142,8 +143,22 @@ static svet_status glow_finish(scenefile_ctx *c)
     return SVET_OK;
 }
 
+/* `glowshape NAME KIND`: a named thing of one of three kinds */
+static const char *const glowshape_kinds[] = { "ring", "disc", "star", NULL };
+static int glowshape_kind = -1;
+static svet_status glowshape_statement(scenefile_ctx *c)
+{
+    char name[SCENE_MAX_NAME + 1];
+    svet_status st = scenefile_name(c, "glowshape", name, NULL);
+    if (st)
+        return st;
+    return scenefile_kind(c, "glowshape", name, glowshape_kinds,
+                          &glowshape_kind);
+}
+
 static const scene_statement_t glow_statements[] = {
     { "glow", glow_statement }, { "glowmap", glowmap_statement },
+    { "glowshape", glowshape_statement },
     { NULL, NULL }
 };
 /* `halo H` on a shape or mesh: the objects it names and the value */
@@ -268,6 +283,25 @@ START_TEST(a_part_reads_names_files_and_checks_the_whole_scene)
 }
 END_TEST
 
+START_TEST(a_part_reads_a_kind_among_its_words)
+{
+    scene_t s;
+    svet_error e;
+    const char *disc = BALL "glowshape g disc\n";
+    ck_assert_int_eq(parse(&s, disc, &features, &e), SVET_OK);
+    ck_assert_int_eq(glowshape_kind, 1);
+    scene_free(&s);
+    const char *none = BALL "glowshape g\n";
+    ck_assert_int_eq(parse(&s, none, &features, &e), SVET_ERR_PARSE);
+    ck_assert_str_eq(e.msg, "t.scn:3:12: glowshape 'g' expects a kind: "
+                            "ring, disc or star");
+    const char *cube = BALL "glowshape g cube size 2\n";
+    ck_assert_int_eq(parse(&s, cube, &features, &e), SVET_ERR_PARSE);
+    ck_assert_str_eq(e.msg, "t.scn:3:13: glowshape 'g' expects a kind: "
+                            "ring, disc or star, not 'cube'");
+}
+END_TEST
+
 START_TEST(a_part_adds_keys_to_the_shapes)
 {
     scene_t s;
@@ -376,6 +410,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_part_statement_is_read_with_the_core_keys);
     tcase_add_test(tc, a_part_statement_reports_file_line_and_column);
     tcase_add_test(tc, a_part_reads_names_files_and_checks_the_whole_scene);
+    tcase_add_test(tc, a_part_reads_a_kind_among_its_words);
     tcase_add_test(tc, a_part_adds_keys_to_the_shapes);
     tcase_add_test(tc, without_the_part_its_keywords_are_refused);
     tcase_add_test(tc, the_renderer_runs_the_method_pass_by_pass);

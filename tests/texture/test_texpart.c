@@ -11,6 +11,7 @@
  * the nearest texel.
  */
 #include "testutil.h"
+#include "scenecheck.h"
 #include "imgtest.h"
 
 #include <math.h>
@@ -23,24 +24,6 @@
 #include "render/allparts.h"
 #include "render/render.h"
 #include "render/scenefile.h"
-
-static svet_status parse(scene_t *s, const char *text, svet_error *e)
-{
-    return scenefile_parse_with(s, text, strlen(text), "t.scn", NULL,
-                                scene_features_all(), e);
-}
-
-/* Parse text, expect failure with a message that starts with `where` and
- * holds `what`. */
-static void refused(const char *text, const char *where, const char *what)
-{
-    scene_t s;
-    svet_error e;
-    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
-    ck_assert_msg(strncmp(e.msg, where, strlen(where)) == 0 &&
-                      strstr(e.msg, what),
-                  "expected '%s ... %s', got '%s'", where, what, e.msg);
-}
 
 #define HEAD "camera position 0 1 4 target 0 0 0 width 8 height 6\n"
 #define BALL "sphere centre 0 0 0 radius 1 material m\n"
@@ -69,8 +52,8 @@ START_TEST(every_kind_of_texture_parses)
                  BALL, lines[i]);
         scene_t s;
         svet_error e;
-        ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s: %s", lines[i],
-                      e.msg);
+        ck_assert_msg(scenecheck_parse(&s, text, &e) == SVET_OK, "%s: %s",
+                      lines[i], e.msg);
         ck_assert_ptr_nonnull(s.objects[0]->texture);
         ck_assert(s.shade != NULL);
         scene_free(&s);
@@ -80,21 +63,25 @@ END_TEST
 
 START_TEST(bad_texture_lines_name_file_line_and_column)
 {
-    refused(HEAD "texture t cheker\n", "t.scn:2:11:", "expects a kind");
-    refused(HEAD "texture 9t checker\n", "t.scn:2:9:", "not a texture name");
-    refused(HEAD "texture t checker\ntexture t noise\n", "t.scn:3:9:",
-            "already defined");
-    refused(HEAD "texture t noise rings 3\n", "t.scn:2:17:",
-            "takes no 'rings'");
-    refused(HEAD "texture t noise scale nan\n", "t.scn:2:23:", "");
-    refused(HEAD "texture t noise scale -1\n", "t.scn:2:17:", "> 0");
-    refused(HEAD "texture t image\n", "t.scn:2:1:", "needs 'file'");
-    refused(HEAD "texture t checker\nmaterial m lambert rho tt\n" BALL,
-            "t.scn:3:24:", "neither a number nor a texture");
-    refused(HEAD "material m lambert rho 0.5 + bump 3\n" BALL, "t.scn:2:35:",
-            "expects the name of a texture");
-    refused(HEAD "material m phong rho 0.5 e nope\n" BALL, "t.scn:2:28:",
-            "'nope' is neither");
+    scenecheck_refused(HEAD "texture t cheker\n", "t.scn:2:11:",
+                       "expects a kind");
+    scenecheck_refused(HEAD "texture 9t checker\n", "t.scn:2:9:",
+                       "not a texture name");
+    scenecheck_refused(HEAD "texture t checker\ntexture t noise\n",
+                       "t.scn:3:9:", "already defined");
+    scenecheck_refused(HEAD "texture t noise rings 3\n", "t.scn:2:17:",
+                       "takes no 'rings'");
+    scenecheck_refused(HEAD "texture t noise scale nan\n", "t.scn:2:23:", "");
+    scenecheck_refused(HEAD "texture t noise scale -1\n", "t.scn:2:17:",
+                       "> 0");
+    scenecheck_refused(HEAD "texture t image\n", "t.scn:2:1:", "needs 'file'");
+    scenecheck_refused(HEAD "texture t checker\n"
+                            "material m lambert rho tt\n" BALL,
+                       "t.scn:3:24:", "neither a number nor a texture");
+    scenecheck_refused(HEAD "material m lambert rho 0.5 + bump 3\n" BALL,
+                       "t.scn:2:35:", "expects the name of a texture");
+    scenecheck_refused(HEAD "material m phong rho 0.5 e nope\n" BALL,
+                       "t.scn:2:28:", "'nope' is neither");
 }
 END_TEST
 
@@ -120,12 +107,12 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     /* missing */
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n",
              imgtest_path("none.png"));
-    refused(text, "t.scn:2:22:", "none.png");
+    scenecheck_refused(text, "t.scn:2:22:", "none.png");
     /* not an image */
     const char *junk = imgtest_path("junk.png");
     imgtest_write_bytes(junk, "hello, world\n", 13);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", junk);
-    refused(text, "t.scn:2:22:", "texture file:");
+    scenecheck_refused(text, "t.scn:2:22:", "texture file:");
     /* truncated: a real PNG cut in half */
     image_t img;
     imgtest_hdr_image(&img, 16, 16, 3);
@@ -140,7 +127,7 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     const char *cut = imgtest_path("cut.png");
     imgtest_write_bytes(cut, bytes, n / 2);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", cut);
-    refused(text, "t.scn:2:22:", "texture file:");
+    scenecheck_refused(text, "t.scn:2:22:", "texture file:");
     /* the same PNG with a header that claims 100000 x 100000 pixels (a
      * decompression bomb): refused before anything is allocated, by the
      * readers' pixel limit (io/image.h) */
@@ -149,7 +136,7 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     imgtest_write_bytes(bomb, bytes, n);
     free(bytes);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", bomb);
-    refused(text, "t.scn:2:22:", "texture file:");
+    scenecheck_refused(text, "t.scn:2:22:", "texture file:");
     /* an EXR holding a NaN: refused at its texel */
     imgtest_hdr_image(&img, 4, 4, 3);
     image_at(&img, 2, 1)[1] = NAN;
@@ -159,7 +146,8 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     image_free(&img);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n",
              nan_exr);
-    refused(text, "t.scn:2:22:", "the texel (2, 1) is not a finite number");
+    scenecheck_refused(text, "t.scn:2:22:",
+                       "the texel (2, 1) is not a finite number");
     /* an EXR whose channels are none the reader knows (U V W: neither R G
      * B nor Y): the same file as an RGB one with its channel names
      * renamed in the header's chlist, so that nothing else changes */
@@ -184,31 +172,16 @@ START_TEST(bad_texture_files_are_refused_with_the_readers_reason)
     imgtest_write_bytes(uvw, bytes, n);
     free(bytes);
     snprintf(text, sizeof text, HEAD "texture t image file \"%s\"\n", uvw);
-    refused(text, "t.scn:2:22:", "the file has: U V W");
+    scenecheck_refused(text, "t.scn:2:22:", "the file has: U V W");
     /* and the whole one loads */
     snprintf(text, sizeof text,
              HEAD "texture t image file \"%s\" filter bilinear wrap mirror\n"
              "material m lambert rho t\n" BALL, good);
     scene_t s;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenecheck_parse(&s, text, &e) == SVET_OK, "%s", e.msg);
     scene_free(&s);
 }
 END_TEST
-
-/* Render text at its own spp with `threads` threads into img. */
-static void render_text(const char *text, int threads, image_t *img)
-{
-    scene_t s;
-    svet_error e;
-    ck_assert_msg(parse(&s, text, &e) == SVET_OK, "%s", e.msg);
-    render_t r;
-    ck_assert_int_eq(render_init(&r, &s, &e), SVET_OK);
-    ck_assert_int_eq(render_pass(&r, s.render.spp, threads, NULL, NULL),
-                     SVET_OK);
-    ck_assert_int_eq(render_image(&r, img, &e), SVET_OK);
-    render_free(&r);
-    scene_free(&s);
-}
 
 static bool same_bits(const image_t *a, const image_t *b)
 {
@@ -225,32 +198,32 @@ static bool same_bits(const image_t *a, const image_t *b)
 START_TEST(a_zero_bump_and_a_constant_texture_render_the_same_bits)
 {
     image_t plain, zero, flat, grey, grey2;
-    render_text(LIT "material m lambert rho 0.5 + phong rho 0.3 e 20\n" SCENE,
-                1, &plain);
+    scenecheck_render(LIT "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                      SCENE, 1, &plain);
     /* strength 0 */
-    render_text(LIT "texture w waves\n"
-                "material m lambert rho 0.5 + phong rho 0.3 e 20 + "
-                "bump w strength 0\n" SCENE, 1, &zero);
+    scenecheck_render(LIT "texture w waves\n"
+                      "material m lambert rho 0.5 + phong rho 0.3 e 20 + "
+                      "bump w strength 0\n" SCENE, 1, &zero);
     ck_assert(same_bits(&plain, &zero));
     /* a height of zero gradient everywhere: a 2D checker */
-    render_text(LIT "texture c checker\n"
-                "material m lambert rho 0.5 + phong rho 0.3 e 20 + "
-                "bump c strength 5\n" SCENE, 1, &flat);
+    scenecheck_render(LIT "texture c checker\n"
+                      "material m lambert rho 0.5 + phong rho 0.3 e 20 + "
+                      "bump c strength 5\n" SCENE, 1, &flat);
     ck_assert(same_bits(&plain, &flat));
     /* rho and e from textures of constant value */
-    render_text(LIT "texture h checker a 0.5 b 0.5\n"
-                "texture x noise a 20 b 20\n"
-                "material m lambert rho h + phong rho 0.3 e x\n" SCENE, 1,
-                &grey);
+    scenecheck_render(LIT "texture h checker a 0.5 b 0.5\n"
+                      "texture x noise a 20 b 20\n"
+                      "material m lambert rho h + phong rho 0.3 e x\n" SCENE,
+                      1, &grey);
     ck_assert(same_bits(&plain, &grey));
     /* and a textured image is the same for 1 and 2 threads */
     image_free(&grey);
-    render_text(LIT "texture h marble\ntexture w waves\n"
-                "material m lambert rho h + bump w strength 0.05\n" SCENE, 1,
-                &grey);
-    render_text(LIT "texture h marble\ntexture w waves\n"
-                "material m lambert rho h + bump w strength 0.05\n" SCENE, 2,
-                &grey2);
+    scenecheck_render(LIT "texture h marble\ntexture w waves\n"
+                      "material m lambert rho h + bump w strength 0.05\n"
+                      SCENE, 1, &grey);
+    scenecheck_render(LIT "texture h marble\ntexture w waves\n"
+                      "material m lambert rho h + bump w strength 0.05\n"
+                      SCENE, 2, &grey2);
     ck_assert(same_bits(&grey, &grey2));
     ck_assert(!same_bits(&grey, &plain));
     image_free(&plain);
@@ -266,33 +239,33 @@ START_TEST(a_bumped_shape_shades_as_its_bumped_material)
     image_t mat, shp, both, none, plain;
     /* the same waves on the plane: once as the material's component, once
      * as the plane's key (the sphere keeps the unbumped material) */
-    render_text(LIT "texture w waves\n"
-                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
-                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
-                "bump w strength 0.05\n" BALL
-                "plane point 0 -1 0 normal 0 1 0 material b\n", 1, &mat);
-    render_text(LIT "texture w waves\n"
-                "material m lambert rho 0.5 + phong rho 0.3 e 20\n" BALL
-                "plane point 0 -1 0 normal 0 1 0 material m bump w "
-                "strength 0.05\n", 1, &shp);
+    scenecheck_render(LIT "texture w waves\n"
+                      "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                      "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                      "bump w strength 0.05\n" BALL
+                      "plane point 0 -1 0 normal 0 1 0 material b\n", 1, &mat);
+    scenecheck_render(LIT "texture w waves\n"
+                      "material m lambert rho 0.5 + phong rho 0.3 e 20\n" BALL
+                      "plane point 0 -1 0 normal 0 1 0 material m bump w "
+                      "strength 0.05\n", 1, &shp);
     ck_assert(same_bits(&mat, &shp));
     /* the shape's bump wins over its material's */
-    render_text(LIT "texture w waves\ntexture r ripples\n"
-                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
-                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
-                "bump r strength 0.2\n" BALL
-                "plane point 0 -1 0 normal 0 1 0 material b bump w "
-                "strength 0.05\n", 1, &both);
+    scenecheck_render(LIT "texture w waves\ntexture r ripples\n"
+                      "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                      "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                      "bump r strength 0.2\n" BALL
+                      "plane point 0 -1 0 normal 0 1 0 material b bump w "
+                      "strength 0.05\n", 1, &both);
     ck_assert(same_bits(&mat, &both));
     /* strength 0 on the shape takes the material's bump away */
-    render_text(LIT "texture r ripples\n"
-                "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
-                "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
-                "bump r strength 0.2\n" BALL
-                "plane point 0 -1 0 normal 0 1 0 material b bump r "
-                "strength 0\n", 1, &none);
-    render_text(LIT "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
-                SCENE, 1, &plain);
+    scenecheck_render(LIT "texture r ripples\n"
+                      "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                      "material b lambert rho 0.5 + phong rho 0.3 e 20 + "
+                      "bump r strength 0.2\n" BALL
+                      "plane point 0 -1 0 normal 0 1 0 material b bump r "
+                      "strength 0\n", 1, &none);
+    scenecheck_render(LIT "material m lambert rho 0.5 + phong rho 0.3 e 20\n"
+                      SCENE, 1, &plain);
     ck_assert(same_bits(&none, &plain));
     ck_assert(!same_bits(&mat, &plain));
     image_free(&mat);
@@ -301,21 +274,24 @@ START_TEST(a_bumped_shape_shades_as_its_bumped_material)
     image_free(&none);
     image_free(&plain);
     /* bad values */
-    refused(HEAD "material m lambert rho 0.5\n"
-            "sphere centre 0 0 0 radius 1 material m bump nope\n",
-            "t.scn:3:46:", "'bump nope': no texture of that name");
-    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
-            "sphere centre 0 0 0 radius 1 material m strength 2\n",
-            "t.scn:4:41:", "give 'bump NAME' with it");
-    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
-            "sphere centre 0 0 0 radius 1 material m bump w strength nan\n",
-            "t.scn:4:", "");
-    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
-            "sphere centre 0 0 0 radius 1 material m bump w strength\n",
-            "t.scn:4:", "");
-    refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
-            "sphere centre 0 0 0 radius 1 material m bump w bump w\n",
-            "t.scn:4:", "");
+    scenecheck_refused(HEAD "material m lambert rho 0.5\n"
+                       "sphere centre 0 0 0 radius 1 material m bump nope\n",
+                       "t.scn:3:46:", "'bump nope': no texture of that name");
+    scenecheck_refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+                       "sphere centre 0 0 0 radius 1 material m strength 2\n",
+                       "t.scn:4:41:", "give 'bump NAME' with it");
+    scenecheck_refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+                       "sphere centre 0 0 0 radius 1 material m "
+                       "bump w strength nan\n",
+                       "t.scn:4:", "");
+    scenecheck_refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+                       "sphere centre 0 0 0 radius 1 material m "
+                       "bump w strength\n",
+                       "t.scn:4:", "");
+    scenecheck_refused(HEAD "texture w waves\nmaterial m lambert rho 0.5\n"
+                       "sphere centre 0 0 0 radius 1 material m "
+                       "bump w bump w\n",
+                       "t.scn:4:", "");
     /* a program without textures names the chapter */
     scene_t s;
     svet_error e;
@@ -376,9 +352,9 @@ START_TEST(the_grazing_checkerboard_is_nearer_the_reference_trilinear)
     image_free(&img);
     image_t ref, nearest, tri;
     /* the reference: 1024 samples a pixel of the finest texels */
-    render_text(checker_scene(png, "bilinear", 1024), 0, &ref);
-    render_text(checker_scene(png, "nearest", 1), 0, &nearest);
-    render_text(checker_scene(png, "trilinear", 1), 0, &tri);
+    scenecheck_render(checker_scene(png, "bilinear", 1024), 0, &ref);
+    scenecheck_render(checker_scene(png, "nearest", 1), 0, &nearest);
+    scenecheck_render(checker_scene(png, "trilinear", 1), 0, &tri);
     double en = rmse(&nearest, &ref), et = rmse(&tri, &ref);
     /* Fixed seeds make both numbers exact for the build; the margin is
      * the claim: with one sample a pixel the nearest texel aliases, its
