@@ -411,7 +411,7 @@ reference:
 
 # `make tradeoffs-photon`: the photon maps' settings against the path
 # tracer on scenes/caustic.scn, and exact Fresnel against Schlick's
-# (tools/tradeoffs-photon.sh; writes docs/tradeoffs-photon.md, about 10
+# (tools/tradeoffs-photon.sh; writes docs/tradeoffs-photon.md, about 25
 # minutes on 2 cores).
 tradeoffs-photon: build/float/svet
 	sh tools/tradeoffs-photon.sh

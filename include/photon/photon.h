@@ -72,10 +72,16 @@ typedef enum {
  * tracer) and store those of `kind` in m, balanced. Photon i draws its
  * numbers from rng_for_sample(seed ^ PHOTON_SEED_SALT, stream, i), so the
  * map is the same for any thread count; `threads` (0: all) trace and
- * balance. Each photon carries Phi_l / (p_l count), p_l the chance of
- * light l (lightset_pick), so an estimate is unbiased in the count. The
- * scene's max_depth bounds the bounces. Fails with SVET_ERR_NOMEM (or a
- * map too large for memory, with its size); m is then empty. */
+ * balance. Light l is chosen with chance p_l in proportion to the power
+ * Phi_l it emits photons with (4 pi I, sides pi L_e A, and 4 pi^2 R^2 L for
+ * the environment, R the radius of the sphere its photons leave from: the
+ * bounded objects' box, and where an unbounded object such as a plane is
+ * present, the ball about the camera's target reaching the eye), and each
+ * photon carries Phi_l / (p_l count), the same for every light, so an
+ * estimate is unbiased in the count. At each hit the scene's per-hit
+ * shading (scene_t.shade, a texture) gives the material. The scene's
+ * max_depth bounds the bounces. Fails with SVET_ERR_NOMEM (or a map too
+ * large for memory, with its size); m is then empty. */
 #define PHOTON_SEED_SALT UINT64_C(0x70686f746f6e6d70)
 svet_status photon_trace(const struct render *r, uint64_t count,
                          photon_kind_t kind, uint64_t stream, int threads,

@@ -159,19 +159,146 @@ static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
     q->power = power;
 }
 
+/* Where photons come from: the sphere (centre, radius) that environment
+ * photons leave from, and a discrete distribution over the lights in
+ * proportion to the power each emits with (emit()), so that every photon
+ * carries the same power whichever light it left (Jensen 2001, sec. 5.1,
+ * several lights). The light set's own choice (lightset_pick) serves next-event
+ * estimation, where the environment counts by pi^2 R^2 L; photons leave
+ * it with 4 pi^2 R^2 L. */
+typedef struct {
+    VECTOR3 centre;
+    real radius;
+    real *cdf;         /* lights.n + 1 entries */
+    int n;
+} emitters_t;
+
+/* The power light l emits photons with (emit()), luminance of it: a
+ * point light 4 pi I, an area light sides pi L_e A, the environment pi R^2
+ * (the disc the photons cross) times 4 pi L (the radiance's integral over
+ * the sphere, its mean L for a uniform sky): pbrt-v3 sec. 16.1.2,
+ * InfiniteAreaLight::Sample_Le, whose weight L / (pdf_pos pdf_dir) is
+ * L / ((1 / pi R^2) (1 / 4 pi)). */
+static real emitted_power(const light_t *l, real R)
+{
+    switch (l->kind) {
+    case LIGHT_POINT:
+        return fmax(REAL_C(0.0), rad_luminance(l->intensity)) * 4 * REAL_PI;
+    case LIGHT_AREA: {
+        real sides = l->emission->two_sided ? 2 : 1;
+        return isfinite(l->area)
+                   ? fmax(REAL_C(0.0), rad_luminance(l->emission->radiance)) *
+                         sides * REAL_PI * l->area
+                   : 0;
+    }
+    case LIGHT_ENVIRONMENT:
+        return fmax(REAL_C(0.0), rad_luminance(l->radiance)) * 4 * REAL_PI *
+               REAL_PI * R * R;
+    }
+    return 0;
+}
+
+/* The sphere the environment's photons leave from: it must hold every
+ * point a photon should reach. The bounded objects' box, as the light set
+ * takes it; an unbounded object (a plane, whose box spans the reals or a
+ * clipped stand-in, and whose area is infinite) can't be held, so where
+ * one is present the box also takes the ball about the camera's target
+ * of radius its distance from the eye: the eye, the target and, for a
+ * field of view up to 90 degrees, the width of the view at the target's
+ * distance, where the camera looks. A point inside the sphere gets the
+ * environment's whole irradiance: every ray toward it crosses the disc
+ * of radius R facing the ray's direction. */
+static void emitters_sphere(const scene_t *s, VECTOR3 centre, real *radius)
+{
+    bbox_t all;
+    bbox_empty(&all);
+    bool unbounded = false;
+    for (int i = 0; i < s->nobjects; i++) {
+        const COBJECT *o = s->objects[i];
+        bbox_t b;
+        o->ops->bounds(o, -1, &b);
+        if (bbox_is_empty(&b))
+            continue;
+        if (vec_is_finite(b.min) && vec_is_finite(b.max) &&
+            isfinite(o->ops->area(o)))
+            bbox_union(&all, &b);
+        else
+            unbounded = true;
+    }
+    if (unbounded) {
+        const VECTOR3 *e = &s->camera.position, *t = &s->camera.target;
+        real d = vec_distance(*e, *t);
+        VECTOR3 lo, hi;
+        for (int a = 0; a < 3; a++) {
+            lo[a] = (*t)[a] - d;
+            hi[a] = (*t)[a] + d;
+        }
+        bbox_add_point(&all, lo);
+        bbox_add_point(&all, hi);
+    }
+    if (bbox_is_empty(&all)) {
+        vec_set(centre, 0, 0, 0);
+        *radius = 1;
+        return;
+    }
+    bbox_centroid(centre, &all);
+    *radius = REAL_C(0.5) * vec_distance(all.max, all.min);
+    if (!(*radius > 0))
+        *radius = 1;
+}
+
+static svet_status emitters_build(emitters_t *em, const render_t *r,
+                                  svet_error *err)
+{
+    const lightset_t *ls = &r->lights;
+    emitters_sphere(r->scene, em->centre, &em->radius);
+    em->n = ls->n;
+    em->cdf = malloc(((size_t)ls->n + 1) * sizeof *em->cdf);
+    if (!em->cdf)
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "photon tracing: out of memory");
+    real total = 0;
+    for (int i = 0; i < ls->n; i++)
+        total += emitted_power(&ls->lights[i], em->radius);
+    em->cdf[0] = 0;
+    for (int i = 0; i < ls->n; i++)
+        em->cdf[i + 1] = em->cdf[i] +
+                         (total > 0 ? emitted_power(&ls->lights[i], em->radius) /
+                                          total
+                                    : REAL_C(1.0) / (real)ls->n);
+    em->cdf[ls->n] = 1;
+    return SVET_OK;
+}
+
+/* the light for u in [0, 1): the first i with cdf[i+1] > u, so a light of
+ * no power is never chosen; *pmf its chance */
+static int emitters_pick(const emitters_t *em, real u, real *pmf)
+{
+    int lo = 0, hi = em->n - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (em->cdf[mid + 1] > u)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    *pmf = em->cdf[lo + 1] - em->cdf[lo];
+    return lo;
+}
+
 /* The photon's first ray and power from the light l chosen with chance
  * pmf: a point light emits isotropically, Phi = 4 pi I; an area light
  * from a point uniform by area, cosine-weighted about its normal (on a
  * side chosen at random when it emits on both), Phi = sides pi L_e A
  * (Jensen 2001, sec. 5.1.1); the environment along a direction uniform
- * over the sphere from a point uniform on the disc of the scene's
- * bounding sphere (centre c, radius R) facing it, the disc's plane R
- * behind c: every ray that can reach the scene crosses that disc, and
- * Phi = pi R^2 times the radiance's integral over the sphere, 4 pi L
- * (pbrt-v3 sec. 16.1.2, InfiniteAreaLight::Sample_Le, whose weight is
- * L / (pdf_pos pdf_dir); Jensen 2001, sec. 5.1.1). Returns false for a
- * degenerate sample. */
-static bool emit(const lightset_t *ls, const light_t *l, real pmf,
+ * over the sphere from a point uniform on the disc of the emitters'
+ * sphere (centre c, radius R) facing it, the disc's plane R behind c:
+ * every ray that can reach the sphere crosses that disc, and Phi = pi R^2
+ * times the radiance's integral over the sphere, 4 pi L (pbrt-v3 sec.
+ * 16.1.2, InfiniteAreaLight::Sample_Le, whose weight is L / (pdf_pos
+ * pdf_dir); Jensen 2001, sec. 5.1.1). Returns false for a degenerate
+ * sample. */
+static bool emit(const emitters_t *em, const light_t *l, real pmf,
                  uint64_t count, pcg32_t *g, ray_t *ray, RADIANCE *power,
                  const COBJECT **from)
 {
@@ -189,14 +316,14 @@ static bool emit(const lightset_t *ls, const light_t *l, real pmf,
     }
     if (l->kind == LIGHT_ENVIRONMENT) {
         VECTOR3 d, t1, t2, disc;
-        real R = ls->radius;
+        real R = em->radius;
         sample_uniform_sphere(d, u);
         frame_from_normal(t1, t2, d);
         real rr = R * sqrt(ud[0]), phi = 2 * REAL_PI * ud[1];
         vec_set(disc, rr * cos(phi), rr * sin(phi), 0);
         frame_to_world(ray->o, disc, t1, t2, d);
         for (int a = 0; a < 3; a++)
-            ray->o[a] += ls->centre[a] - R * d[a];
+            ray->o[a] += em->centre[a] - R * d[a];
         vec_copy(ray->d, d);
         *power = rad_scale(l->radiance, 4 * REAL_PI * REAL_PI * R * R * share);
         return true;
@@ -237,19 +364,20 @@ static bool emit(const lightset_t *ls, const light_t *l, real pmf,
  * power is multiplied by rho_t(theta) alone, as flux is conserved across
  * the interface (Veach 1997, sec. 5.2). Russian roulette by the weight's
  * largest channel keeps the powers equal (Jensen 2001, sec. 5.2). */
-static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
-                      uint64_t stream, uint64_t index, records_t *out)
+static void trace_one(const render_t *r, const emitters_t *em,
+                      uint64_t count, photon_kind_t kind, uint64_t stream,
+                      uint64_t index, records_t *out)
 {
     pcg32_t g;
     rng_for_sample(&g, r->scene->render.seed ^ PHOTON_SEED_SALT, stream,
                    index);
     real pmf;
-    const light_t *l = lightset_pick(&r->lights, pcg32_real(&g), &pmf);
+    const light_t *l = &r->lights.lights[emitters_pick(em, pcg32_real(&g),
+                                                       &pmf)];
     ray_t ray;
     RADIANCE power;
     const COBJECT *skip[2] = { NULL, NULL };
-    if (!l || !(pmf > 0) || !emit(&r->lights, l, pmf, count, &g, &ray, &power,
-                                       &skip[0]))
+    if (!(pmf > 0) || !emit(em, l, pmf, count, &g, &ray, &power, &skip[0]))
         return;
     bool diffuse_seen = false;
     const int max_depth = r->scene->render.max_depth;
@@ -261,7 +389,14 @@ static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
             return;
         PATHPOINT pp;
         cobject_fill(obj, &ray, &h, &pp);
+        /* a part's per-hit shading (a texture: scene.h), as the camera's
+         * paths see it, so a textured reflectance colours the photon; a
+         * photon's ray has no pixel footprint: depth + 1 reads the finest
+         * level, as a camera path's later bounces do */
         const material_t *m = obj->material;
+        material_t shaded;
+        if (obj->texture)
+            m = r->scene->shade(r->scene, obj, &ray, depth + 1, &pp, &shaded);
         VECTOR3 dir;
         vec_normalize(dir, ray.d);
         if (!material_is_specular(m) && m->ncomp > 0) {
@@ -323,10 +458,16 @@ static svet_status trace(const render_t *r, uint64_t count,
     if (nchunks > SIZE_MAX / sizeof(records_t))
         return svet_error_set(err, SVET_ERR_NOMEM, "photon tracing: %llu "
                               "photons are too many", (unsigned long long)count);
+    emitters_t em;
+    svet_status st = emitters_build(&em, r, err);
+    if (st != SVET_OK)
+        return st;
     records_t *chunks = calloc((size_t)nchunks, sizeof *chunks);
-    if (!chunks)
+    if (!chunks) {
+        free(em.cdf);
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "photon tracing: out of memory");
+    }
 #ifdef _OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
@@ -337,15 +478,15 @@ static svet_status trace(const render_t *r, uint64_t count,
         uint64_t i0 = (uint64_t)c * CHUNK;
         uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;
         for (uint64_t i = i0; i < i1; i++)
-            trace_one(r, count, kind, stream, i, &chunks[c]);
+            trace_one(r, &em, count, kind, stream, i, &chunks[c]);
     }
+    free(em.cdf);
     size_t total = 0;
     bool failed = false;
     for (uint64_t c = 0; c < nchunks; c++) {
         total += chunks[c].n;
         failed = failed || chunks[c].failed;
     }
-    svet_status st = SVET_OK;
     /* the precomputation's points: every `every`-th record */
     size_t npts = irr && every > 0 && total > 0 ? (total - 1) / every + 1 : 0;
     float (*pts)[3] = NULL, (*nrm)[3] = NULL;
@@ -581,7 +722,11 @@ static RADIANCE gather_lookup(const state_t *s, const render_t *r, ray_t ray,
             return rad_grey(0);
         PATHPOINT pp;
         cobject_fill(obj, &ray, &h, &pp);
+        /* the per-hit shading (scene.h); a gather ray is a later bounce */
         const material_t *m = obj->material;
+        material_t shaded;
+        if (obj->texture)
+            m = r->scene->shade(r->scene, obj, &ray, depth + 1, &pp, &shaded);
         VECTOR3 wo, wi;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         if (!material_is_specular(m)) {
@@ -687,7 +832,11 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
             L = rad_add(L, rad_mul(beta, light_emitted(obj->light, &pp)));
         if (depth >= sc->render.max_depth)
             break;
+        /* the per-hit shading (scene.h), as the path tracer's */
         const material_t *m = obj->material;
+        material_t shaded;
+        if (obj->texture)
+            m = sc->shade(sc, obj, &ray, depth, &pp, &shaded);
         VECTOR3 wo, wi;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         bool diffuse = !material_is_specular(m) && m->ncomp > 0;

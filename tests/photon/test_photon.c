@@ -1,7 +1,12 @@
 /*
  * test_photon.c - the photon map method of ch. 8 (photon/photon.h): the
  * power balance of a closed box against Phi / (A (1 - rho)); photons from
- * a uniform environment against pi L on an open square; the density
+ * a uniform environment against pi L on an open square; the lights
+ * chosen by the power they emit photons with (equal photon powers) and
+ * the flux under an environment and a disc light against the form
+ * factor's; an infinite plane under an environment lit where the camera
+ * looks; photon tracing through a texture against the closed box's
+ * balance per channel and the untextured map's bits; the density
  * estimate on uniform photons against its exact mean k/(k-1) and standard
  * deviation; Christensen's precomputed irradiance on uniform photons
  * against its exact mean k/(k-2) and the plain estimate, and in the box
@@ -188,6 +193,214 @@ START_TEST(environment_photons_give_pi_L_on_an_open_plane)
     photonmap_free(&m);
     render_free(&r);
     scene_free(&s);
+}
+END_TEST
+
+/* The irradiance at distance rho from the axis of a disc of radius a at
+ * height h facing a parallel plane, over pi L: the form factor from a
+ * point to a coaxial parallel disc (Howell, "A Catalog of Radiation Heat
+ * Transfer Configuration Factors", B-13) */
+static double disc_form_factor(double rho, double h, double a)
+{
+    double h2 = h * h, r2 = rho * rho, a2 = a * a;
+    return 0.5 * (1 - (h2 + r2 - a2) /
+                          sqrt((h2 + r2 + a2) * (h2 + r2 + a2) - 4 * a2 * r2));
+}
+
+/* the exact flux onto the plane through the ring r0 <= rho < r1 under
+ * the disc (radiance Le) and the environment (L) it hides: E(rho) =
+ * pi L (1 - F) + pi Le F, integrated by Simpson's rule over 2000 steps */
+static double ring_flux(double r0, double r1, double h, double a, double Le,
+                        double L)
+{
+    const double pi = 3.14159265358979323846;
+    const int n = 2000;
+    double step = (r1 - r0) / n, sum = 0;
+    for (int i = 0; i <= n; i++) {
+        double rho = r0 + i * step, F = disc_form_factor(rho, h, a);
+        double f = (pi * L * (1 - F) + pi * Le * F) * 2 * pi * rho;
+        sum += f * (i == 0 || i == n ? 1 : i % 2 ? 4 : 2);
+    }
+    return sum * step / 3;
+}
+
+START_TEST(emission_by_power_with_an_environment_and_a_disc_light)
+{
+    /* A grey square of side 4 under a disc light (radius 0.5, radiance
+     * 20, facing down from height 1) and a uniform environment of
+     * radiance 1, photons stored where they first land (maxdepth 0).
+     * The environment emits 4 pi^2 R^2 L, the disc pi^2 a^2 L_e; with the
+     * lights chosen in proportion to those, every photon carries the same
+     * power, total / N. The flux on the square's top through a disc and
+     * a ring about the axis is then the photons' count there times that
+     * power, and must match pi L (1 - F) + pi L_e F integrated over them,
+     * F the disc's form factor (the disc hides the sky it covers). The
+     * count is binomial: the flux's standard deviation is at most the
+     * power times sqrt(count), and the tolerance 4 of those. */
+    static const char text[] =
+        "camera position 0 3 4 target 0 0 0 up 0 1 0 width 4 height 4\n"
+        "render maxdepth 0\n"
+        "material grey lambert rho 0.5\n"
+        "parallelogram c0 -2 0 2 c1 2 0 2 c3 -2 0 -2 material grey\n"
+        "disk centre 0 1 0 normal 0 -1 0 radius 0.5 material grey emit 20\n"
+        "environment radiance 1 1 1\n";
+    scene_t s;
+    render_t r;
+    svet_error e;
+    parse_ok(&s, text);
+    ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
+    const uint64_t n = 400000;
+    photonmap_t m;
+    ck_assert_int_eq(photon_trace(&r, n, PHOTON_GLOBAL, 0, 0, &m, &e),
+                     SVET_OK);
+    ck_assert(m.n > 1000);
+    /* every photon the same power */
+    float pmin = m.ph[1].power[1], pmax = pmin;
+    for (size_t i = 1; i <= m.n; i++) {
+        for (int c = 0; c < 3; c++) {
+            pmin = fminf(pmin, m.ph[i].power[c]);
+            pmax = fmaxf(pmax, m.ph[i].power[c]);
+        }
+    }
+    ck_assert_msg(pmax / pmin - 1 < 1e-5f, "photon powers from %g to %g: "
+                  "the lights are not chosen by their power", (double)pmin,
+                  (double)pmax);
+    const double ring[3] = { 0, 0.5, 1.5 };
+    double flux[2] = { 0, 0 };
+    size_t cnt[2] = { 0, 0 };
+    for (size_t i = 1; i <= m.n; i++) {
+        const photon_t *p = &m.ph[i];
+        VECTOR3 d;
+        photonmap_direction(p, d);
+        if (fabs((double)p->pos[1]) > 1e-4 || !(d[Y] < 0))
+            continue; /* the disc's top, or the square's underside */
+        double rho = hypot((double)p->pos[0], (double)p->pos[2]);
+        for (int k = 0; k < 2; k++)
+            if (rho >= ring[k] && rho < ring[k + 1]) {
+                flux[k] += (double)p->power[1];
+                cnt[k]++;
+            }
+    }
+    for (int k = 0; k < 2; k++) {
+        double exact = ring_flux(ring[k], ring[k + 1], 1, 0.5, 20, 1);
+        double tol = 4 * (double)pmax * sqrt((double)cnt[k]);
+        ck_assert_msg(fabs(flux[k] - exact) < tol, "flux through %g <= rho "
+                      "< %g: %g, exact %g (tolerance %g, %zu photons)",
+                      ring[k], ring[k + 1], flux[k], exact, tol, cnt[k]);
+    }
+    photonmap_free(&m);
+    render_free(&r);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(environment_photons_reach_an_infinite_plane_where_the_camera_looks)
+{
+    /* An infinite plane, whose box spans the reals, under a uniform
+     * environment of radiance 1.5, the camera far from the origin looking
+     * down at it: the square of side 2 about the target must get the
+     * irradiance pi L, which it does only if the photons' sphere holds
+     * it. Every photon carries the same power; the count on the square
+     * is binomial, so the tolerance is 4 times the power times its square
+     * root. */
+    static const char text[] =
+        "camera position 30 3 24 target 30 0 20 up 0 1 0 width 4 height 4\n"
+        "render maxdepth 0\n"
+        "material grey lambert rho 0.5\n"
+        "plane point 0 0 0 normal 0 1 0 material grey\n"
+        "environment radiance 1.5 1.5 1.5\n";
+    scene_t s;
+    render_t r;
+    svet_error e;
+    parse_ok(&s, text);
+    ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
+    photonmap_t m;
+    ck_assert_int_eq(photon_trace(&r, 100000, PHOTON_GLOBAL, 0, 0, &m, &e),
+                     SVET_OK);
+    double flux = 0, power = 0;
+    size_t cnt = 0;
+    for (size_t i = 1; i <= m.n; i++) {
+        const photon_t *p = &m.ph[i];
+        VECTOR3 d;
+        photonmap_direction(p, d);
+        power = fmax(power, (double)p->power[1]);
+        if (d[Y] < 0 && fabs((double)p->pos[0] - 30) < 1 &&
+            fabs((double)p->pos[2] - 20) < 1) {
+            flux += (double)p->power[1];
+            cnt++;
+        }
+    }
+    const double exact = 3.14159265358979323846 * 1.5 * 4;
+    const double tol = 4 * power * sqrt((double)cnt);
+    ck_assert_msg(cnt > 100 && fabs(flux - exact) < tol, "flux onto the "
+                  "square about the target %g, exact pi L A = %g (tolerance "
+                  "%g, %zu photons)", flux, exact, tol, cnt);
+    photonmap_free(&m);
+    render_free(&r);
+    scene_free(&s);
+}
+END_TEST
+
+/* --- textures ------------------------------------------------------------- */
+
+START_TEST(photon_tracing_reads_the_texture)
+{
+    /* The closed box of the power balance with walls of a texture that is
+     * the same colour everywhere, rho = (0.5, 0.25, 0) (a checker of two
+     * equal squares): the photons take its colour at every bounce, so each
+     * channel's mean irradiance is Phi / (A (1 - rho_c)), and the map is
+     * the bits of the same box with that colour as the material's own.
+     * Roulette by the largest channel, 0.5, keeps the red powers equal:
+     * the red mean has the grey box's relative standard deviation
+     * sqrt(rho / N), the others less; the tolerance is 4 of those. */
+    static const char textured[] =
+        "camera position 0 0 0 target 0 0 -1 up 0 1 0 width 4 height 4\n"
+        "render maxdepth 1000\n"
+        "texture c checker a 0.5 0.25 0 b 0.5 0.25 0 scale 3\n"
+        "material wall lambert rho c\n"
+        "box min -1 -1 -1 max 1 1 1 material wall\n"
+        "light point position 0.1 -0.2 0.3 intensity 1\n";
+    static const char plain[] =
+        "camera position 0 0 0 target 0 0 -1 up 0 1 0 width 4 height 4\n"
+        "render maxdepth 1000\n"
+        "material wall lambert rho 0.5 0.25 0\n"
+        "box min -1 -1 -1 max 1 1 1 material wall\n"
+        "light point position 0.1 -0.2 0.3 intensity 1\n";
+    scene_t s, sp;
+    render_t r, rp;
+    svet_error e;
+    parse_ok(&s, textured);
+    ck_assert(s.shade != NULL);
+    parse_ok(&sp, plain);
+    ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
+    ck_assert_msg(render_init(&rp, &sp, &e) == SVET_OK, "%s", e.msg);
+    const uint64_t n = 40000;
+    photonmap_t m, mp;
+    ck_assert_int_eq(photon_trace(&r, n, PHOTON_GLOBAL, 0, 0, &m, &e),
+                     SVET_OK);
+    ck_assert_int_eq(photon_trace(&rp, n, PHOTON_GLOBAL, 0, 0, &mp, &e),
+                     SVET_OK);
+    double sum[3] = { 0, 0, 0 };
+    for (size_t i = 1; i <= m.n; i++)
+        for (int c = 0; c < 3; c++)
+            sum[c] += (double)m.ph[i].power[c];
+    const double rho[3] = { 0.5, 0.25, 0 }, area = 24;
+    const double phi = 4 * 3.14159265358979323846;
+    const double tol = 4 * sqrt(0.5 / (double)n);
+    for (int c = 0; c < 3; c++) {
+        double exact = phi / (area * (1 - rho[c])), got = sum[c] / area;
+        ck_assert_msg(fabs(got / exact - 1) < tol, "channel %d: mean wall "
+                      "irradiance %g, exact %g (tolerance %g relative)", c,
+                      got, exact, tol);
+    }
+    ck_assert_uint_eq(m.n, mp.n);
+    ck_assert(memcmp(m.ph + 1, mp.ph + 1, m.n * sizeof(photon_t)) == 0);
+    photonmap_free(&m);
+    photonmap_free(&mp);
+    render_free(&r);
+    render_free(&rp);
+    scene_free(&s);
+    scene_free(&sp);
 }
 END_TEST
 
@@ -622,6 +835,10 @@ Suite *test_suite(void)
     tcase_add_test(t, power_balance_in_a_closed_box);
     tcase_add_test(t, maps_are_the_same_for_any_thread_count);
     tcase_add_test(t, environment_photons_give_pi_L_on_an_open_plane);
+    tcase_add_test(t, emission_by_power_with_an_environment_and_a_disc_light);
+    tcase_add_test(t,
+                   environment_photons_reach_an_infinite_plane_where_the_camera_looks);
+    tcase_add_test(t, photon_tracing_reads_the_texture);
     tcase_add_test(t, density_estimate_on_uniform_photons_has_its_exact_mean);
     tcase_add_test(t,
                    precomputed_irradiance_on_uniform_photons_has_its_exact_mean);
