@@ -81,6 +81,17 @@ svet_status photon_trace(const struct render *r, uint64_t count,
                          photon_kind_t kind, uint64_t stream, int threads,
                          photonmap_t *m, svet_error *err);
 
+/* One photon of `count` leaving the lights of r as photon_trace emits
+ * them: a light picked by power (lightset_pick, chance p_l), the
+ * photon's first ray from it and its power Phi_l / (p_l count) (Jensen
+ * 2001, sec. 5.1.1), and in *from the object it leaves (an area light's,
+ * for the first intersection to skip; NULL otherwise). Draws from g.
+ * Returns false when no photon leaves (no light, a degenerate sample).
+ * Ch. 11's volume photon map (medium/volphoton.h) traces its photons from
+ * here. Can't fail. */
+bool photon_emit(const struct render *r, uint64_t count, pcg32_t *g,
+                 ray_t *ray, RADIANCE *power, const COBJECT **from);
+
 /* photon_trace, and then Christensen 1999's precomputation: the
  * irradiance by q (photonmap_irradiance) at the position of every
  * `every`-th stored photon (in the order photon_trace stores them, so

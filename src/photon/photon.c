@@ -226,6 +226,16 @@ static bool emit(const lightset_t *ls, const light_t *l, real pmf,
     return true;
 }
 
+bool photon_emit(const render_t *r, uint64_t count, pcg32_t *g, ray_t *ray,
+                 RADIANCE *power, const COBJECT **from)
+{
+    real pmf;
+    const light_t *l = lightset_pick(&r->lights, pcg32_real(g), &pmf);
+    *from = NULL;
+    return l && pmf > 0 && emit(&r->lights, l, pmf, count, g, ray, power,
+                                from);
+}
+
 /* Trace photon `index`: bounce by the materials' own sampling, store
  * where the kind asks. The material samples wi for a given wo; a photon
  * needs the adjoint, a new direction for the one it came from. By
@@ -243,13 +253,10 @@ static void trace_one(const render_t *r, uint64_t count, photon_kind_t kind,
     pcg32_t g;
     rng_for_sample(&g, r->scene->render.seed ^ PHOTON_SEED_SALT, stream,
                    index);
-    real pmf;
-    const light_t *l = lightset_pick(&r->lights, pcg32_real(&g), &pmf);
     ray_t ray;
     RADIANCE power;
     const COBJECT *skip[2] = { NULL, NULL };
-    if (!l || !(pmf > 0) || !emit(&r->lights, l, pmf, count, &g, &ray, &power,
-                                       &skip[0]))
+    if (!photon_emit(r, count, &g, &ray, &power, &skip[0]))
         return;
     bool diffuse_seen = false;
     const int max_depth = r->scene->render.max_depth;
