@@ -211,6 +211,182 @@ START_TEST(a_scattering_sphere_in_a_furnace_renders_one)
 }
 END_TEST
 
+/* --- against volumetric path tracing ----------------------------------------- */
+
+/* The smoky Cornell box of scenes/smoky-cbox.scn, small. */
+#define SMOKY(method, spp, seed, keys) \
+    "camera position 0 0 3.9 target 0 0 0 up 0 1 0\n" \
+    "camera fov 39.3077 fov_axis y width 16 height 16 filter box\n" \
+    "render spp " spp " maxdepth 7 roulette on roulette_depth 3 seed " seed \
+    "\nrender integrator " method "\n" \
+    "material white lambert rho 0.885809 0.698859 0.666422\n" \
+    "material green lambert rho 0.105421 0.37798 0.076425\n" \
+    "material red   lambert rho 0.570068 0.0430135 0.0443706\n" \
+    "parallelogram c0 -1 -1 1   c1 1 -1 1   c2 1 -1 -1  c3 -1 -1 -1  " \
+    "material white\n" \
+    "parallelogram c0 -1 1 -1   c1 1 1 -1   c2 1 1 1    c3 -1 1 1    " \
+    "material white\n" \
+    "parallelogram c0 -1 -1 -1  c1 1 -1 -1  c2 1 1 -1   c3 -1 1 -1   " \
+    "material white\n" \
+    "parallelogram c0 1 -1 -1   c1 1 -1 1   c2 1 1 1    c3 1 1 -1    " \
+    "material green\n" \
+    "parallelogram c0 -1 -1 1   c1 -1 -1 -1 c2 -1 1 -1  c3 -1 1 1    " \
+    "material red\n" \
+    "parallelogram c0 -0.23 0.99 -0.18  c1 0.23 0.99 -0.18  " \
+    "c2 0.23 0.99 0.2  c3 -0.23 0.99 0.2  material white  " \
+    "emit 18.387 13.9873 6.75357\n" \
+    "box min -1 -1 -1 max 1 1 1  scale 0.3 rotate y -17 " \
+    "translate 0.335 -0.7 0.38 material white\n" \
+    "box min -1 -1 -1 max 1 1 1  scale 0.3 0.61 0.3 rotate y 18.25 " \
+    "translate -0.33 -0.4 -0.28 material white\n" \
+    "medium smoke homogeneous sigma_a 0.05 sigma_s 0.5 phase hg g 0.3\n" \
+    "box min -0.999 -0.999 -0.999 max 0.999 0.98 0.999 material white " \
+    "medium smoke invisible\n" keys
+
+#define REGION 4
+#define NREGION 16
+
+/* The means of the 4 x 4 regions of the mean of a and b, two renders of
+ * independent seeds, and the variances of those means: of a region's
+ * mean in one render the larger of two estimates, the sum of its pixels'
+ * variances (a_p - b_p)^2 / 2 over the pixels squared (pixels
+ * independent) and (A - B)^2 / 2 of the regions' means A and B (what the
+ * map's noise shares between the pixels), halved for the mean of two. */
+static void region_means(const image_t *a, const image_t *b, int ch,
+                         double *mean, double *var)
+{
+    int nr = a->width / REGION;
+    for (int ry = 0; ry < nr; ry++)
+        for (int rx = 0; rx < nr; rx++) {
+            double sa = 0, sb = 0, sp = 0;
+            for (int y = ry * REGION; y < (ry + 1) * REGION; y++)
+                for (int x = rx * REGION; x < (rx + 1) * REGION; x++) {
+                    double va = (double)image_at(a, x, y)[ch];
+                    double vb = (double)image_at(b, x, y)[ch];
+                    sa += va;
+                    sb += vb;
+                    sp += (va - vb) * (va - vb) / 2;
+                }
+            const double n = REGION * REGION;
+            double A = sa / n, B = sb / n;
+            double vpix = sp / (n * n), vreg = (A - B) * (A - B) / 2;
+            mean[ry * nr + rx] = (A + B) / 2;
+            var[ry * nr + rx] = (vpix > vreg ? vpix : vreg) / 2;
+        }
+}
+
+/* Volumetric path tracing is unbiased; the volume photon map's bias (the
+ * blur of its estimates, k/(k-1), the surface map's) is below its noise
+ * at 400 000 photons and these radii. Each region's mean of the two
+ * must agree within 4 standard deviations of their difference, and that
+ * deviation must be small against the mean (10 per cent) where the
+ * region is not the light's, for the test to see an error of that size
+ * in the multiply scattered light. */
+#define SMOKY_VP "volphoton photons 400000 k 50 max_radius 0.1 step 0.05\n"
+START_TEST(the_smoky_box_agrees_with_volpath)
+{
+    image_t r1, r2, a, b;
+    render_text(SMOKY("volpath", "512", "1", ""), 0, &r1, NULL);
+    render_text(SMOKY("volpath", "512", "2", ""), 0, &r2, NULL);
+    render_text(SMOKY("volphoton", "16", "1", SMOKY_VP), 0, &a, NULL);
+    render_text(SMOKY("volphoton", "16", "2", SMOKY_VP), 0, &b, NULL);
+    ck_assert_int_eq(a.width / REGION * (a.height / REGION), NREGION);
+    int tight = 0;
+    for (int ch = 0; ch < 3; ch++) {
+        double mr[NREGION], vr[NREGION], mp[NREGION], vp[NREGION];
+        region_means(&r1, &r2, ch, mr, vr);
+        region_means(&a, &b, ch, mp, vp);
+        for (int i = 0; i < NREGION; i++) {
+            double sd = sqrt(vr[i] + vp[i]);
+            ck_assert_msg(fabs(mp[i] - mr[i]) < 4 * sd,
+                          "channel %d, region %d: volphoton %g, volpath %g "
+                          "(sd %g)", ch, i, mp[i], mr[i], sd);
+            tight += sd < 0.1 * mr[i];
+        }
+    }
+    /* all but the two regions of the light in the three channels */
+    ck_assert_int_ge(tight, 3 * (NREGION - 2));
+    image_free(&r1);
+    image_free(&r2);
+    image_free(&a);
+    image_free(&b);
+}
+END_TEST
+
+/* --- determinism and the statement ----------------------------------------- */
+
+/* Photon i draws from its own stream and the chunks join in order; the
+ * camera samples from theirs: one thread and two give the same bits. */
+START_TEST(one_thread_and_two_give_the_same_bits)
+{
+    static const char scene[] =
+        "camera position 0 0 4 target 0 0 0 fov 40 width 8 height 8\n"
+        "render spp 2 maxdepth 50 integrator volphoton seed 3\n"
+        "material grey lambert rho 0.5\n"
+        "light point position 0 2.5 0 intensity 4\n"
+        "medium fog homogeneous sigma_a 0.2 sigma_s 1 phase hg g 0.4\n"
+        "sphere centre 0 0 0 radius 1 material grey medium fog invisible\n"
+        "plane point 0 -1.2 0 normal 0 1 0 material grey\n"
+        "volphoton photons 20000 k 20 max_radius 0.3 step 0.1\n";
+    image_t a, b;
+    render_text(scene, 1, &a, NULL);
+    render_text(scene, 2, &b, NULL);
+    ck_assert_int_eq(a.width, b.width);
+    double sum = 0;
+    for (int y = 0; y < a.height; y++)
+        for (int x = 0; x < a.width; x++) {
+            ck_assert(memcmp(image_at(&a, x, y), image_at(&b, x, y),
+                             3 * sizeof *image_at(&a, x, y)) == 0);
+            sum += (double)image_at(&a, x, y)[1];
+        }
+    ck_assert(sum > 0); /* not the same bits of a black image */
+    image_free(&a);
+    image_free(&b);
+}
+END_TEST
+
+/* Parse text, expect failure with a message that starts with `where` and
+ * holds `what`. */
+static void refused(const char *text, const char *where, const char *what)
+{
+    scene_t s;
+    svet_error e;
+    ck_assert_int_ne(parse(&s, text, &e), SVET_OK);
+    ck_assert_msg(strncmp(e.msg, where, strlen(where)) == 0 &&
+                      strstr(e.msg, what),
+                  "expected '%s ... %s', got '%s'", where, what, e.msg);
+}
+
+#define HEAD "camera position 0 0 3 target 0 0 0 width 8 height 6\n"
+
+START_TEST(bad_volphoton_keys_name_file_and_line)
+{
+    refused(HEAD "volphoton photons 0\n", "t.scn:2:", "at least 1");
+    refused(HEAD "volphoton k 0\n", "t.scn:2:", "k");
+    refused(HEAD "volphoton k 5000\n", "t.scn:2:", "k");
+    refused(HEAD "volphoton max_radius -1\n", "t.scn:2:", "max_radius");
+    refused(HEAD "volphoton step 0\n", "t.scn:2:", "step");
+    refused(HEAD "volphoton step nan\n", "t.scn:2:", "step");
+    refused(HEAD "volphoton photons 100000000000000000\n", "t.scn:2:",
+            "photons");
+    refused(HEAD "volphoton radius 1\n", "t.scn:2:", "radius");
+    /* and --set reruns the line, keeping what it does not name */
+    scene_t s;
+    svet_error e;
+    ck_assert_msg(parse(&s, HEAD "volphoton photons 1000 k 7\n", &e) ==
+                      SVET_OK, "%s", e.msg);
+    ck_assert_msg(scenefile_override(&s, "volphoton.step=0.02", &e) ==
+                      SVET_OK, "%s", e.msg);
+    volphoton_settings_t v;
+    volphoton_settings_of(&s, &v);
+    ck_assert_int_eq(v.k, 7);
+    ck_assert_uint_eq(v.photons, 1000);
+    ck_assert(fabs((double)v.step - 0.02) < 1e-6);
+    ck_assert_int_ne(scenefile_override(&s, "volphoton.k=0", &e), SVET_OK);
+    scene_free(&s);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("volphoton");
@@ -219,6 +395,9 @@ Suite *test_suite(void)
     tcase_add_test(tc,
                    the_volume_estimate_on_uniform_photons_is_k_over_k_minus_1);
     tcase_add_test(tc, a_scattering_sphere_in_a_furnace_renders_one);
+    tcase_add_test(tc, the_smoky_box_agrees_with_volpath);
+    tcase_add_test(tc, one_thread_and_two_give_the_same_bits);
+    tcase_add_test(tc, bad_volphoton_keys_name_file_and_line);
     suite_add_tcase(s, tc);
     return s;
 }
