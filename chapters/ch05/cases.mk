@@ -7,5 +7,5 @@ ch05_cases_LIBS := -lm
 # structures and meshes; with link-time optimisation also the functions of
 # parallelogram.c and xform.c that only the batched brute force calls;
 # and none of the photon maps of ch. 8 or the textures of ch. 10
-ch05_cases_FORBID := accel batch grid primset mesh objmesh photon irrpart irrcache gradients subsample obj_ 'obj\.c\.' texture texpart noise_ solid_ mipmap bumpgen interp_
+ch05_cases_FORBID := volphoton accel batch grid primset mesh objmesh photon irrpart irrcache gradients subsample obj_ 'obj\.c\.' texture texpart noise_ solid_ mipmap bumpgen interp_
 ch05_cases_FORBID_LTO := parallelogram_batch_ parallelogram_intersect_prepared xform_culling_sphere xform_intersect_unculled
