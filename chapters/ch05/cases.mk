@@ -8,5 +8,5 @@ ch05_cases_LIBS := -lm
 # parallelogram.c and xform.c that only the batched brute force calls;
 # and none of the photon maps of ch. 8, the textures of ch. 10 or the
 # media of ch. 11
-ch05_cases_FORBID := accel batch grid primset mesh objmesh photon irrpart irrcache gradients subsample obj_ 'obj\.c\.' texture texpart noise_ solid_ mipmap bumpgen interp_ medium medpart volpath volsingle phase volgrid
+ch05_cases_FORBID := volphoton accel batch grid primset mesh objmesh photon irrpart irrcache gradients subsample obj_ 'obj\.c\.' texture texpart noise_ solid_ mipmap bumpgen interp_ medium medpart volpath volsingle phase volgrid
 ch05_cases_FORBID_LTO := parallelogram_batch_ parallelogram_intersect_prepared xform_culling_sphere xform_intersect_unculled

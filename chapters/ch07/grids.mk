@@ -6,4 +6,4 @@ ch07_grids_LIBS := -lm
 # what it must not link (make check-links): its scenes are meshes alone,
 # so no parallelogram, transform, batched brute force, renderer, photon
 # map or texture
-ch07_grids_FORBID := parallelogram xform batch render integrator tracer photon irrpart irrcache gradients texture texpart noise_ solid_ mipmap bumpgen interp_
+ch07_grids_FORBID := volphoton parallelogram xform batch render integrator tracer photon irrpart irrcache gradients texture texpart noise_ solid_ mipmap bumpgen interp_

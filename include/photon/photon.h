@@ -87,6 +87,39 @@ svet_status photon_trace(const struct render *r, uint64_t count,
                          photon_kind_t kind, uint64_t stream, int threads,
                          photonmap_t *m, svet_error *err);
 
+/* Where photons come from: the sphere (centre, radius) that environment
+ * photons leave from, and a discrete distribution over the lights in
+ * proportion to the power each emits with, so that every photon carries
+ * the same power whichever light it left (Jensen 2001, sec. 5.1, several
+ * lights). The light set's own choice (lightset_pick) serves next-event
+ * estimation, where the environment counts by pi^2 R^2 L; photons leave
+ * it with 4 pi^2 R^2 L. */
+typedef struct photon_emitters {
+    VECTOR3 centre;
+    real radius;
+    real *cdf;         /* lights.n + 1 entries */
+    int n;
+} photon_emitters_t;
+
+/* Build em for the lights of r (which must have at least one). Returns
+ * SVET_ERR_NOMEM with err filled when out of memory. */
+svet_status photon_emitters_build(photon_emitters_t *em,
+                                  const struct render *r, svet_error *err);
+/* Free what photon_emitters_build allocated. Can't fail. */
+void photon_emitters_free(photon_emitters_t *em);
+
+/* One photon of `count` leaving the lights of r as photon_trace emits
+ * them: a light picked by its emitted power (em, chance p_l), the
+ * photon's first ray from it and its power Phi_l / (p_l count) (Jensen
+ * 2001, sec. 5.1.1), and in *from the object it leaves (an area light's,
+ * for the first intersection to skip; NULL otherwise). Draws from g.
+ * Returns false when no photon leaves (a light of no power, a degenerate
+ * sample). Ch. 11's volume photon map (medium/volphoton.h) traces its
+ * photons from here. Can't fail. */
+bool photon_emit(const struct render *r, const photon_emitters_t *em,
+                 uint64_t count, pcg32_t *g, ray_t *ray, RADIANCE *power,
+                 const COBJECT **from);
+
 /* photon_trace, and then Christensen 1999's precomputation: the
  * irradiance by q (photonmap_irradiance) at the position of every
  * `every`-th stored photon (in the order photon_trace stores them, so

@@ -159,20 +159,6 @@ static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
     q->power = power;
 }
 
-/* Where photons come from: the sphere (centre, radius) that environment
- * photons leave from, and a discrete distribution over the lights in
- * proportion to the power each emits with (emit()), so that every photon
- * carries the same power whichever light it left (Jensen 2001, sec. 5.1,
- * several lights). The light set's own choice (lightset_pick) serves next-event
- * estimation, where the environment counts by pi^2 R^2 L; photons leave
- * it with 4 pi^2 R^2 L. */
-typedef struct {
-    VECTOR3 centre;
-    real radius;
-    real *cdf;         /* lights.n + 1 entries */
-    int n;
-} emitters_t;
-
 /* The power light l emits photons with (emit()), luminance of it: a
  * point light 4 pi I, an area light sides pi L_e A, the environment pi R^2
  * (the disc the photons cross) times 4 pi L (the radiance's integral over
@@ -247,7 +233,7 @@ static void emitters_sphere(const scene_t *s, VECTOR3 centre, real *radius)
         *radius = 1;
 }
 
-static svet_status emitters_build(emitters_t *em, const render_t *r,
+svet_status photon_emitters_build(photon_emitters_t *em, const render_t *r,
                                   svet_error *err)
 {
     const lightset_t *ls = &r->lights;
@@ -272,7 +258,7 @@ static svet_status emitters_build(emitters_t *em, const render_t *r,
 
 /* the light for u in [0, 1): the first i with cdf[i+1] > u, so a light of
  * no power is never chosen; *pmf its chance */
-static int emitters_pick(const emitters_t *em, real u, real *pmf)
+static int emitters_pick(const photon_emitters_t *em, real u, real *pmf)
 {
     int lo = 0, hi = em->n - 1;
     while (lo < hi) {
@@ -298,7 +284,7 @@ static int emitters_pick(const emitters_t *em, real u, real *pmf)
  * 16.1.2, InfiniteAreaLight::Sample_Le, whose weight is L / (pdf_pos
  * pdf_dir); Jensen 2001, sec. 5.1.1). Returns false for a degenerate
  * sample. */
-static bool emit(const emitters_t *em, const light_t *l, real pmf,
+static bool emit(const photon_emitters_t *em, const light_t *l, real pmf,
                  uint64_t count, pcg32_t *g, ray_t *ray, RADIANCE *power,
                  const COBJECT **from)
 {
@@ -353,6 +339,23 @@ static bool emit(const emitters_t *em, const light_t *l, real pmf,
     return true;
 }
 
+void photon_emitters_free(photon_emitters_t *em)
+{
+    free(em->cdf);
+    em->cdf = NULL;
+}
+
+bool photon_emit(const render_t *r, const photon_emitters_t *em,
+                 uint64_t count, pcg32_t *g, ray_t *ray, RADIANCE *power,
+                 const COBJECT **from)
+{
+    real pmf;
+    const light_t *l = &r->lights.lights[emitters_pick(em, pcg32_real(g),
+                                                       &pmf)];
+    *from = NULL;
+    return pmf > 0 && emit(em, l, pmf, count, g, ray, power, from);
+}
+
 /* Trace photon `index`: bounce by the materials' own sampling, store
  * where the kind asks. The material samples wi for a given wo; a photon
  * needs the adjoint, a new direction for the one it came from. By
@@ -364,20 +367,17 @@ static bool emit(const emitters_t *em, const light_t *l, real pmf,
  * power is multiplied by rho_t(theta) alone, as flux is conserved across
  * the interface (Veach 1997, sec. 5.2). Russian roulette by the weight's
  * largest channel keeps the powers equal (Jensen 2001, sec. 5.2). */
-static void trace_one(const render_t *r, const emitters_t *em,
+static void trace_one(const render_t *r, const photon_emitters_t *em,
                       uint64_t count, photon_kind_t kind, uint64_t stream,
                       uint64_t index, records_t *out)
 {
     pcg32_t g;
     rng_for_sample(&g, r->scene->render.seed ^ PHOTON_SEED_SALT, stream,
                    index);
-    real pmf;
-    const light_t *l = &r->lights.lights[emitters_pick(em, pcg32_real(&g),
-                                                       &pmf)];
     ray_t ray;
     RADIANCE power;
     const COBJECT *skip[2] = { NULL, NULL };
-    if (!(pmf > 0) || !emit(em, l, pmf, count, &g, &ray, &power, &skip[0]))
+    if (!photon_emit(r, em, count, &g, &ray, &power, &skip[0]))
         return;
     bool diffuse_seen = false;
     const int max_depth = r->scene->render.max_depth;
@@ -458,13 +458,13 @@ static svet_status trace(const render_t *r, uint64_t count,
     if (nchunks > SIZE_MAX / sizeof(records_t))
         return svet_error_set(err, SVET_ERR_NOMEM, "photon tracing: %llu "
                               "photons are too many", (unsigned long long)count);
-    emitters_t em;
-    svet_status st = emitters_build(&em, r, err);
+    photon_emitters_t em;
+    svet_status st = photon_emitters_build(&em, r, err);
     if (st != SVET_OK)
         return st;
     records_t *chunks = calloc((size_t)nchunks, sizeof *chunks);
     if (!chunks) {
-        free(em.cdf);
+        photon_emitters_free(&em);
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "photon tracing: out of memory");
     }
@@ -480,7 +480,7 @@ static svet_status trace(const render_t *r, uint64_t count,
         for (uint64_t i = i0; i < i1; i++)
             trace_one(r, &em, count, kind, stream, i, &chunks[c]);
     }
-    free(em.cdf);
+    photon_emitters_free(&em);
     size_t total = 0;
     bool failed = false;
     for (uint64_t c = 0; c < nchunks; c++) {

@@ -10,6 +10,7 @@
 #include "accel/grid.h"
 #include "irradiance/irrpart.h"
 #include "medium/medpart.h"
+#include "medium/volphoton.h"
 #include "mesh/objmesh.h"
 #include "photon/photon.h"
 #include "render/animation.h"
@@ -28,6 +29,7 @@ static const accel_ops_t *const accels[] = { &batch_accel,
 static const scene_part_t *const parts[] = { &photon_part, &irr_part,
                                              &texpart_part,
                                              &medium_part,
+                                             &volphoton_part,
                                              &animation_part, NULL };
 
 static const scene_features_t all = {

@@ -1,0 +1,629 @@
+/*
+ * volphoton.c - the volume photon map of ch. 11 (medium/volphoton.h):
+ * Jensen & Christensen, "Efficient Simulation of Light Transport in
+ * Scenes with Participating Media using Photon Maps", SIGGRAPH 1998, and
+ * Jensen, "Realistic Image Synthesis Using Photon Mapping", 2001, ch. 10.
+ * The first pass traces photons from the lights (photon/photon.h's
+ * emission) through the media and stores them where they scatter (a
+ * volume map) and where they land on surfaces (a surface map), in the
+ * left-balanced kd-tree of ch. 8 (photon/photonmap.h). The second pass,
+ * `render integrator volphoton`, marches each camera segment in a medium
+ * as Jensen 2001, sec. 10.5 does: at points t_i = (i + u) h (u uniform
+ * in [0, 1), one per segment: a randomly shifted rectangle rule, as
+ * volsingle.c's) it adds, weighted by the transmittance from the
+ * segment's start and by h, the single scattering by light sampling
+ * (next-event estimation with the shadow ray's transmittance,
+ * volpath_direct) and the multiple scattering from the volume map
+ * (volphoton_radiance). The volume map holds only photons that have
+ * scattered or bounced before, so the two terms do not overlap. At the
+ * first surface with a non-delta part the light is the direct light by
+ * light sampling plus the surface map's radiance estimate (photon.h's
+ * photon_radiance with the `photonmap` statement's k, max_radius and
+ * filter), delta bounces followed as the photon method follows them: the
+ * photon method's preview without final gathering, direct light aside.
+ * Tests: tests/medium/test_volphoton.c
+ */
+#include "medium/volphoton.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/frame.h"
+#include "materials/material.h"
+#include "medpart_data.h"
+#include "photon/photon.h"
+#include "render/integrator.h"
+#include "render/render.h"
+
+/* --- settings: the `volphoton` statement ---------------------------------- */
+
+void volphoton_settings_default(volphoton_settings_t *s)
+{
+    s->photons = 200000;
+    s->k = 50;
+    s->max_radius = REAL_C(0.2);
+    s->step = REAL_C(0.05);
+}
+
+void volphoton_settings_of(const scene_t *s, volphoton_settings_t *out)
+{
+    const volphoton_settings_t *p = scene_part_data(s, "volphoton");
+    if (p)
+        *out = *p;
+    else
+        volphoton_settings_default(out);
+}
+
+enum { VP_PHOTONS, VP_K, VP_MAXR, VP_STEP, VP_N };
+static const spec_t volphoton_spec[VP_N] = {
+    [VP_PHOTONS] = { "photons", V_U64, 0, 0, 0, NULL },
+    [VP_K] = { "k", V_INT, 0, 1, PHOTON_MAX_K, NULL },
+    [VP_MAXR] = { "max_radius", V_NUM, F_POSITIVE, 0, 0, NULL },
+    [VP_STEP] = { "step", V_NUM, F_POSITIVE, 0, 0, NULL },
+};
+
+static svet_status volphoton_statement(scenefile_ctx *c)
+{
+    val_t v[VP_N];
+    svet_status st = scenefile_keys(c, "volphoton", volphoton_spec, VP_N, v,
+                                    false);
+    if (st)
+        return st;
+    if (v[VP_PHOTONS].set) {
+        if (v[VP_PHOTONS].u == 0)
+            return scenefile_fail(c, v[VP_PHOTONS].col, SVET_ERR_RANGE,
+                                  "'photons' must be at least 1");
+        svet_error e;
+        uint64_t n = v[VP_PHOTONS].u;
+        st = photonmap_check_count(n > SIZE_MAX ? SIZE_MAX : (size_t)n, &e);
+        if (st)
+            return scenefile_fail(c, v[VP_PHOTONS].col, st, "'photons': %s",
+                                  e.msg);
+    }
+    for (int k = VP_MAXR; k <= VP_STEP; k++)
+        if (v[k].set && !isfinite(v[k].v[0]))
+            return scenefile_fail(c, v[k].col, SVET_ERR_RANGE,
+                                  "'%s' must be finite", volphoton_spec[k].key);
+    /* the line updates the settings: `--set volphoton.k=20` reruns it */
+    bool fresh;
+    volphoton_settings_t *p = scene_part_data_new(scenefile_scene(c),
+                                                  "volphoton", sizeof *p,
+                                                  free, &fresh);
+    if (!p)
+        return scenefile_fail(c, scenefile_stmt_col(c), SVET_ERR_NOMEM,
+                              "out of memory");
+    if (fresh)
+        volphoton_settings_default(p);
+    if (v[VP_PHOTONS].set)
+        p->photons = v[VP_PHOTONS].u;
+    if (v[VP_K].set)
+        p->k = (int)v[VP_K].i;
+    if (v[VP_MAXR].set)
+        p->max_radius = v[VP_MAXR].v[0];
+    if (v[VP_STEP].set)
+        p->step = v[VP_STEP].v[0];
+    return SVET_OK;
+}
+
+/* --- the photon pass ------------------------------------------------------ */
+
+typedef struct {
+    VECTOR3 pos, dir;
+    RADIANCE power;
+} record_t;
+
+typedef struct {
+    record_t *r;
+    size_t n, cap;
+    bool failed;
+} records_t;
+
+static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
+                 RADIANCE power)
+{
+    if (b->failed)
+        return;
+    if (b->n == b->cap) {
+        size_t cap = b->cap ? 2 * b->cap : 1024;
+        record_t *r = realloc(b->r, cap * sizeof *r);
+        if (!r) {
+            b->failed = true;
+            return;
+        }
+        b->r = r;
+        b->cap = cap;
+    }
+    record_t *q = &b->r[b->n++];
+    vec_copy(q->pos, pos);
+    vec_copy(q->dir, dir);
+    q->power = power;
+}
+
+/* Photon `index`: its walk through media and off surfaces. `events`
+ * counts its scatterings and bounces; it is stored only after the first. */
+static void trace_one(const render_t *r, const photon_emitters_t *em,
+                      const medium_t *global, uint64_t count, uint64_t index, records_t *vol,
+                      records_t *surf)
+{
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 0, index);
+    ray_t ray;
+    RADIANCE power;
+    const COBJECT *skip[2] = { NULL, NULL };
+    if (!photon_emit(r, em, count, &g, &ray, &power, &skip[0]))
+        return;
+    const medium_t *med = global;
+    const int max_depth = r->scene->render.max_depth;
+    int events = 0, crossings = 0;
+    for (;;) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        bool hit = r->tracer.intersect(r->tracer.ctx, &ray, 0,
+                                       (real)INFINITY, skip, &h, &obj);
+        VECTOR3 dir;
+        real len = vec_normalize(dir, ray.d);
+        if (med && !hit && !medium_is_homogeneous(med))
+            med = NULL; /* slipped out of its medium (volpath_segment_tr) */
+        if (med) {
+            real t;
+            RADIANCE w;
+            bool scattered = medium_sample(med, ray.o, dir,
+                                           hit ? h.t * len : VOLPATH_FAR, &g,
+                                           &t, &w);
+            if (scattered) {
+                if (events >= max_depth)
+                    return;
+                /* Russian roulette by the weight sigma_s Tr / pdf: in a
+                 * grey medium the albedo, the power unchanged (Jensen
+                 * 2001, sec. 10.3) */
+                real q = real_min(rad_max(w), REAL_C(1.0));
+                real urr = pcg32_real(&g);
+                if (!(urr < q))
+                    return;
+                power = rad_scale(rad_mul(power, w), 1 / q);
+                VECTOR3 x;
+                vec_add_scaled(x, ray.o, t, dir);
+                if (events > 0)
+                    push(vol, x, dir, power);
+                const phase_t *ph = &med->phase;
+                if (med->ncomponents > 0) {
+                    RADIANCE wc;
+                    ph = &medium_scatterer(med, x, pcg32_real(&g), &wc)->phase;
+                    power = rad_mul(power, wc);
+                }
+                real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+                VECTOR3 wo;
+                phase_sample(ph, dir, u, wo); /* exact: weight 1 */
+                vec_copy(ray.o, x);
+                vec_copy(ray.d, wo);
+                skip[0] = NULL;
+                events++;
+                crossings = 0;
+                continue;
+            }
+            power = rad_mul(power, w);
+            if (rad_is_black(power))
+                return;
+        }
+        if (!hit)
+            return;
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        if (obj->inside && obj->inside->invisible) {
+            if (++crossings > VOLPATH_MAX_CROSSINGS)
+                return;
+            med = volpath_medium_after(obj, pp.ng, dir, med);
+            ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, dir);
+            skip[0] = obj;
+            continue;
+        }
+        crossings = 0;
+        const material_t *m = obj->material;
+        if (!material_is_specular(m) && m->ncomp > 0 && events > 0)
+            push(surf, pp.cross_point, dir, power);
+        if (events >= max_depth)
+            return;
+        /* the adjoint bounce and roulette of photon.c's trace_one */
+        VECTOR3 wo, wi;
+        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
+        real u[3] = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
+        real urr = pcg32_real(&g);
+        brdf_sample_t bs;
+        if (!material_sample(m, wo, u, &bs))
+            return;
+        real q = real_min(rad_max(bs.weight), REAL_C(1.0));
+        if (!(urr < q))
+            return;
+        power = rad_scale(rad_mul(power, bs.weight), 1 / q);
+        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
+        med = volpath_medium_after(obj, pp.ng, wi, med);
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        skip[0] = obj;
+        events++;
+    }
+}
+
+/* photons per chunk, a thread's unit of work; chunks are joined in
+ * order, so the maps do not depend on which thread traced which */
+#define CHUNK 4096
+
+/* the records of every chunk, in chunk order, into a balanced map */
+static svet_status build(records_t *chunks, uint64_t nchunks,
+                         photonmap_t *m, svet_error *err)
+{
+    size_t total = 0;
+    for (uint64_t c = 0; c < nchunks; c++) {
+        if (chunks[c].failed)
+            return svet_error_set(err, SVET_ERR_NOMEM,
+                                  "volume photon tracing: out of memory");
+        total += chunks[c].n;
+    }
+    if (total == 0)
+        return SVET_OK;
+    svet_status st = photonmap_init(m, total, err);
+    if (st)
+        return st;
+    for (uint64_t c = 0; c < nchunks; c++)
+        for (size_t i = 0; i < chunks[c].n; i++) {
+            const record_t *rec = &chunks[c].r[i];
+            photonmap_store(m, rec->pos, rec->power, rec->dir, 0);
+        }
+    return photonmap_balance(m, err);
+}
+
+svet_status volphoton_trace(const render_t *r, uint64_t count, int threads,
+                            photonmap_t *vol, photonmap_t *surf,
+                            svet_error *err)
+{
+    memset(vol, 0, sizeof *vol);
+    memset(surf, 0, sizeof *surf);
+    vol->balanced = surf->balanced = true; /* empty maps find nothing */
+    if (count == 0 || r->lights.n == 0)
+        return SVET_OK;
+    uint64_t nchunks = (count + CHUNK - 1) / CHUNK;
+    if (nchunks > SIZE_MAX / (2 * sizeof(records_t)))
+        return svet_error_set(err, SVET_ERR_NOMEM, "volume photon tracing: "
+                              "%llu photons are too many",
+                              (unsigned long long)count);
+    photon_emitters_t em;
+    svet_status st = photon_emitters_build(&em, r, err);
+    if (st != SVET_OK)
+        return st;
+    records_t *chunks = calloc((size_t)(2 * nchunks), sizeof *chunks);
+    if (!chunks) {
+        photon_emitters_free(&em);
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "volume photon tracing: out of memory");
+    }
+    const medium_t *global = medpart_global(r->scene);
+#ifdef _OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+#else
+    (void)threads;
+#endif
+    for (long long c = 0; c < (long long)nchunks; c++) {
+        uint64_t i0 = (uint64_t)c * CHUNK;
+        uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;
+        for (uint64_t i = i0; i < i1; i++)
+            trace_one(r, &em, global, count, i, &chunks[c],
+                      &chunks[nchunks + (uint64_t)c]);
+    }
+    photon_emitters_free(&em);
+    st = build(chunks, nchunks, vol, err);
+    if (st == SVET_OK)
+        st = build(chunks + nchunks, nchunks, surf, err);
+    for (uint64_t c = 0; c < 2 * nchunks; c++)
+        free(chunks[c].r);
+    free(chunks);
+    if (st != SVET_OK) {
+        photonmap_free(vol);
+        photonmap_free(surf);
+        vol->balanced = surf->balanced = true;
+    }
+    return st;
+}
+
+/* --- the volume radiance estimate ----------------------------------------- */
+
+/* The phase function at x of light deflected by cos: the medium's, or in
+ * a sum the components' weighted by the mean of their sigma_s at x (the
+ * chance medium_scatterer gives each). */
+static real phase_at(const medium_t *med, const VECTOR3 x, real cos_theta)
+{
+    if (med->ncomponents == 0)
+        return phase_eval(&med->phase, cos_theta);
+    real sum = 0, wsum = 0;
+    for (int i = 0; i < med->ncomponents; i++) {
+        RADIANCE st, ss;
+        medium_coeffs_at(&med->components[i], x, &st, &ss);
+        real w = (ss.r + ss.g + ss.b) / 3;
+        sum += w * phase_eval(&med->components[i].phase, cos_theta);
+        wsum += w;
+    }
+    return wsum > 0 ? sum / wsum : 0;
+}
+
+RADIANCE volphoton_radiance(const photonmap_t *vol, const medium_t *med,
+                            const VECTOR3 x, const VECTOR3 dir, int k,
+                            real rmax)
+{
+    int32_t idx[PHOTON_MAX_K];
+    real d2[PHOTON_MAX_K];
+    if (k > PHOTON_MAX_K)
+        k = PHOTON_MAX_K;
+    RADIANCE L = rad_grey(0);
+    int found = photonmap_nearest(vol, x, k, rmax, idx, d2);
+    real r2 = found == k ? d2[found - 1] : rmax * rmax;
+    if (found == 0 || !(r2 > 0))
+        return L;
+    for (int i = 0; i < found; i++) {
+        const photon_t *p = &vol->ph[idx[i]];
+        VECTOR3 d;
+        photonmap_direction(p, d);
+        /* light travelled along d, then leaves toward -dir */
+        real ph = phase_at(med, x, -SVECTOR3(d, dir));
+        L = rad_add(L, rad_scale(rad_make((real)p->power[0],
+                                          (real)p->power[1],
+                                          (real)p->power[2]), ph));
+    }
+    /* Jensen & Christensen 1998, sec. 3.2: the photons' flux in the
+     * sphere of radius r, per its volume (4/3) pi r^3 */
+    return rad_scale(L, 1 / (REAL_C(4.0) / 3 * REAL_PI * r2 * sqrt(r2)));
+}
+
+/* --- the method ------------------------------------------------------------ */
+
+typedef struct {
+    volpath_state_t vp;        /* the camera's medium, invisible boundaries */
+    volphoton_settings_t set;
+    photonmap_query_t surfq;   /* the surface map's estimate (photonmap) */
+    photonmap_t vol, surf;
+} state_t;
+
+static void state_free(void *p)
+{
+    state_t *s = p;
+    if (!s)
+        return;
+    photonmap_free(&s->vol);
+    photonmap_free(&s->surf);
+    free(s);
+}
+
+static svet_status prepare(void **out, const render_t *r, int threads,
+                           svet_error *err)
+{
+    state_t *s = calloc(1, sizeof *s);
+    if (!s)
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "volphoton: out of memory");
+    void *vp;
+    svet_status st = volpath_prepare(&vp, r, threads, err);
+    if (st) {
+        free(s);
+        return st;
+    }
+    s->vp = *(const volpath_state_t *)vp;
+    volpath_free(vp);
+    volphoton_settings_of(r->scene, &s->set);
+    photon_settings_t ps;
+    photon_settings_of(r->scene, &ps);
+    photonmap_query_t q = { ps.k, ps.max_radius, ps.filter, REAL_C(1.1),
+                            REAL_C(0.25) };
+    s->surfq = q;
+    st = volphoton_trace(r, s->set.photons, threads, &s->vol, &s->surf, err);
+    if (st) {
+        state_free(s);
+        return st;
+    }
+    *out = s;
+    return SVET_OK;
+}
+
+/* The most points one segment is marched at (a longer segment takes a
+ * longer step, so that a tiny step cannot stall a render), and the
+ * transmittance at which a segment to infinity in the global medium is
+ * cut: as volsingle.c's. */
+#define VOLPHOTON_MAX_STEPS 65536
+#define VOLPHOTON_CUT 1e-6
+
+static RADIANCE rad_exp_neg(RADIANCE tau)
+{
+    return rad_make(exp(-tau.r), exp(-tau.g), exp(-tau.b));
+}
+
+/* The light scattered toward the ray's origin along [0, len] of ray (unit
+ * dir) in med: single scattering by light sampling and multiple from the
+ * volume map at each march point; *tr the segment's transmittance, from
+ * the trapezoid rule on sigma_t at the points (exact where sigma_t is
+ * constant). */
+static RADIANCE march(const state_t *s, const render_t *r,
+                      const medium_t *med, const ray_t *ray,
+                      const VECTOR3 dir, real len, bool nee, pcg32_t *g,
+                      integrator_stats_t *st, RADIANCE *tr)
+{
+    const integrator_t *it = &r->integrator;
+    const real u = pcg32_real(g);
+    const bool homogeneous = medium_is_homogeneous(med);
+    bool cut = false;
+    if (len >= VOLPATH_FAR) {
+        /* to infinity (the global medium, homogeneous): as volsingle.c */
+        *tr = medium_tr_homogeneous(med, VOLPATH_FAR);
+        const RADIANCE sigma_t = medium_sigma_t(med);
+        const real c[3] = { sigma_t.r, sigma_t.g, sigma_t.b };
+        real smin = (real)INFINITY;
+        for (int k = 0; k < 3; k++)
+            if (c[k] > 0 && c[k] < smin)
+                smin = c[k];
+        if (!(smin < (real)INFINITY))
+            return rad_grey(0);
+        len = (real)-log(VOLPHOTON_CUT) / smin;
+        cut = true;
+    }
+    real h = s->set.step;
+    if (len / h > VOLPHOTON_MAX_STEPS)
+        h = len / VOLPHOTON_MAX_STEPS;
+    RADIANCE L = rad_grey(0), tau = rad_grey(0), st_prev, ss;
+    medium_coeffs_at(med, ray->o, &st_prev, &ss);
+    real t_prev = 0;
+    for (int i = 0;; i++) {
+        const real t = ((real)i + u) * h;
+        if (!(t < len))
+            break;
+        VECTOR3 x;
+        vec_add_scaled(x, ray->o, t, dir);
+        RADIANCE sig_t, sig_s;
+        medium_coeffs_at(med, x, &sig_t, &sig_s);
+        tau = rad_add(tau, rad_scale(rad_add(st_prev, sig_t),
+                                     (t - t_prev) / 2));
+        st_prev = sig_t;
+        t_prev = t;
+        if (rad_is_black(sig_s))
+            continue;
+        RADIANCE Lx = volphoton_radiance(&s->vol, med, x, dir, s->set.k,
+                                         s->set.max_radius);
+        if (nee) {
+            PATHPOINT pp;
+            volpath_medium_point(&pp, ray, dir, t);
+            const phase_t *ph = &med->phase;
+            RADIANCE wc = rad_grey(1);
+            if (med->ncomponents > 0)
+                ph = &medium_scatterer(med, x, pcg32_real(g), &wc)->phase;
+            volpath_at_t at = { &s->vp, med, NULL, { dir[X], dir[Y], dir[Z] },
+                                ph };
+            RADIANCE Ld = volpath_direct(&at, it, &pp, NULL, NULL, false, g,
+                                         st);
+            Lx = rad_add(Lx, rad_mul(rad_mul(sig_s, wc), Ld));
+        }
+        if (rad_is_black(Lx))
+            continue;
+        L = rad_add(L, rad_mul(rad_exp_neg(tau), rad_scale(Lx, h)));
+    }
+    if (!cut) {
+        if (homogeneous) {
+            *tr = medium_tr_homogeneous(med, len);
+        } else {
+            VECTOR3 x;
+            vec_add_scaled(x, ray->o, len, dir);
+            RADIANCE sig_t, sig_s;
+            medium_coeffs_at(med, x, &sig_t, &sig_s);
+            tau = rad_add(tau, rad_scale(rad_add(st_prev, sig_t),
+                                         (len - t_prev) / 2));
+            *tr = rad_exp_neg(tau);
+        }
+    }
+    return L;
+}
+
+/* The camera path: the march along every segment in a medium, emitters
+ * seen directly or through delta bounces, invisible boundaries crossed,
+ * delta bounces followed, and at the first surface with a non-delta part
+ * its direct light by light sampling and the surface map's estimate. */
+static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
+                   long sample, pcg32_t *g, integrator_stats_t *st)
+{
+    (void)sample;
+    const state_t *s = state;
+    const scene_t *sc = r->scene;
+    const integrator_t *it = &r->integrator;
+    const bool nee = it->lights != NULL;
+    st->paths++;
+    RADIANCE L = rad_grey(0), beta = rad_grey(1);
+    ray_t ray = *camera;
+    const medium_t *med = s->vp.global;
+    const COBJECT *skip[2] = { NULL, NULL };
+    int crossings = 0;
+    for (int depth = 0;;) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        st->rays++;
+        bool hit = it->tracer.intersect(it->tracer.ctx, &ray, 0,
+                                        (real)INFINITY, skip, &h, &obj);
+        VECTOR3 dir;
+        real len = vec_normalize(dir, ray.d);
+        if (med && !hit && !medium_is_homogeneous(med))
+            med = NULL; /* slipped out of its medium (volpath_segment_tr) */
+        if (med) {
+            RADIANCE tr = rad_grey(1);
+            L = rad_add(L, rad_mul(beta, march(s, r, med, &ray, dir,
+                                               hit ? h.t * len : VOLPATH_FAR,
+                                               nee, g, st, &tr)));
+            beta = rad_mul(beta, tr);
+            if (rad_is_black(beta))
+                break;
+        }
+        if (!hit) {
+            if (sc->has_environment)
+                L = rad_add(L, rad_mul(beta, sc->environment));
+            break;
+        }
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        if (obj->inside && obj->inside->invisible) {
+            if (++crossings > VOLPATH_MAX_CROSSINGS)
+                break;
+            med = volpath_medium_after(obj, pp.ng, dir, med);
+            ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, dir);
+            skip[0] = obj;
+            continue;
+        }
+        crossings = 0;
+        if (obj->light)
+            L = rad_add(L, rad_mul(beta, light_emitted(obj->light, &pp)));
+        if (depth >= sc->render.max_depth)
+            break;
+        const material_t *m = obj->material;
+        material_t shaded;
+        if (obj->texture)
+            m = sc->shade(sc, obj, &ray, depth, &pp, &shaded);
+        VECTOR3 wo, wi;
+        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
+        bool diffuse = !material_is_specular(m) && m->ncomp > 0;
+        if (diffuse) {
+            RADIANCE Ls = photon_radiance(&s->surf, &pp, m, wo, &s->surfq);
+            if (nee) {
+                volpath_at_t at = { &s->vp, med, obj,
+                                    { dir[X], dir[Y], dir[Z] }, NULL };
+                Ls = rad_add(Ls, volpath_direct(&at, it, &pp, m, wo, false, g,
+                                                st));
+            }
+            L = rad_add(L, rad_mul(beta, Ls));
+        }
+        real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
+        brdf_sample_t bs;
+        if (!material_sample(m, wo, u, &bs) || (diffuse && !bs.delta))
+            break;
+        beta = rad_mul(beta, bs.weight);
+        if (rad_is_black(beta))
+            break;
+        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
+        med = volpath_medium_after(obj, pp.ng, wi, med);
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        skip[0] = obj;
+        depth++;
+    }
+    return L;
+}
+
+const render_method_t volphoton_method = {
+    .name = "volphoton",
+    .describe = "the volume photon map (ch. 11, Jensen & Christensen 1998): "
+                "ray marching, multiple scattering from the map",
+    .prepare = prepare,
+    .begin_pass = NULL,
+    .li = li,
+    .free = state_free,
+};
+
+static const render_method_t *const methods[] = { &volphoton_method, NULL };
+static const scene_statement_t statements[] = {
+    { "volphoton", volphoton_statement }, { NULL, NULL }
+};
+const scene_part_t volphoton_part = { .name = "volphoton",
+                                      .statements = statements,
+                                      .methods = methods };
