@@ -150,10 +150,18 @@ typedef struct {
  * cobject.h's `struct light`, reached from the object as obj->light. */
 typedef struct light {
     RADIANCE radiance;    /* emitted radiance L_e, W/(m^2 sr), the same in
-                             every direction (a Lambertian emitter) */
+                             every direction (a Lambertian emitter); with
+                             radiance_at, its mean over the surface, which
+                             weighs the light's choice by power (light.c) */
     bool two_sided;       /* false: emits on the +ng (front) side only;
                              true: on both sides */
     const COBJECT *obj;   /* the emitting object */
+    /* A radiance that varies over the surface (ch. 10's `emit TEXTURE`):
+     * L_e at the filled PATHPOINT pp of obj, >= 0 and finite, set by the
+     * part that reads the texture (texture_data its binding); NULL: L_e is
+     * `radiance` everywhere. Called from several threads at once. */
+    RADIANCE (*radiance_at)(const struct light *e, const PATHPOINT *pp);
+    const void *texture_data;
 } scene_emission_t;
 
 /* A named material, owned by the scene. */

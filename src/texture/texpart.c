@@ -51,6 +51,13 @@ typedef struct {
     real strength;
 } shape_bump_t;
 
+/* An `emit NAME`: the emitter reads texture `index` (its pointer is set
+ * by finish, as the bindings' are). */
+typedef struct {
+    scene_emission_t *e;
+    int index;
+} emitter_t;
+
 typedef struct {
     named_texture_t *tex;  /* every texture, in order */
     int ntex;
@@ -59,6 +66,8 @@ typedef struct {
     int nbind;
     shape_bump_t *bumps;   /* every bumped shape's objects */
     int nbumps;
+    emitter_t *emitters;   /* every textured emitter */
+    int nemitters;
 } texpart_data_t;
 
 static void data_free(void *p)
@@ -69,6 +78,7 @@ static void data_free(void *p)
     free(d->tex);
     free(d->bind);
     free(d->bumps);
+    free(d->emitters);
     free(d);
 }
 
@@ -401,6 +411,55 @@ static svet_status shape_keys(scenefile_ctx *c, COBJECT *const *objs, int n,
     return SVET_OK;
 }
 
+/* --- `emit NAME`: a textured emitter -------------------------------------- */
+
+static svet_status emit_name(scenefile_ctx *c, scene_emission_t *e,
+                             const tok_t *t, RADIANCE *top)
+{
+    texpart_data_t *d = data_of(c);
+    if (!d)
+        return scenefile_fail(c, t->col, SVET_ERR_NOMEM, "out of memory");
+    char name[SCENE_MAX_NAME + 1];
+    scenefile_tok_copy(t, name, sizeof name);
+    int found = -1;
+    for (int k = 0; k < d->ntex && found < 0; k++)
+        if (t->len <= SCENE_MAX_NAME && !strcmp(d->tex[k].name, name))
+            found = k;
+    if (found < 0)
+        return scenefile_fail(c, t->col, SVET_ERR_PARSE,
+                              "'emit %s': '%s' is neither a colour nor a "
+                              "texture defined above", name, name);
+    if (d->nemitters == INT_MAX)
+        return scenefile_fail(c, t->col, SVET_ERR_RANGE,
+                              "too many emitters");
+    emitter_t *ne = realloc(d->emitters,
+                            (size_t)(d->nemitters + 1) * sizeof *ne);
+    if (!ne)
+        return scenefile_fail(c, t->col, SVET_ERR_NOMEM, "out of memory");
+    d->emitters = ne;
+    d->emitters[d->nemitters++] = (emitter_t){ e, found };
+    RADIANCE mean;
+    texture_range(&d->tex[found].tex, &mean, top);
+    /* the light is chosen by its mean power; an image's negative texels
+     * (an EXR may hold them) emit nothing */
+    e->radiance = rad_make(real_max(mean.r, REAL_C(0.0)),
+                           real_max(mean.g, REAL_C(0.0)),
+                           real_max(mean.b, REAL_C(0.0)));
+    return SVET_OK;
+}
+
+/* L_e at a point of a textured emitter: the texture's colour there, read
+ * at the finest level (emission is read without a footprint), negative
+ * values emitting nothing. */
+static RADIANCE emitted_at(const scene_emission_t *e, const PATHPOINT *pp)
+{
+    texture_point_t q;
+    texture_point_of(&q, pp, 0);
+    RADIANCE c = texture_eval(e->texture_data, &q);
+    return rad_make(real_max(c.r, REAL_C(0.0)), real_max(c.g, REAL_C(0.0)),
+                    real_max(c.b, REAL_C(0.0)));
+}
+
 /* --- the shading at a hit ------------------------------------------------- */
 
 /* The width, in (s, t) units, of the pixel's footprint at the camera ray's
@@ -519,6 +578,10 @@ static svet_status finish(scenefile_ctx *c)
     texpart_data_t *d = scene_part_data(s, "texture");
     if (!d)
         return SVET_OK;
+    for (int k = 0; k < d->nemitters; k++) {
+        d->emitters[k].e->texture_data = &d->tex[d->emitters[k].index].tex;
+        d->emitters[k].e->radiance_at = emitted_at;
+    }
     if (d->nbind == 0 && d->nbumps == 0)
         return SVET_OK;
     /* room for a binding per bumped object, before any pointer into the
@@ -588,4 +651,5 @@ const scene_part_t texpart_part = {
     .shape_keys = shape_spec,
     .nshape_keys = SK_N,
     .shape = shape_keys,
+    .emit_name = emit_name,
 };
