@@ -16,6 +16,8 @@
 
 #include "io/imageio.h"
 #include "materials/material.h"
+#include "render/camera.h"
+#include "texture/raydiff.h"
 #include "texture/texture.h"
 
 #define TEXPART_MAX_TEXTURES 4096
@@ -68,6 +70,8 @@ typedef struct {
     int nbumps;
     emitter_t *emitters;   /* every textured emitter */
     int nemitters;
+    camera_t camera;       /* the scene's, for the camera rays'
+                              differentials (raydiff_ops) */
 } texpart_data_t;
 
 static void data_free(void *p)
@@ -462,15 +466,21 @@ static RADIANCE emitted_at(const scene_emission_t *e, const PATHPOINT *pp)
 
 /* --- the shading at a hit ------------------------------------------------- */
 
-/* The width, in (s, t) units, of the pixel's footprint at the camera ray's
- * hit: a ray cone of the camera's angle per pixel (Amanatides 1984; as
+/* The width, in (s, t) units, of the pixel's footprint at the hit: from
+ * the ray's differentials where the integrator carries them, from the
+ * camera through mirrors and glass (Igehy 1999, raydiff.h). Where it
+ * carries none (the volume path tracer of ch. 11), at the camera ray's hit
+ * a ray cone of the camera's angle per pixel (Amanatides 1984; as
  * Akenine-Moller et al. 2019 use it for texture level of detail), spread
  * over distance r_dist and stretched by 1 / |cos| on the surface, divided
  * by the shorter tangent so that the width follows the major axis of the
- * footprint as a mip map's isotropic level must (Williams 1983). Later
- * bounces read the finest level. */
-static real footprint(const binding_t *b, const PATHPOINT *pp, int depth)
+ * footprint as a mip map's isotropic level must (Williams 1983). After a
+ * sampled (diffuse or glossy) bounce, the finest level. */
+static real footprint(const binding_t *b, const PATHPOINT *pp, int depth,
+                      const raydiff_t *rd)
 {
+    if (rd)
+        return raydiff_footprint(rd, pp->dpds, pp->dpdt);
     if (depth > 0 || !(b->spread > 0))
         return 0;
     real c = fabs(SVECTOR3(pp->out, pp->ng));
@@ -536,13 +546,13 @@ static void textured_params(const binding_t *b, const texture_point_t *q,
 
 static const material_t *shade(const scene_t *s, const COBJECT *obj,
                                const ray_t *r, int depth, PATHPOINT *pp,
-                               material_t *scratch)
+                               const raydiff_t *rd, material_t *scratch)
 {
     (void)s;
     (void)r;
     const binding_t *b = obj->texture;
     texture_point_t q;
-    texture_point_of(&q, pp, footprint(b, pp, depth));
+    texture_point_of(&q, pp, footprint(b, pp, depth, rd));
     const material_t *m = b->base;
     if (b->reparam) {
         material_params p;
@@ -559,6 +569,43 @@ static const material_t *shade(const scene_t *s, const COBJECT *obj,
     }
     return m;
 }
+
+/* --- the ray differentials a path carries (scene.h) ---------------------- */
+
+static void diff_camera(const void *ctx, const ray_t *r, raydiff_t *rd)
+{
+    raydiff_camera(rd, ctx, r->d);
+}
+
+static bool diff_hit(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp)
+{
+    VECTOR3 d;
+    vec_normalize(d, r->d);
+    return raydiff_transfer(rd, d, pp->r_dist, pp->ng);
+}
+
+/* A delta bounce: back to the side the ray came from is the mirror's
+ * reflection, through to the other side the glass's refraction, whose
+ * index ratio n_from / n_to is 1 / eta entering from the +n side
+ * (material.h's eta = n_inside / n_outside) and eta leaving. About the
+ * shading normal, the frame the material sampled wi in. */
+static bool diff_scatter(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp,
+                         const material_t *m, const VECTOR3 wi)
+{
+    VECTOR3 d;
+    vec_normalize(d, r->d);
+    real dn = SVECTOR3(d, pp->n), wn = SVECTOR3(wi, pp->n);
+    if ((dn < 0) != (wn < 0)) {
+        raydiff_reflect(rd, d, pp->n);
+        return true;
+    }
+    real eta = m->params.eta > 0 ? m->params.eta : 1;
+    return raydiff_refract(rd, d, pp->n, dn < 0 ? 1 / eta : eta, wi);
+}
+
+static const scene_raydiff_ops_t raydiff_ops = {
+    diff_camera, diff_hit, diff_scatter
+};
 
 /* --- the whole scene ------------------------------------------------------ */
 
@@ -632,8 +679,22 @@ static svet_status finish(scenefile_ctx *c)
         d->bind[d->nbind] = b;
         sb->obj->texture = &d->bind[d->nbind++];
     }
-    if (d->nbind > 0)
+    if (d->nbind > 0) {
         s->shade = shade;
+        /* the differentials start from the renderer's own camera (render.c
+         * makes it from the same fields) */
+        const scene_camera_t *sc = &s->camera;
+        camera_fov_axis axis = sc->fov_axis == SCENE_FOV_Y ? CAMERA_FOV_Y
+                               : sc->fov_axis == SCENE_FOV_DIAGONAL
+                                   ? CAMERA_FOV_DIAGONAL
+                                   : CAMERA_FOV_X;
+        svet_error e;
+        if (camera_init(&d->camera, sc->position, sc->target, sc->up,
+                        sc->fov, axis, sc->width, sc->height, &e) == SVET_OK) {
+            s->raydiff = &raydiff_ops;
+            s->raydiff_ctx = &d->camera;
+        }
+    }
     return SVET_OK;
 }
 
