@@ -129,8 +129,19 @@ real light_pdf(const light_t *l, const PATHPOINT *pp, bool two_sided,
                const VECTOR3 wi, const VECTOR3 p, const VECTOR3 ng);
 
 /* Radiance emitted by the area light record e at the surface point `on`
- * toward the direction on->out: e->radiance on an emitting side, else
- * black. This function can't fail. */
+ * toward the direction on->out: e->radiance (or, for a textured emitter,
+ * e->radiance_at there) on an emitting side, else black. This function
+ * can't fail. */
 RADIANCE light_emitted(const scene_emission_t *e, const PATHPOINT *on);
+
+/* Radiance emitted at the point cs that e's object's sample() drew, on
+ * the side its normal faces: e->radiance, or for a textured emitter
+ * e->radiance_at at the PATHPOINT a ray coming down onto cs->p along
+ * -cs->n finds (the object's own surface(), so the texture is read at the
+ * (s, t) a camera ray meeting that point reads; where that ray misses,
+ * numerically, at cs->p with (s, t) = (0, 0)). Light sampling and photon
+ * emission read it. This function can't fail. */
+RADIANCE light_emitted_at_sample(const scene_emission_t *e,
+                                 const cobject_sample_t *cs);
 
 #endif

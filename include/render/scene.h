@@ -150,10 +150,18 @@ typedef struct {
  * cobject.h's `struct light`, reached from the object as obj->light. */
 typedef struct light {
     RADIANCE radiance;    /* emitted radiance L_e, W/(m^2 sr), the same in
-                             every direction (a Lambertian emitter) */
+                             every direction (a Lambertian emitter); with
+                             radiance_at, its mean over the surface, which
+                             weighs the light's choice by power (light.c) */
     bool two_sided;       /* false: emits on the +ng (front) side only;
                              true: on both sides */
     const COBJECT *obj;   /* the emitting object */
+    /* A radiance that varies over the surface (ch. 10's `emit TEXTURE`):
+     * L_e at the filled PATHPOINT pp of obj, >= 0 and finite, set by the
+     * part that reads the texture (texture_data its binding); NULL: L_e is
+     * `radiance` everywhere. Called from several threads at once. */
+    RADIANCE (*radiance_at)(const struct light *e, const PATHPOINT *pp);
+    const void *texture_data;
 } scene_emission_t;
 
 /* A named material, owned by the scene. */
@@ -249,17 +257,45 @@ typedef struct scene_features {
 
 struct scene;
 
+/* Ray differentials (Igehy 1999): how a ray's origin and unit direction
+ * change per pixel of the image along x and y. Data only: the part that
+ * reads textures computes them (texture/raydiff.h), through the hooks of
+ * scene_raydiff_ops_t, and reads them at a hit for the pixel's footprint
+ * on the texture. */
+typedef struct raydiff {
+    VECTOR3 dpdx, dpdy; /* the origin's change per pixel along x and y */
+    VECTOR3 dddx, dddy; /* the unit direction's change per pixel */
+} raydiff_t;
+
 /* A part's per-hit shading (scene_t.shade): at the hit pp of obj (whose
  * `texture` field holds the part's binding) by ray r after `depth`
  * scattering events, it may move pp's shading frame u, v, n (a bump map;
  * bout follows n) and returns the material to shade with: obj->material,
- * or one it built in *scratch for this hit. Called from several threads at
- * once; it must not draw random numbers. Can't fail. */
+ * or one it built in *scratch for this hit. rd: the ray's differentials
+ * carried to pp, or NULL where the caller carries none. Called from
+ * several threads at once; it must not draw random numbers. Can't fail. */
 typedef const struct material *(*scene_shade_fn)(const struct scene *s,
                                                  const COBJECT *obj,
                                                  const ray_t *r, int depth,
                                                  PATHPOINT *pp,
+                                                 const raydiff_t *rd,
                                                  struct material *scratch);
+
+/* How a path carries its camera ray's differentials (scene_t.raydiff, set
+ * by the part that reads textures): from the camera, to each hit, and
+ * through each delta bounce (mirror, glass); a sampled bounce ends them.
+ * Called from several threads at once; none can fail. */
+typedef struct scene_raydiff_ops {
+    /* the differentials of camera ray r (ctx: scene_t.raydiff_ctx) */
+    void (*camera)(const void *ctx, const ray_t *r, raydiff_t *rd);
+    /* carried along r (unit direction) to its hit pp; false: lost (the
+     * ray runs in the tangent plane) */
+    bool (*hit)(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp);
+    /* through the delta bounce at pp, by material m, from r's direction to
+     * the unit direction wi; false: lost */
+    bool (*scatter)(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp,
+                    const struct material *m, const VECTOR3 wi);
+} scene_raydiff_ops_t;
 
 typedef struct scene {
     char *path;                 /* the file it was read from, or NULL. Owned */
@@ -314,6 +350,10 @@ typedef struct scene {
      * PATHPOINT is filled; NULL when no object has one, and an untextured
      * object costs the integrator one NULL test. */
     scene_shade_fn shade;
+    /* The ray differentials the same part carries (ch. 10), with its
+     * context; NULL when no object reads a texture. */
+    const scene_raydiff_ops_t *raydiff;
+    const void *raydiff_ctx;
 } scene_t;
 
 /* Set s to an empty scene with the defaults of scenes/README.md: camera at

@@ -242,6 +242,19 @@ typedef svet_status (*scene_part_names_fn)(scenefile_ctx *c,
                                            const scene_named_t *names,
                                            int n);
 
+/* --- a name in place of an emitter's radiance (ch. 10) --------------------- */
+
+/* Called after a shape or mesh statement's `emit NAME` made an object an
+ * emitter, e (the scene's record, radiance black): the part resolves the
+ * name (an unknown one fails with scenefile_fail at name's column), sets
+ * e->radiance to the texture's mean (the light's power, light.c) and
+ * *top to its brightest value per channel (which the scene file's
+ * checks of a light's brightness and power read), and arranges, by the
+ * end of the file, e->radiance_at (scene.h). */
+typedef svet_status (*scene_part_emit_fn)(scenefile_ctx *c,
+                                          scene_emission_t *e,
+                                          const tok_t *name, RADIANCE *top);
+
 /* --- keys a part adds to the shapes (ch. 10, 11) --------------------------- */
 
 /* Called after a shape or mesh statement added its objects to the scene
@@ -271,6 +284,9 @@ typedef struct scene_part {
     const spec_t *shape_keys;
     int nshape_keys;
     scene_part_shape_fn shape;
+    /* resolves a name given to `emit` (may be NULL: refused, unless
+     * another part offers this) */
+    scene_part_emit_fn emit_name;
 } scene_part_t;
 
 /* The method `name` among the parts features offers, or NULL. */

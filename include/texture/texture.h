@@ -74,6 +74,14 @@ real texture_height(const texture_t *t, const texture_point_t *q,
  * frame moved. Can't fail. */
 bool texture_bump(PATHPOINT *pp, real dhds, real dhdt);
 
+/* The texture's mean colour over its domain and its brightest value per
+ * channel: for an image, the top of its mip map (the mean of the texels,
+ * halved level by level) and its largest texel; for the others, which
+ * blend a and b by a factor in [0, 1], (a + b) / 2 and max(a, b). An
+ * emitter's radiance reads them (its power for choosing it among the
+ * lights, the checks of its brightness). Can't fail. */
+void texture_range(const texture_t *t, RADIANCE *mean, RADIANCE *top);
+
 /* Free what t owns (an image's mip map). */
 void texture_free(texture_t *t);
 

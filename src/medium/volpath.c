@@ -304,7 +304,7 @@ RADIANCE volpath_li(const void *state, const render_t *r,
         const material_t *m = obj->material;
         material_t shaded;
         if (obj->texture)
-            m = sc->shade(sc, obj, &ray, depth, pp, &shaded);
+            m = sc->shade(sc, obj, &ray, depth, pp, NULL, &shaded);
         VECTOR3 wo;
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
         if (nee && !material_is_specular(m)) {

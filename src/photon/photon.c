@@ -333,7 +333,7 @@ static bool emit(const photon_emitters_t *em, const light_t *l, real pmf,
     sample_cosine_hemisphere(local, ud);
     frame_to_world(d, local, t1, t2, n);
     ray_spawn(ray, cs.p, cs.p_error, cs.n, d);
-    *power = rad_scale(l->emission->radiance,
+    *power = rad_scale(light_emitted_at_sample(l->emission, &cs),
                        sides * REAL_PI / cs.pdf * share);
     *from = obj;
     return true;

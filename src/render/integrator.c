@@ -234,6 +234,13 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
     PATHPOINT *cur = &buf[0], *prev = &buf[1];
     /* the surface the ray leaves (none for the camera ray) */
     const COBJECT *skip[2] = { NULL, NULL };
+    /* the camera ray's differentials, where the scene reads a texture
+     * (scene.h): to each hit and through the delta bounces */
+    const scene_raydiff_ops_t *dops = it->scene->raydiff;
+    raydiff_t rdiff;
+    bool diff = dops != NULL;
+    if (diff)
+        dops->camera(it->scene->raydiff_ctx, &r, &rdiff);
 
     for (int depth = 0;; depth++) {
         hit_t h;
@@ -265,6 +272,8 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         }
         PATHPOINT *pp = cur;
         cobject_fill(obj, &r, &h, pp);
+        if (diff)
+            diff = dops->hit(&rdiff, &r, pp);
 
         if (obj->light && count) {
             RADIANCE Le = light_emitted(obj->light, pp);
@@ -287,7 +296,8 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         /* a part's per-hit shading (a texture, a bump map: scene.h) */
         material_t shaded;
         if (obj->texture)
-            m = it->scene->shade(it->scene, obj, &r, depth, pp, &shaded);
+            m = it->scene->shade(it->scene, obj, &r, depth, pp,
+                                 diff ? &rdiff : NULL, &shaded);
         /* whether light from behind the surface can scatter toward the
          * viewer (rho_t or rho_dt not black, found by material_init) */
         const bool two = m->transmits;
@@ -312,6 +322,8 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         beta = rad_mul(beta, bs.weight);
         VECTOR3 wi;
         frame_to_world(wi, bs.wi, pp->u, pp->v, pp->n);
+        if (diff)
+            diff = bs.delta && dops->scatter(&rdiff, &r, pp, m, wi);
         cur = prev; /* the next vertex overwrites the one before this */
         prev = pp;
         prev_delta = bs.delta;

@@ -120,8 +120,43 @@ int lightset_environment(const lightset_t *ls)
 RADIANCE light_emitted(const scene_emission_t *e, const PATHPOINT *on)
 {
     if (e->two_sided || SVECTOR3(on->out, on->ng) > 0)
-        return e->radiance;
+        return e->radiance_at ? e->radiance_at(e, on) : e->radiance;
     return rad_grey(0);
+}
+
+RADIANCE light_emitted_at_sample(const scene_emission_t *e,
+                                 const cobject_sample_t *cs)
+{
+    if (!e->radiance_at)
+        return e->radiance;
+    const COBJECT *o = e->obj;
+    /* the ray starts a small height above the point: well clear of the
+     * point's error bound, and a ten-thousandth of the object's size, so
+     * that no other fold of the object lies between it and the point */
+    bbox_t b;
+    o->ops->bounds(o, -1, &b);
+    real size = bbox_is_empty(&b) ? 1 : vec_distance(b.max, b.min);
+    real err = real_max(real_max(fabs(cs->p_error[X]), fabs(cs->p_error[Y])),
+                        fabs(cs->p_error[Z]));
+    real h = real_max(REAL_C(1e-4) * (isfinite(size) ? size : 1), 64 * err);
+    ray_t r;
+    for (int k = 0; k < 3; k++) {
+        r.o[k] = cs->p[k] + h * cs->n[k];
+        r.d[k] = -cs->n[k];
+    }
+    hit_t hit;
+    PATHPOINT pp;
+    if (cobject_intersect(o, &r, 0, 2 * h, &hit)) {
+        cobject_fill(o, &r, &hit, &pp);
+    } else {
+        memset(&pp, 0, sizeof pp);
+        vec_copy(pp.cross_point, cs->p);
+        vec_copy(pp.ng, cs->n);
+        vec_copy(pp.n, cs->n);
+        vec_copy(pp.out, cs->n);
+        pp.IntersectObj = o;
+    }
+    return e->radiance_at(e, &pp);
 }
 
 /* The environment is sampled cosine-weighted about the shading normal, on
@@ -193,7 +228,7 @@ bool light_sample(const light_t *l, const PATHPOINT *pp, bool two_sided,
          * cos_l, d and d2 again by the same operations on the same
          * numbers */
         s->pdf_mis = area_pdf(l, d2, cos_l);
-        s->Li = l->emission->radiance;
+        s->Li = light_emitted_at_sample(l->emission, &cs);
         s->delta = false;
         s->infinite = false;
         vec_copy(s->p, cs.p);

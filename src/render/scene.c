@@ -400,6 +400,8 @@ svet_status scene_set_emission(scene_t *s, COBJECT *obj, RADIANCE L,
     e->radiance = L;
     e->two_sided = two_sided;
     e->obj = obj;
+    e->radiance_at = NULL;
+    e->texture_data = NULL;
     s->emitters[s->nemitters++] = e;
     obj->light = e;
     return SVET_OK;

@@ -1625,7 +1625,8 @@ enum { K_MATERIAL, K_EMIT, K_TWOSIDED, K_SCALE, K_ROTATE, K_TRANSLATE,
        K_COMMON };
 static const spec_t common_spec[K_COMMON] = {
     [K_MATERIAL] = { "material", V_STRING, 0, 0, 0, NULL },
-    [K_EMIT] = { "emit", V_COLOUR, 0, 0, 0, NULL },
+    /* F_NAMED: a texture's name may stand in place of the radiance */
+    [K_EMIT] = { "emit", V_COLOUR, F_NAMED, 0, 0, NULL },
     [K_TWOSIDED] = { "twosided", V_FLAG, 0, 0, 0, NULL },
     [K_SCALE] = { "scale", V_SCALE, 0, 0, 0, NULL },
     [K_ROTATE] = { "rotate", V_ROTATE, 0, 0, 0, NULL },
@@ -1729,6 +1730,23 @@ static void note_size(ctx_t *c, const COBJECT *obj)
     }
 }
 
+/* Hand a name given to `emit` to the part that resolves it (the textures
+ * of ch. 10, scenepart.h). */
+static svet_status emit_name(ctx_t *c, scene_emission_t *e, const tok_t *t,
+                             RADIANCE *top)
+{
+    const scene_part_t *const *parts = c->features ? c->features->parts
+                                                   : NULL;
+    for (int i = 0; parts && parts[i]; i++)
+        if (parts[i]->emit_name)
+            return parts[i]->emit_name(c, e, t, top);
+    char show[64];
+    return fail(c, t->col, SVET_ERR_PARSE,
+                "expected a number, got '%s' (a texture's name goes here "
+                "only in a program built with the textures of ch. 10)",
+                show_tok(t, show, sizeof show));
+}
+
 /* Add obj with material m to the scene, and its emission if the statement
  * gives one. obj is the scene's (or freed) afterwards. */
 static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
@@ -1744,6 +1762,19 @@ static svet_status add_object(ctx_t *c, COBJECT *obj, const material_t *m,
         RADIANCE L = colour_of(&common[K_EMIT]);
         double scale = (common[K_TWOSIDED].on ? 2 : 1) * PI_D *
                        (double)obj->ops->area(obj);
+        if (common[K_EMIT].named) {
+            st = scene_set_emission(c->scene, obj, rad_grey(0),
+                                    common[K_TWOSIDED].on, &e);
+            if (st)
+                return fail(c, common[K_EMIT].col, st, "%s", e.msg);
+            st = emit_name(c, c->scene->emitters[c->scene->nemitters - 1],
+                           &common[K_EMIT].word, &L);
+            if (st)
+                return st;
+            /* the texture's brightest value, as if everywhere */
+            return check_light(c, common[K_EMIT].col,
+                               "the radiance 'emit'", L, scale);
+        }
         st = check_light(c, common[K_EMIT].col, "the radiance 'emit'", L,
                          scale);
         if (st)

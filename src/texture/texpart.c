@@ -16,6 +16,8 @@
 
 #include "io/imageio.h"
 #include "materials/material.h"
+#include "render/camera.h"
+#include "texture/raydiff.h"
 #include "texture/texture.h"
 
 #define TEXPART_MAX_TEXTURES 4096
@@ -51,6 +53,13 @@ typedef struct {
     real strength;
 } shape_bump_t;
 
+/* An `emit NAME`: the emitter reads texture `index` (its pointer is set
+ * by finish, as the bindings' are). */
+typedef struct {
+    scene_emission_t *e;
+    int index;
+} emitter_t;
+
 typedef struct {
     named_texture_t *tex;  /* every texture, in order */
     int ntex;
@@ -59,6 +68,10 @@ typedef struct {
     int nbind;
     shape_bump_t *bumps;   /* every bumped shape's objects */
     int nbumps;
+    emitter_t *emitters;   /* every textured emitter */
+    int nemitters;
+    camera_t camera;       /* the scene's, for the camera rays'
+                              differentials (raydiff_ops) */
 } texpart_data_t;
 
 static void data_free(void *p)
@@ -69,6 +82,7 @@ static void data_free(void *p)
     free(d->tex);
     free(d->bind);
     free(d->bumps);
+    free(d->emitters);
     free(d);
 }
 
@@ -388,17 +402,72 @@ static svet_status shape_keys(scenefile_ctx *c, COBJECT *const *objs, int n,
     return SVET_OK;
 }
 
+/* --- `emit NAME`: a textured emitter -------------------------------------- */
+
+static svet_status emit_name(scenefile_ctx *c, scene_emission_t *e,
+                             const tok_t *t, RADIANCE *top)
+{
+    texpart_data_t *d = data_of(c);
+    if (!d)
+        return scenefile_fail(c, t->col, SVET_ERR_NOMEM, "out of memory");
+    char name[SCENE_MAX_NAME + 1];
+    scenefile_tok_copy(t, name, sizeof name);
+    int found = -1;
+    for (int k = 0; k < d->ntex && found < 0; k++)
+        if (t->len <= SCENE_MAX_NAME && !strcmp(d->tex[k].name, name))
+            found = k;
+    if (found < 0)
+        return scenefile_fail(c, t->col, SVET_ERR_PARSE,
+                              "'emit %s': '%s' is neither a colour nor a "
+                              "texture defined above", name, name);
+    if (d->nemitters == INT_MAX)
+        return scenefile_fail(c, t->col, SVET_ERR_RANGE,
+                              "too many emitters");
+    emitter_t *ne = realloc(d->emitters,
+                            (size_t)(d->nemitters + 1) * sizeof *ne);
+    if (!ne)
+        return scenefile_fail(c, t->col, SVET_ERR_NOMEM, "out of memory");
+    d->emitters = ne;
+    d->emitters[d->nemitters++] = (emitter_t){ e, found };
+    RADIANCE mean;
+    texture_range(&d->tex[found].tex, &mean, top);
+    /* the light is chosen by its mean power; an image's negative texels
+     * (an EXR may hold them) emit nothing */
+    e->radiance = rad_make(real_max(mean.r, REAL_C(0.0)),
+                           real_max(mean.g, REAL_C(0.0)),
+                           real_max(mean.b, REAL_C(0.0)));
+    return SVET_OK;
+}
+
+/* L_e at a point of a textured emitter: the texture's colour there, read
+ * at the finest level (emission is read without a footprint), negative
+ * values emitting nothing. */
+static RADIANCE emitted_at(const scene_emission_t *e, const PATHPOINT *pp)
+{
+    texture_point_t q;
+    texture_point_of(&q, pp, 0);
+    RADIANCE c = texture_eval(e->texture_data, &q);
+    return rad_make(real_max(c.r, REAL_C(0.0)), real_max(c.g, REAL_C(0.0)),
+                    real_max(c.b, REAL_C(0.0)));
+}
+
 /* --- the shading at a hit ------------------------------------------------- */
 
-/* The width, in (s, t) units, of the pixel's footprint at the camera ray's
- * hit: a ray cone of the camera's angle per pixel (Amanatides 1984; as
+/* The width, in (s, t) units, of the pixel's footprint at the hit: from
+ * the ray's differentials where the integrator carries them, from the
+ * camera through mirrors and glass (Igehy 1999, raydiff.h). Where it
+ * carries none (the volume path tracer of ch. 11), at the camera ray's hit
+ * a ray cone of the camera's angle per pixel (Amanatides 1984; as
  * Akenine-Moller et al. 2019 use it for texture level of detail), spread
  * over distance r_dist and stretched by 1 / |cos| on the surface, divided
  * by the shorter tangent so that the width follows the major axis of the
- * footprint as a mip map's isotropic level must (Williams 1983). Later
- * bounces read the finest level. */
-static real footprint(const binding_t *b, const PATHPOINT *pp, int depth)
+ * footprint as a mip map's isotropic level must (Williams 1983). After a
+ * sampled (diffuse or glossy) bounce, the finest level. */
+static real footprint(const binding_t *b, const PATHPOINT *pp, int depth,
+                      const raydiff_t *rd)
 {
+    if (rd)
+        return raydiff_footprint(rd, pp->dpds, pp->dpdt);
     if (depth > 0 || !(b->spread > 0))
         return 0;
     real c = fabs(SVECTOR3(pp->out, pp->ng));
@@ -464,13 +533,13 @@ static void textured_params(const binding_t *b, const texture_point_t *q,
 
 static const material_t *shade(const scene_t *s, const COBJECT *obj,
                                const ray_t *r, int depth, PATHPOINT *pp,
-                               material_t *scratch)
+                               const raydiff_t *rd, material_t *scratch)
 {
     (void)s;
     (void)r;
     const binding_t *b = obj->texture;
     texture_point_t q;
-    texture_point_of(&q, pp, footprint(b, pp, depth));
+    texture_point_of(&q, pp, footprint(b, pp, depth, rd));
     const material_t *m = b->base;
     if (b->reparam) {
         material_params p;
@@ -487,6 +556,43 @@ static const material_t *shade(const scene_t *s, const COBJECT *obj,
     }
     return m;
 }
+
+/* --- the ray differentials a path carries (scene.h) ---------------------- */
+
+static void diff_camera(const void *ctx, const ray_t *r, raydiff_t *rd)
+{
+    raydiff_camera(rd, ctx, r->d);
+}
+
+static bool diff_hit(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp)
+{
+    VECTOR3 d;
+    vec_normalize(d, r->d);
+    return raydiff_transfer(rd, d, pp->r_dist, pp->ng);
+}
+
+/* A delta bounce: back to the side the ray came from is the mirror's
+ * reflection, through to the other side the glass's refraction, whose
+ * index ratio n_from / n_to is 1 / eta entering from the +n side
+ * (material.h's eta = n_inside / n_outside) and eta leaving. About the
+ * shading normal, the frame the material sampled wi in. */
+static bool diff_scatter(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp,
+                         const material_t *m, const VECTOR3 wi)
+{
+    VECTOR3 d;
+    vec_normalize(d, r->d);
+    real dn = SVECTOR3(d, pp->n), wn = SVECTOR3(wi, pp->n);
+    if ((dn < 0) != (wn < 0)) {
+        raydiff_reflect(rd, d, pp->n);
+        return true;
+    }
+    real eta = m->params.eta > 0 ? m->params.eta : 1;
+    return raydiff_refract(rd, d, pp->n, dn < 0 ? 1 / eta : eta, wi);
+}
+
+static const scene_raydiff_ops_t raydiff_ops = {
+    diff_camera, diff_hit, diff_scatter
+};
 
 /* --- the whole scene ------------------------------------------------------ */
 
@@ -506,6 +612,10 @@ static svet_status finish(scenefile_ctx *c)
     texpart_data_t *d = scene_part_data(s, "texture");
     if (!d)
         return SVET_OK;
+    for (int k = 0; k < d->nemitters; k++) {
+        d->emitters[k].e->texture_data = &d->tex[d->emitters[k].index].tex;
+        d->emitters[k].e->radiance_at = emitted_at;
+    }
     if (d->nbind == 0 && d->nbumps == 0)
         return SVET_OK;
     /* room for a binding per bumped object, before any pointer into the
@@ -556,8 +666,22 @@ static svet_status finish(scenefile_ctx *c)
         d->bind[d->nbind] = b;
         sb->obj->texture = &d->bind[d->nbind++];
     }
-    if (d->nbind > 0)
+    if (d->nbind > 0) {
         s->shade = shade;
+        /* the differentials start from the renderer's own camera (render.c
+         * makes it from the same fields) */
+        const scene_camera_t *sc = &s->camera;
+        camera_fov_axis axis = sc->fov_axis == SCENE_FOV_Y ? CAMERA_FOV_Y
+                               : sc->fov_axis == SCENE_FOV_DIAGONAL
+                                   ? CAMERA_FOV_DIAGONAL
+                                   : CAMERA_FOV_X;
+        svet_error e;
+        if (camera_init(&d->camera, sc->position, sc->target, sc->up,
+                        sc->fov, axis, sc->width, sc->height, &e) == SVET_OK) {
+            s->raydiff = &raydiff_ops;
+            s->raydiff_ctx = &d->camera;
+        }
+    }
     return SVET_OK;
 }
 
@@ -575,4 +699,5 @@ const scene_part_t texpart_part = {
     .shape_keys = shape_spec,
     .nshape_keys = SK_N,
     .shape = shape_keys,
+    .emit_name = emit_name,
 };

@@ -131,6 +131,32 @@ bool texture_bump(PATHPOINT *pp, real dhds, real dhdt)
     return true;
 }
 
+void texture_range(const texture_t *t, RADIANCE *mean, RADIANCE *top)
+{
+    if (t->kind == TEXTURE_IMAGE) {
+        const mipmap_t *m = &t->mip;
+        real c[MIPMAP_MAX_CHANNELS] = { 0, 0, 0, 0 };
+        mipmap_texel(m, m->levels - 1, 0, 0, c);
+        *mean = m->channels < 3 ? rad_grey(c[0]) : rad_make(c[0], c[1], c[2]);
+        real hi[3] = { 0, 0, 0 };
+        const mipmap_level_t *l = &m->level[0];
+        const size_t n = (size_t)l->width * (size_t)l->height;
+        const int nc = m->channels < 3 ? 1 : 3;
+        for (size_t i = 0; i < n; i++)
+            for (int k = 0; k < nc; k++)
+                hi[k] = real_max(hi[k],
+                                 l->px[i * (size_t)m->channels + (size_t)k]);
+        *top = nc == 1 ? rad_grey(hi[0]) : rad_make(hi[0], hi[1], hi[2]);
+        return;
+    }
+    const RADIANCE a = t->kind == TEXTURE_SOLID ? t->solid.a : t->a;
+    const RADIANCE b = t->kind == TEXTURE_SOLID ? t->solid.b : t->b;
+    /* a / 2 + b / 2: a constant texture, a = b, gives a exactly */
+    *mean = rad_add(rad_scale(a, REAL_C(0.5)), rad_scale(b, REAL_C(0.5)));
+    *top = rad_make(real_max(a.r, b.r), real_max(a.g, b.g),
+                    real_max(a.b, b.b));
+}
+
 void texture_free(texture_t *t)
 {
     if (t && t->kind == TEXTURE_IMAGE)

@@ -305,6 +305,156 @@ START_TEST(a_bumped_shape_shades_as_its_bumped_material)
 }
 END_TEST
 
+/* --- `emit TEXTURE` ------------------------------------------------------ */
+
+/* An emitter of 2 x 2 unit squares over y = 2, facing down: s runs along
+ * x, t along z, so a checker of scale 2 gives its a to the quadrants
+ * x < 0, z < 0 and x > 0, z > 0 and its b to the other two. */
+#define EMITTER(emit) \
+    "parallelogram c0 -1 2 -1 c1 1 2 -1 c3 -1 2 1 material m emit " emit "\n"
+
+START_TEST(a_constant_texture_emits_the_same_bits_as_its_colour)
+{
+    const char *head =
+        "camera position 0 0.5 4 target 0 1 0 width 16 height 12\n"
+        "render spp 4 maxdepth 3 seed 5\n"
+        "material m lambert rho 0.6 0.5 0.4\n"
+        BALL "plane point 0 -1 0 normal 0 1 0 material m\n";
+    char text[1024];
+    image_t plain, tex;
+    snprintf(text, sizeof text, "%s" EMITTER("3 2 1"), head);
+    render_text(text, 1, &plain);
+    snprintf(text, sizeof text,
+             "texture k checker a 3 2 1 b 3 2 1 scale 2\n%s" EMITTER("k"),
+             head);
+    render_text(text, 1, &tex);
+    ck_assert(same_bits(&plain, &tex));
+    image_free(&tex);
+    /* a texture that varies does change the image */
+    snprintf(text, sizeof text,
+             "texture k checker a 3 2 1 b 1 2 3 scale 2\n%s" EMITTER("k"),
+             head);
+    render_text(text, 2, &tex);
+    ck_assert(!same_bits(&plain, &tex));
+    image_free(&plain);
+    image_free(&tex);
+}
+END_TEST
+
+START_TEST(a_checker_emitter_seen_by_the_camera_shows_both_colours)
+{
+    /* looking up at the emitter from below its centre, image top = -z and
+     * image right = -x; maxdepth 0 shows emission only, and at 1 sample a
+     * pixel each pixel is one colour */
+    const char *text =
+        "camera position 0 0.5 0 target 0 2 0 up 0 0 -1 fov 60 width 16 "
+        "height 16\n"
+        "render spp 1 maxdepth 0 seed 1\n"
+        "texture k checker a 4 1 0.5 b 0.25 0.5 2 scale 2\n"
+        "material m lambert rho 0.5\n" EMITTER("k");
+    image_t img;
+    render_text(text, 1, &img);
+    int na = 0, nb = 0;
+    for (int y = 0; y < img.height; y++)
+        for (int x = 0; x < img.width; x++) {
+            const float *p = image_at(&img, x, y);
+            bool a = p[0] == 4.0f && p[1] == 1.0f && p[2] == 0.5f;
+            bool b = p[0] == 0.25f && p[1] == 0.5f && p[2] == 2.0f;
+            ck_assert_msg(a || b, "pixel (%d, %d) = %g %g %g", x, y,
+                          (double)p[0], (double)p[1], (double)p[2]);
+            /* the quadrant's colour, away from the seams */
+            if ((x < 6 || x > 9) && (y < 6 || y > 9)) {
+                bool left = x < 8, top = y < 8; /* x > 0, z < 0 */
+                ck_assert_msg(left == top ? b : a, "pixel (%d, %d)", x, y);
+            }
+            na += a;
+            nb += b;
+        }
+    ck_assert_int_gt(na, 0);
+    ck_assert_int_gt(nb, 0);
+    image_free(&img);
+    /* a name that is no texture, and a program without textures */
+    refused(HEAD "material m lambert rho 0.5\n" EMITTER("glow"),
+            "t.scn:3:62:", "neither a colour nor a texture");
+    scene_t s;
+    svet_error e;
+    const char *t2 = HEAD "material m lambert rho 0.5\n" EMITTER("glow");
+    ck_assert_int_eq(scenefile_parse(&s, t2, strlen(t2), "t.scn", NULL, &e),
+                     SVET_ERR_PARSE);
+    ck_assert_msg(strstr(e.msg, "t.scn:3:62: expected a number, got 'glow'"),
+                  "%s", e.msg);
+}
+END_TEST
+
+/* The floor under the emitter, seen from between the two, lit by it
+ * alone: light sampling only (`nee`, no BSDF hits on the emitter), so
+ * that each pixel's estimate is the emitter's light reflected once as
+ * light_sample() finds it. */
+static void floor_under(const char *emitters, image_t *img)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "camera position 0 1 0 target 0 0 0 up 0 0 -1 fov 60 width 32 "
+             "height 32\n"
+             "render spp 256 maxdepth 1 seed 11 integrator nee\n"
+             "texture k checker a 8 4 2 b 0.5 1 0.25 scale 2\n"
+             "material m lambert rho 0.7\n"
+             "plane point 0 0 0 normal 0 1 0 material m\n%s", emitters);
+    render_text(text, 0, img);
+}
+
+START_TEST(a_textured_emitter_lights_as_its_squares_do)
+{
+    /* The same emitter twice: one parallelogram reading the checker, and
+     * four of one colour each. Both estimates are unbiased, each pixel's
+     * with its own noise; over each 8 x 8 block the mean difference must
+     * lie within 4 standard errors of zero, the standard error from the
+     * block's own spread of differences. The floor's light is far from
+     * uniform (the a squares are 16 times brighter in red than the b):
+     * light samples that read the emitter's mean instead of the texture
+     * at the sampled point move a block by 8 standard errors. */
+    image_t one, four;
+    floor_under(EMITTER("k"), &one);
+    floor_under(
+        "parallelogram c0 -1 2 -1 c1 0 2 -1 c3 -1 2 0 material m emit 8 4 2\n"
+        "parallelogram c0 0 2 -1 c1 1 2 -1 c3 0 2 0 material m emit 0.5 1 0.25\n"
+        "parallelogram c0 -1 2 0 c1 0 2 0 c3 -1 2 1 material m emit 0.5 1 0.25\n"
+        "parallelogram c0 0 2 0 c1 1 2 0 c3 0 2 1 material m emit 8 4 2\n",
+        &four);
+    double spread = 0;
+    for (int by = 0; by < 4; by++)
+        for (int bx = 0; bx < 4; bx++)
+            for (int k = 0; k < 3; k++) {
+                double sum = 0, sum2 = 0, level = 0;
+                int n = 0;
+                for (int y = by * 8; y < by * 8 + 8; y++)
+                    for (int x = bx * 8; x < bx * 8 + 8; x++) {
+                        double a = image_at(&one, x, y)[k];
+                        double b = image_at(&four, x, y)[k];
+                        sum += a - b;
+                        sum2 += (a - b) * (a - b);
+                        level += b;
+                        n++;
+                    }
+                double mean = sum / n;
+                double var = (sum2 - sum * sum / n) / (n - 1);
+                double se = sqrt(var / n);
+                ck_assert_msg(fabs(mean) <= 4 * se,
+                              "block (%d, %d) channel %d: %g +- %g", bx, by,
+                              k, mean, se);
+                spread = fmax(spread, se / (level / n));
+            }
+    /* the test has power: the noise is small beside the light's level */
+    ck_assert_msg(spread < 0.05, "relative standard error %g", spread);
+    /* and the floor does show the squares: looking down with image top
+     * = -z, image right is +x, so the top left corner lies under an a
+     * square, brighter in red than the top right one under a b square */
+    ck_assert(image_at(&one, 4, 4)[0] > image_at(&one, 27, 4)[0]);
+    image_free(&one);
+    image_free(&four);
+}
+END_TEST
+
 /* The grazing checkerboard: a plane of a 256 x 256 checker image of 16
  * squares a side, seen at 5 degrees above its horizon, lit evenly by a
  * uniform environment (the image is the texture times 1/2 of it: no
@@ -381,6 +531,9 @@ Suite *test_suite(void)
     tcase_add_test(tc, a_zero_bump_and_a_constant_texture_render_the_same_bits);
     tcase_add_test(tc, a_bumped_shape_shades_as_its_bumped_material);
     tcase_add_test(tc, the_grazing_checkerboard_is_nearer_the_reference_trilinear);
+    tcase_add_test(tc, a_constant_texture_emits_the_same_bits_as_its_colour);
+    tcase_add_test(tc, a_checker_emitter_seen_by_the_camera_shows_both_colours);
+    tcase_add_test(tc, a_textured_emitter_lights_as_its_squares_do);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -1,0 +1,67 @@
+/*
+ * raydiff.h - ray differentials (Igehy, "Tracing Ray Differentials",
+ * SIGGRAPH 1999): how a ray's origin P and unit direction D change from
+ * one pixel to the next, dP/dx, dP/dy, dD/dx, dD/dy, started at the
+ * pinhole camera (ch. 5), carried to a hit (his eq. 2-3, transfer) and
+ * through a mirror's reflection and a glass's refraction (eq. 4-5 and
+ * 6-7), so that a texture read after specular bounces knows the pixel's
+ * footprint on the surface (Williams 1983's mip map level, texture/
+ * mipmap.h). The integrator carries them, through the hooks the texture
+ * part installs (scene_t.raydiff, texpart.c), only when the scene reads a
+ * texture, so that other scenes compute nothing new and the programs
+ * without textures link none of this.
+ * The normal's own derivatives dN/dx, which Igehy's reflection and
+ * refraction carry for curved surfaces, are taken as 0: svet's primitives
+ * give dP/ds and dP/dt but not dN/ds, so the result is exact for flat
+ * mirrors and glass and, on curved ones, a footprint too small (a finer
+ * mip level: the image then aliases, it does not blur).
+ * Tests: tests/texture/test_raydiff.c
+ */
+#ifndef SVET_RAYDIFF_H
+#define SVET_RAYDIFF_H
+
+#include <stdbool.h>
+
+#include "core/vec.h"
+#include "render/camera.h"
+#include "render/scene.h" /* raydiff_t */
+
+/* The differentials of camera c's ray of unit direction d (camera_ray's):
+ * the origin is the eye for every pixel, dP = 0; the unnormalised
+ * direction D = sx tan_x u + sy tan_y v - w has dD/dx = (2 tan_x / W) u and
+ * dD/dy = -(2 tan_y / H) v, and d = D / |D| changes by
+ * (dD - (d . dD) d) / |D|. Can't fail. */
+void raydiff_camera(raydiff_t *rd, const camera_t *c, const VECTOR3 d);
+
+/* Carry the differentials of a ray of unit direction d along it to its
+ * hit at distance t on a surface of normal n (Igehy's eq. 2-3):
+ * dP' = dP + t dD + dt D with dt = -(dP + t dD) . n / (D . n), which keeps
+ * the neighbouring rays' hits on the tangent plane; dD is unchanged.
+ * False (rd untouched) where D . n is 0. Can't fail. */
+bool raydiff_transfer(raydiff_t *rd, const VECTOR3 d, real t,
+                      const VECTOR3 n);
+
+/* At a hit already transferred to, the differentials of the mirror
+ * direction R = D - 2 (D . n) n of unit direction d about unit normal n
+ * (Igehy's eq. 4-5 with dN = 0): dR = dD - 2 (dD . n) n. Can't fail. */
+void raydiff_reflect(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n);
+
+/* At a hit already transferred to, the differentials of the refracted
+ * unit direction tr = eta d - mu n of unit d through unit normal n, eta
+ * the ratio n_from / n_to of the indices (Igehy's eq. 6-7 with dN = 0):
+ * mu = eta (d . n) - (tr . n), dtr = eta dD - dmu n, dmu = (eta - eta^2
+ * (d . n) / (tr . n)) (dD . n). False (rd untouched) where tr . n is 0
+ * (grazing). Can't fail. */
+bool raydiff_refract(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n,
+                     real eta, const VECTOR3 tr);
+
+/* The pixel's footprint in a surface's parameters (s, t), whose tangents
+ * are dpds and dpdt: the least-squares (s, t) steps of dP/dx and dP/dy
+ * (the tangent plane's 2 x 2 normal equations), and of the two the
+ * longer, the major axis that an isotropic mip map level must follow
+ * (Williams 1983). 0 where the tangents are degenerate or the result is
+ * not finite. Can't fail. */
+real raydiff_footprint(const raydiff_t *rd, const VECTOR3 dpds,
+                       const VECTOR3 dpdt);
+
+#endif

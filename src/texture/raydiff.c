@@ -1,0 +1,101 @@
+/*
+ * raydiff.c - ray differentials after Igehy 1999 (raydiff.h): from the
+ * camera, to a hit, through mirrors and glass, and the footprint they
+ * give in a surface's (s, t).
+ * Tests: tests/texture/test_raydiff.c
+ */
+#include "texture/raydiff.h"
+
+#include <math.h>
+
+/* The change of d = D / |D| for a change dD of D: (dD - (d . dD) d) / |D|. */
+static void unit_diff(VECTOR3 out, const VECTOR3 d, real len,
+                      const VECTOR3 dD)
+{
+    real k = SVECTOR3(d, dD);
+    for (int i = 0; i < 3; i++)
+        out[i] = (dD[i] - k * d[i]) / len;
+}
+
+void raydiff_camera(raydiff_t *rd, const camera_t *c, const VECTOR3 d)
+{
+    /* D with w component -1 is d / (-d . w) (camera_ray's D up to its
+     * length, which the unit direction does not see) */
+    real dw = -SVECTOR3(d, c->w);
+    real len = dw > 0 ? 1 / dw : 1;
+    VECTOR3 dx, dy;
+    real kx = 2 * c->tan_x / (real)c->width;
+    real ky = -2 * c->tan_y / (real)c->height;
+    for (int i = 0; i < 3; i++) {
+        dx[i] = kx * c->u[i];
+        dy[i] = ky * c->v[i];
+    }
+    vec_set(rd->dpdx, 0, 0, 0);
+    vec_set(rd->dpdy, 0, 0, 0);
+    unit_diff(rd->dddx, d, len, dx);
+    unit_diff(rd->dddy, d, len, dy);
+}
+
+bool raydiff_transfer(raydiff_t *rd, const VECTOR3 d, real t,
+                      const VECTOR3 n)
+{
+    real dn = SVECTOR3(d, n);
+    if (dn == 0 || !isfinite(t))
+        return false;
+    VECTOR3 px, py;
+    for (int i = 0; i < 3; i++) {
+        px[i] = rd->dpdx[i] + t * rd->dddx[i];
+        py[i] = rd->dpdy[i] + t * rd->dddy[i];
+    }
+    real tx = -SVECTOR3(px, n) / dn, ty = -SVECTOR3(py, n) / dn;
+    for (int i = 0; i < 3; i++) {
+        rd->dpdx[i] = px[i] + tx * d[i];
+        rd->dpdy[i] = py[i] + ty * d[i];
+    }
+    return true;
+}
+
+void raydiff_reflect(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n)
+{
+    (void)d; /* with dN = 0 only dD . n enters */
+    real kx = 2 * SVECTOR3(rd->dddx, n), ky = 2 * SVECTOR3(rd->dddy, n);
+    for (int i = 0; i < 3; i++) {
+        rd->dddx[i] -= kx * n[i];
+        rd->dddy[i] -= ky * n[i];
+    }
+}
+
+bool raydiff_refract(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n,
+                     real eta, const VECTOR3 tr)
+{
+    real dn = SVECTOR3(d, n), tn = SVECTOR3(tr, n);
+    if (tn == 0)
+        return false;
+    real k = eta - eta * eta * dn / tn;
+    real mx = k * SVECTOR3(rd->dddx, n), my = k * SVECTOR3(rd->dddy, n);
+    for (int i = 0; i < 3; i++) {
+        rd->dddx[i] = eta * rd->dddx[i] - mx * n[i];
+        rd->dddy[i] = eta * rd->dddy[i] - my * n[i];
+    }
+    return true;
+}
+
+real raydiff_footprint(const raydiff_t *rd, const VECTOR3 dpds,
+                       const VECTOR3 dpdt)
+{
+    /* [a b; b c] (ds, dt) = (dpds . dP, dpdt . dP) */
+    real a = SVECTOR3(dpds, dpds), b = SVECTOR3(dpds, dpdt);
+    real c = SVECTOR3(dpdt, dpdt);
+    real det = a * c - b * b;
+    if (!(det > 0))
+        return 0;
+    real best = 0;
+    const real *dp[2] = { rd->dpdx, rd->dpdy };
+    for (int k = 0; k < 2; k++) {
+        real ps = SVECTOR3(dpds, dp[k]), pt = SVECTOR3(dpdt, dp[k]);
+        real ds = (c * ps - b * pt) / det, dt = (a * pt - b * ps) / det;
+        real l = sqrt(ds * ds + dt * dt);
+        best = l > best ? l : best;
+    }
+    return isfinite(best) ? best : 0;
+}
