@@ -6,7 +6,7 @@
  * thresholds are refused.
  */
 #include "testutil.h"
-#include "irradiance/subsample.h"
+#include "render/subsample.h"
 
 #include <stdlib.h>
 #include <string.h>
