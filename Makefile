@@ -336,7 +336,7 @@ FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     fileio frame material mesh obj parallelogram plane quadric ray rng \
     sample scene scenefile shape sphere triangle vec xform allparts objmesh \
-    grid grid_build primset accel batch
+    grid grid_build primset accel batch subsample
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error fileio frame grid grid_build \
     mesh obj primset ray rng shape triangle vec

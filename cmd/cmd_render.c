@@ -719,6 +719,11 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         if (nonfinite)
             fprintf(stderr, "svet render: %llu non-finite samples dropped\n",
                     (unsigned long long)nonfinite);
+        if (r.method && r.method->report && r.method_state) {
+            char line[512];
+            r.method->report(r.method_state, line, sizeof line);
+            fprintf(stderr, "svet render: %s\n", line);
+        }
         if (scene->render.subsample_step > 0)
             fprintf(stderr, "svet render: subsample step %d threshold %g "
                             "(app. F): %ld of %ld pixels computed, the "
