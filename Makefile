@@ -423,6 +423,14 @@ tradeoffs-photon: build/float/svet
 tradeoffs-media: build/float/svet
 	sh tools/tradeoffs-media.sh
 
+# `make tradeoffs-irradiance`: the irradiance cache's a, M x N, gradients
+# and clamping, and app. F's subsampling, against the path tracer on the
+# Cornell box (tools/tradeoffs-irradiance.sh; writes
+# docs/tradeoffs-irradiance.md, about 15 minutes on 2 cores).
+.PHONY: tradeoffs-irradiance
+tradeoffs-irradiance: build/float/svet
+	sh tools/tradeoffs-irradiance.sh
+
 # `make count-render`: instructions per camera sample (callgrind), the
 # load-independent figure of bench/results/render.md.
 count-render: $(BUILD)/svet
