@@ -336,7 +336,7 @@ FUZZ_FLAGS := -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Iinclude \
 fuzz_scene_MODULES := bbox box brdf cobject colour cone cylinder disk error \
     fileio frame material mesh obj parallelogram plane quadric ray rng \
     sample scene scenefile shape sphere triangle vec xform allparts objmesh \
-    grid grid_build primset accel batch
+    grid grid_build primset accel batch subsample
 fuzz_scene_ARGS := -dict=fuzz/scene.dict
 fuzz_obj_MODULES := accel bbox cobject error fileio frame grid grid_build \
     mesh obj primset ray rng shape triangle vec
@@ -422,6 +422,14 @@ tradeoffs-photon: build/float/svet
 .PHONY: tradeoffs-media
 tradeoffs-media: build/float/svet
 	sh tools/tradeoffs-media.sh
+
+# `make tradeoffs-irradiance`: the irradiance cache's a, M x N, gradients
+# and clamping, and app. F's subsampling, against the path tracer on the
+# Cornell box (tools/tradeoffs-irradiance.sh; writes
+# docs/tradeoffs-irradiance.md, about 15 minutes on 2 cores).
+.PHONY: tradeoffs-irradiance
+tradeoffs-irradiance: build/float/svet
+	sh tools/tradeoffs-irradiance.sh
 
 # `make count-render`: instructions per camera sample (callgrind), the
 # load-independent figure of bench/results/render.md.

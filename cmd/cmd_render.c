@@ -554,6 +554,19 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         goto done;
     }
     r_live = true;
+    if (scene->render.subsample_step > 0 &&
+        (o->part || o->checkpoint || o->resume)) {
+        /* app. F refines on every pixel's final value: a part of the
+         * samples or of the image, or a checkpoint to resume from, would
+         * refine on other values than the whole render */
+        fprintf(stderr, "svet render: %s: `render subsample` renders the "
+                        "whole image with all its samples at once: "
+                        "--samples, --crop, --checkpoint and --resume are "
+                        "refused (subsample.step=0 turns it off); nothing "
+                        "was written\n", scene_path);
+        rc = SVET_EXIT_USAGE;
+        goto done;
+    }
     cmd_part_t part = { 0 };
     if (o->part || o->checkpoint) {
         const int W = scene->camera.width, H = scene->camera.height;
@@ -632,6 +645,8 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
                  : (total - first < 16 ? total - first : 16);
     if (npass > total - first)
         npass = total - first;
+    if (scene->render.subsample_step > 0)
+        npass = 1; /* app. F: every sample of a pixel in one pass */
     outputs_t out = { exr, png, opt_var, o->half,
                       o->part || o->checkpoint ? &part : NULL };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
@@ -704,6 +719,19 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         if (nonfinite)
             fprintf(stderr, "svet render: %llu non-finite samples dropped\n",
                     (unsigned long long)nonfinite);
+        if (r.method && r.method->report && r.method_state) {
+            char line[512];
+            r.method->report(r.method_state, line, sizeof line);
+            fprintf(stderr, "svet render: %s\n", line);
+        }
+        if (scene->render.subsample_step > 0)
+            fprintf(stderr, "svet render: subsample step %d threshold %g "
+                            "(app. F): %ld of %ld pixels computed, the "
+                            "rest interpolated\n",
+                    scene->render.subsample_step,
+                    (double)scene->render.subsample_threshold,
+                    r.sub_computed,
+                    (long)scene->camera.width * scene->camera.height);
     }
     if (interrupted)
         rc = SVET_EXIT_INTERRUPTED;

@@ -5,4 +5,4 @@ ch08_photons_MODULES := photon photonmap render tracer integrator light camera s
 ch08_photons_LIBS := -lm
 # what it must not link (make check-links): ch. 7's acceleration layer and
 # meshes, the other parts of Part II
-ch08_photons_FORBID := volphoton accel batch grid primset mesh objmesh irrcache irrpart medium texture texpart medpart volpath volsingle phase volgrid
+ch08_photons_FORBID := volphoton accel batch grid primset mesh objmesh irrcache irrpart medium texture texpart medpart volpath volsingle phase volgrid subsample

@@ -5,4 +5,4 @@ ch11_media_MODULES := medpart volpath volsingle medium phase volgrid interp rend
 ch11_media_LIBS := -lm
 # what it must not link (make check-links): ch. 7's acceleration layer and
 # meshes, the other parts of Part II
-ch11_media_FORBID := volphoton accel batch grid primset mesh objmesh photon photonmap irrcache irrpart texture texpart
+ch11_media_FORBID := volphoton accel batch grid primset mesh objmesh photon photonmap irrcache irrpart texture texpart subsample

@@ -7,8 +7,11 @@
  * adds its samples in index order, so the image is bit-identical for any
  * thread count, tile order and pass split. Where the tracer takes packets
  * (the grids of ch. 7), the camera rays of 8 x 8 pixels go to it at once,
- * one sample of each: the same image, bit for bit.
- * Tests: tests/render/test_render.c
+ * one sample of each: the same image, bit for bit. With app. F's
+ * subsampling (scene_render_t.subsample_step, where the program offers
+ * it: render/subsample.h) a pass computes only some pixels, each with
+ * all its samples at once, and interpolates the others.
+ * Tests: tests/render/test_render.c, tests/render/test_subsample.c
  */
 #ifndef SVET_RENDER_H
 #define SVET_RENDER_H
@@ -73,6 +76,13 @@ typedef struct render {
      * when crop_x1 > 0 (svet render --crop, for a part of a split render:
      * each pixel's samples are the same as in the whole image) */
     int crop_x0, crop_x1, crop_y0, crop_y1;
+    /* App. F (scene_render_t.subsample_step > 0): after the one pass,
+     * the image (computed pixels the means of their samples, bit for bit
+     * as without subsampling; the rest interpolated), which pixels were
+     * computed (1) and how many; sub has no pixels before */
+    image_t sub;
+    uint8_t *sub_mask;
+    long sub_computed;
 } render_t;
 
 /* Prepare to render scene s: the camera, the lights (only if the scene has
@@ -86,6 +96,12 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err);
 
 /* Add samples [spp_done, spp_end) to every pixel with `threads` threads
  * (0 = all cores), calling progress (may be NULL) after each tile. With
+ * subsampling (app. F) the pass is the only one, from sample 0 to spp_end,
+ * over the whole image (its refinement needs every pixel's final value):
+ * a second pass, a pass from a later sample or a crop (the parts of a
+ * split render) fail with SVET_ERR_UNSUPPORTED and a message saying so,
+ * and progress is called per computed pixel, with the image's pixel count
+ * as the total. With
  * the integrators of ch. 5 this can't fail; a rendering method of Part II
  * (r->method) may fail in its begin_pass (out of memory for a new photon
  * map): then nothing is added, and the status is returned with its

@@ -135,6 +135,14 @@ typedef struct {
      * integrator above. Its own settings are its part's data
      * (scene_part_data). Borrowed from the part */
     const struct render_method *method;
+    /* App. F's subsampling (`render subsample step K threshold T`, where
+     * the program offers it: scene_features_t.subsample): 0 = off, every
+     * pixel by the image loop; K >= 1 (a power of 2): every K-th pixel of
+     * every K-th row, then the blocks whose corners differ by a contrast
+     * above the threshold, in [0, 1), refined; K = 1 computes every
+     * pixel through the same loop */
+    int subsample_step;
+    real subsample_threshold;
 } scene_render_t;
 
 /* --- lights (ch. 5) ------------------------------------------------------ */
@@ -234,6 +242,7 @@ void scene_mesh_parts_free(scene_mesh_part_t *parts, int n);
 
 struct accel_ops;
 struct accel_layer;
+struct subsample_ops;
 
 typedef struct scene_features {
     /* The acceleration layer of ch. 7 (accel.h's accel_layer), through
@@ -251,6 +260,9 @@ typedef struct scene_features {
      * irradiance cache, textures, media), NULL-terminated; NULL: none.
      * Each brings its statements and rendering methods. */
     const struct scene_part *const *parts;
+    /* App. F's subsampling (render/subsample.h's subsample_ops); NULL:
+     * `render subsample` is refused. */
+    const struct subsample_ops *subsample;
 } scene_features_t;
 
 /* --- the scene ----------------------------------------------------------- */

@@ -199,6 +199,10 @@ typedef struct render_method {
                    const ray_t *ray, long sample, pcg32_t *g,
                    struct integrator_stats *st);
     void (*free)(void *state);
+    /* What the method counted while rendering, one line for the render
+     * log without a newline (the irradiance cache's records and lookups),
+     * into buf of size bytes; may be NULL. */
+    void (*report)(const void *state, char *buf, size_t size);
 } render_method_t;
 
 /* Called once the whole file is read (may be NULL): what only the whole

@@ -12,6 +12,7 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -291,8 +292,9 @@ typedef struct {
 /* The pixel steps of the pre-pass, coarse to fine. */
 static const int levels[] = { 16, 8, 4, 2, 1 };
 
-svet_status irr_fill(irrcache_t *c, const render_t *r, int threads,
-                     svet_error *err)
+/* irr_fill(), the records each level added in added[] (may be NULL) */
+static svet_status fill(irrcache_t *c, const render_t *r, int threads,
+                        long *added, svet_error *err)
 {
     irr_settings_t set;
     irr_settings_of(r->scene, &set);
@@ -389,6 +391,8 @@ svet_status irr_fill(irrcache_t *c, const render_t *r, int threads,
             if (irrcache_lookup(c, cand[i].rec.p, cand[i].rec.n, &e) > 0)
                 continue;
             st = irrcache_add(c, &cand[i].rec, err);
+            if (st == SVET_OK && added)
+                added[lv]++;
         }
         free(cand);
         if (st) {
@@ -399,11 +403,27 @@ svet_status irr_fill(irrcache_t *c, const render_t *r, int threads,
     return SVET_OK;
 }
 
+svet_status irr_fill(irrcache_t *c, const render_t *r, int threads,
+                     svet_error *err)
+{
+    return fill(c, r, threads, NULL, err);
+}
+
 /* --- the method ----------------------------------------------------------- */
+
+enum { NLEVELS = sizeof levels / sizeof *levels };
+
+/* What the final pass counts, from every thread (atomically): the same
+ * totals for any thread count, as every camera path is. */
+typedef struct {
+    uint64_t lookups, gathers;
+} counts_t;
 
 typedef struct {
     irr_settings_t set;
     irrcache_t cache;
+    long added[NLEVELS]; /* records each level of the pre-pass added */
+    counts_t *counts;    /* written while li reads the rest */
 } state_t;
 
 static void state_free(void *p)
@@ -412,7 +432,32 @@ static void state_free(void *p)
     if (!s)
         return;
     irrcache_free(&s->cache);
+    free(s->counts);
     free(s);
+}
+
+/* The log's line: records per level, lookups and the gathers where no
+ * record covered the point */
+static void report(const void *state, char *buf, size_t size)
+{
+    const state_t *s = state;
+    int k = snprintf(buf, size, "irradiance cache: %zu records (",
+                     s->cache.n);
+    for (int lv = 0; lv < NLEVELS && k >= 0 && (size_t)k < size; lv++)
+        k += snprintf(buf + k, size - (size_t)k, "%s%ld at step %d",
+                      lv ? ", " : "", s->added[lv], levels[lv]);
+    if (k >= 0 && (size_t)k < size)
+        snprintf(buf + k, size - (size_t)k,
+                 "); %llu lookups, %llu of them fell back to a gather of "
+                 "their own (%.3g %%); records per lookup %.3g %%",
+                 (unsigned long long)s->counts->lookups,
+                 (unsigned long long)s->counts->gathers,
+                 s->counts->lookups ? 100.0 * (double)s->counts->gathers /
+                                          (double)s->counts->lookups
+                                    : 0.0,
+                 s->counts->lookups ? 100.0 * (double)s->cache.n /
+                                          (double)s->counts->lookups
+                                    : 0.0);
 }
 
 static svet_status prepare(void **out, const render_t *r, int threads,
@@ -423,8 +468,15 @@ static svet_status prepare(void **out, const render_t *r, int threads,
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "irradiance: out of memory");
     irr_settings_of(r->scene, &s->set);
-    svet_status st = irr_fill(&s->cache, r, threads, err);
+    s->counts = calloc(1, sizeof *s->counts);
+    if (!s->counts) {
+        free(s);
+        return svet_error_set(err, SVET_ERR_NOMEM,
+                              "irradiance: out of memory");
+    }
+    svet_status st = fill(&s->cache, r, threads, s->added, err);
     if (st) {
+        free(s->counts);
         free(s);
         return st;
     }
@@ -447,8 +499,12 @@ static RADIANCE indirect(const state_t *s, const render_t *r,
     VECTOR3 n;
     facing_normal(pp, n);
     RADIANCE e;
+#pragma omp atomic
+    s->counts->lookups++;
     if (irrcache_lookup(&s->cache, pp->cross_point, n, &e) > 0)
         return e;
+#pragma omp atomic
+    s->counts->gathers++;
     irr_record_t rec;
     if (!gather(r, &s->set, pp, n, g, st, &rec))
         return rad_grey(0);
@@ -548,7 +604,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
 
 const render_method_t irr_method = {
     "irradiance", "irradiance cache (ch. 9): Ward's records with gradients",
-    prepare, NULL, li, state_free
+    prepare, NULL, li, state_free, report
 };
 
 static const render_method_t *const methods[] = { &irr_method, NULL };

@@ -15,6 +15,7 @@
 #include "photon/photon.h"
 #include "render/animation.h"
 #include "render/scenepart.h"
+#include "render/subsample.h"
 #include "texture/texpart.h"
 
 /* ch. 7: the batched brute force and the uniform and hierarchical grids,
@@ -37,6 +38,7 @@ static const scene_features_t all = {
     .accels = accels,
     .mesh = objmesh_load,  /* ch. 7: OBJ files for the `mesh` statement */
     .parts = parts,
+    .subsample = &subsample_ops, /* app. F */
 };
 
 const scene_features_t *scene_features_all(void)

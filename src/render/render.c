@@ -2,13 +2,15 @@
  * render.c - tiles, passes and threads around the integrator (ch. 5), a
  * pass abandoned and undone when asked (render_pass_until: Ctrl-C), and
  * the camera rays of 8 x 8 pixels given to the tracer at once where it
- * takes packets (the grids of ch. 7: chapters/ch07/README.md).
- * Tests: tests/render/test_render.c
+ * takes packets (the grids of ch. 7: chapters/ch07/README.md), and the
+ * pass of app. F's subsampling through the program's subsample_ops.
+ * Tests: tests/render/test_render.c, tests/render/test_subsample.c
  */
 #include "render/render.h"
 
 #include "accel/accel.h"
 #include "render/scenepart.h"
+#include "render/subsample.h" /* its types; the code is the program's */
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -88,6 +90,13 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
         render_free(r);
         return st;
     }
+    if (s->render.subsample_step > 0 &&
+        !(s->features && s->features->subsample)) {
+        render_free(r);
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "subsample: this program was built without "
+                              "the subsampling of app. F");
+    }
     integrator_init(&r->integrator, s, &r->lights, r->tracer);
     /* a rendering method of Part II (scenepart.h): its pre-pass now,
      * camera rays one at a time (it traces them itself) */
@@ -123,6 +132,8 @@ void render_free(render_t *r)
         r->method->free(r->method_state);
     image_accum_free(&r->acc);
     free(r->sum2);
+    image_free(&r->sub);
+    free(r->sub_mask);
     memset(r, 0, sizeof *r);
 }
 
@@ -272,6 +283,132 @@ static long pass(render_t *r, long spp_end, int threads,
     return skipped;
 }
 
+/* --- app. F: subsampling --------------------------------------------- */
+
+/* What a computed pixel needs: the renderer, its samples, the totals. */
+typedef struct {
+    render_t *r;
+    long s0, s1;
+    uint64_t rays, paths;
+    long done, total;
+    render_progress_fn progress;
+    void *ctx;
+} sparse_t;
+
+/* Pixel (x, y) with all its samples, added to the sums in index order as
+ * the image loop adds them; out is the mean image_accum_resolve() gives
+ * it. Called from several threads, never twice for one pixel. */
+static void sparse_pixel(void *c, int x, int y, float out[3])
+{
+    sparse_t *q = c;
+    render_t *r = q->r;
+    integrator_stats_t st = { 0, 0 };
+    pixels_one_by_one(r, x, y, x + 1, y + 1, q->s0, q->s1, &st);
+    size_t i = (size_t)y * (size_t)r->camera.width + (size_t)x;
+    double n = (double)r->acc.count[i];
+    for (int k = 0; k < 3; k++)
+        out[k] = n > 0 ? (float)(image_fixed_value(&r->acc.sum[3 * i +
+                                                               (size_t)k],
+                                                   IMAGE_SUM_Q) / n)
+                       : 0.0f;
+#ifdef _OPENMP
+#pragma omp atomic
+#endif
+    q->rays += st.rays;
+#ifdef _OPENMP
+#pragma omp atomic
+#endif
+    q->paths += st.paths;
+    if (q->progress) {
+#ifdef _OPENMP
+#pragma omp critical(svet_render_progress)
+#endif
+        {
+            q->done++;
+            q->progress(q->ctx, q->done, q->total);
+        }
+    }
+}
+
+/* Whether a pass to spp_end can be subsampled: the first and only one,
+ * over the whole image. */
+static svet_status sparse_check(const render_t *r, long spp_end,
+                                svet_error *err)
+{
+    if (r->scene->render.subsample_step <= 0)
+        return SVET_OK;
+    if (r->crop_x1 > 0)
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "subsample: a crop of the image (a part of a "
+                              "split render) cannot be subsampled: the "
+                              "refinement needs the whole image");
+    if (r->spp_done > 0 || r->sub.px)
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "subsample: the samples of a pixel are "
+                              "computed in one pass, from sample 0: no "
+                              "further pass, and no part of a split render "
+                              "from sample %ld", r->spp_done);
+    if (spp_end <= 0)
+        return svet_error_set(err, SVET_ERR_RANGE,
+                              "subsample: a pass of no samples");
+    return SVET_OK;
+}
+
+/* The one pass of a subsampled render: samples [0, spp_end) of the
+ * pixels app. F chooses; *skipped non-zero when *stop ended it (r then
+ * holds no image, its sums are the caller's to undo). */
+static svet_status sparse_pass(render_t *r, long spp_end, int threads,
+                               render_progress_fn progress, void *ctx,
+                               const volatile sig_atomic_t *stop,
+                               long *skipped, svet_error *err)
+{
+    const int W = r->camera.width, H = r->camera.height;
+    const scene_render_t *sr = &r->scene->render;
+    *skipped = 0;
+    image_t img;
+    svet_status st = image_alloc(&img, W, H, 3, err);
+    if (st != SVET_OK)
+        return st;
+    uint8_t *mask = malloc((size_t)W * (size_t)H);
+    if (!mask) {
+        image_free(&img);
+        return svet_error_set(err, SVET_ERR_NOMEM, "render: out of memory");
+    }
+    sparse_t q = { r, 0, spp_end, 0, 0, 0, (long)W * H, progress, ctx };
+    subsample_params_t p = { sr->subsample_step, sr->subsample_threshold };
+    long n = 0;
+    bool stopped = false;
+    st = r->scene->features->subsample->image(&img, &p, sparse_pixel, &q,
+                                              mask, &n, threads, stop,
+                                              &stopped, err);
+    if (st != SVET_OK || stopped) {
+        image_free(&img);
+        free(mask);
+        *skipped = stopped ? 1 : 0;
+        return st;
+    }
+    r->sub = img;
+    r->sub_mask = mask;
+    r->sub_computed = n;
+    r->stats.rays += q.rays;
+    r->stats.paths += q.paths;
+    r->spp_done = spp_end;
+    return SVET_OK;
+}
+
+/* One pass: the image loop's, or app. F's. */
+static svet_status run_pass(render_t *r, long spp_end, int threads,
+                            render_progress_fn progress, void *ctx,
+                            const volatile sig_atomic_t *stop,
+                            long *skipped, svet_error *err)
+{
+    if (r->scene->render.subsample_step > 0)
+        return sparse_pass(r, spp_end, threads, progress, ctx, stop, skipped,
+                           err);
+    *skipped = pass(r, spp_end, threads, progress, ctx, stop);
+    return SVET_OK;
+}
+
 /* A method's begin_pass for samples [spp_done, spp_end), if it has one. */
 static svet_status begin_pass(render_t *r, long spp_end, int threads,
                               svet_error *err)
@@ -285,11 +422,14 @@ static svet_status begin_pass(render_t *r, long spp_end, int threads,
 svet_status render_pass(render_t *r, long spp_end, int threads,
                         render_progress_fn progress, void *ctx)
 {
-    svet_status st = begin_pass(r, spp_end, threads, &r->error);
-    if (st != SVET_OK)
-        return st;
-    pass(r, spp_end, threads, progress, ctx, NULL);
-    return SVET_OK;
+    svet_status st = sparse_check(r, spp_end, &r->error);
+    if (st == SVET_OK)
+        st = begin_pass(r, spp_end, threads, &r->error);
+    long skipped;
+    if (st == SVET_OK)
+        st = run_pass(r, spp_end, threads, progress, ctx, NULL, &skipped,
+                      &r->error);
+    return st;
 }
 
 svet_status render_pass_until(render_t *r, long spp_end, int threads,
@@ -305,14 +445,16 @@ svet_status render_pass_until(render_t *r, long spp_end, int threads,
     uint64_t *count = malloc(n * sizeof *count),
              *nonfinite = malloc(n * sizeof *nonfinite);
     *abandoned = false;
-    if (!sum || !sum2 || !count || !nonfinite) {
+    svet_status st = sparse_check(r, spp_end, err);
+    if (st != SVET_OK || !sum || !sum2 || !count || !nonfinite) {
         free(sum);
         free(sum2);
         free(count);
         free(nonfinite);
-        return svet_error_set(err, SVET_ERR_NOMEM, "render: out of memory");
+        return st != SVET_OK ? st : svet_error_set(err, SVET_ERR_NOMEM,
+                                                   "render: out of memory");
     }
-    svet_status st = begin_pass(r, spp_end, threads, err);
+    st = begin_pass(r, spp_end, threads, err);
     if (st != SVET_OK) {
         free(sum);
         free(sum2);
@@ -324,22 +466,33 @@ svet_status render_pass_until(render_t *r, long spp_end, int threads,
     memcpy(sum2, r->sum2, 3 * n * sizeof *sum2);
     memcpy(count, r->acc.count, n * sizeof *count);
     memcpy(nonfinite, r->acc.nonfinite, n * sizeof *nonfinite);
-    if (pass(r, spp_end, threads, progress, ctx, stop) > 0) {
+    long skipped = 0;
+    st = run_pass(r, spp_end, threads, progress, ctx, stop, &skipped, err);
+    if (st != SVET_OK || skipped > 0) {
         memcpy(r->acc.sum, sum, 3 * n * sizeof *sum);
         memcpy(r->sum2, sum2, 3 * n * sizeof *sum2);
         memcpy(r->acc.count, count, n * sizeof *count);
         memcpy(r->acc.nonfinite, nonfinite, n * sizeof *nonfinite);
-        *abandoned = true;
+        *abandoned = st == SVET_OK;
     }
     free(sum);
     free(sum2);
     free(count);
     free(nonfinite);
-    return SVET_OK;
+    return st;
 }
 
 svet_status render_image(const render_t *r, image_t *out, svet_error *err)
 {
+    if (r->sub.px) { /* app. F: computed and interpolated pixels */
+        svet_status st = image_alloc(out, r->sub.width, r->sub.height, 3,
+                                     err);
+        if (st == SVET_OK)
+            memcpy(out->px, r->sub.px, 3 * (size_t)r->sub.width *
+                                           (size_t)r->sub.height *
+                                           sizeof *out->px);
+        return st;
+    }
     uint64_t empty;
     return image_accum_resolve(&r->acc, out, &empty, err);
 }

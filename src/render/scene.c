@@ -55,6 +55,8 @@ void scene_init(scene_t *s)
     r->tonemap.gamma = REAL_C(2.2);
     r->accel = SCENE_ACCEL_AUTO;
     r->packets = true;
+    r->subsample_step = 0;
+    r->subsample_threshold = REAL_C(0.05);
 }
 
 void scene_free(scene_t *s)

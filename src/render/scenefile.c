@@ -968,8 +968,47 @@ static svet_status integrator_of(ctx_t *c, const tok_t *t,
     return unknown(c, t, "value of 'integrator'", names, n);
 }
 
+/* `render subsample step K threshold T`: app. F, where the program
+ * offers it (scene_features_t.subsample; render/subsample.h's checks) */
+enum { SS_STEP, SS_THRESHOLD, SS_N };
+static const spec_t subsample_spec[SS_N] = {
+    [SS_STEP] = { "step", V_INT, 0, 0, 256, NULL },
+    [SS_THRESHOLD] = { "threshold", V_NUM, F_NONNEG, 0, 0, NULL },
+};
+
+static svet_status st_render_subsample(ctx_t *c)
+{
+    const tok_t *kw = &c->tok[c->pos++];
+    if (!c->features || !c->features->subsample)
+        return fail(c, kw->col, SVET_ERR_UNSUPPORTED,
+                    "'render subsample': this program was built without "
+                    "the subsampling of app. F");
+    val_t v[SS_N];
+    svet_status st = parse_keys(c, "render subsample", subsample_spec, SS_N,
+                                v, false);
+    if (st)
+        return st;
+    scene_render_t *r = &c->scene->render;
+    long k = v[SS_STEP].set ? v[SS_STEP].i : r->subsample_step > 0
+                                                 ? r->subsample_step : 4;
+    if (k & (k - 1))
+        return fail(c, v[SS_STEP].col, SVET_ERR_RANGE,
+                    "'step' = %ld: must be 0 (off) or a power of 2 up to "
+                    "256", k);
+    if (v[SS_THRESHOLD].set && !(v[SS_THRESHOLD].v[0] < 1))
+        return fail(c, v[SS_THRESHOLD].col, SVET_ERR_RANGE,
+                    "'threshold' = %g: must lie in [0, 1)",
+                    (double)v[SS_THRESHOLD].v[0]);
+    r->subsample_step = (int)k;
+    if (v[SS_THRESHOLD].set)
+        r->subsample_threshold = v[SS_THRESHOLD].v[0];
+    return SVET_OK;
+}
+
 static svet_status st_render(ctx_t *c)
 {
+    if (c->pos < c->ntok && tok_is(&c->tok[c->pos], "subsample"))
+        return st_render_subsample(c);
     val_t v[R_N];
     svet_status st = parse_keys(c, "render", render_spec, R_N, v, false);
     if (st)
@@ -2551,6 +2590,8 @@ static const struct {
     { "checkpoint", "render", "checkpoint" },
     { "accel", "render", "accel" },
     { "packets", "render", "packets" },
+    { "subsample.step", "render subsample", "step" },
+    { "subsample.threshold", "render subsample", "threshold" },
     { "width", "camera", "width" },
     { "height", "camera", "height" },
     { "resolution", "camera", NULL },
@@ -2662,6 +2703,8 @@ svet_status scenefile_override(scene_t *s, const char *setting,
     if (!st) {
         /* An override sets one value: "spp=64 seed=1" is two overrides. */
         int expect = overrides[k].param ? 3 : 5;
+        if (!strcmp(overrides[k].statement, "render subsample"))
+            expect = 4;
         if (c.ntok != expect)
             st = fail(&c, 1, SVET_ERR_PARSE,
                       "expected exactly one value after '='");
