@@ -180,6 +180,7 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(TESTLIB)
 test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
 	$(if $(SVET_MAIN),sh tests/cmd/test_merge.sh $(BUILD)/svet)
+	$(if $(SVET_MAIN),sh tests/cmd/test_merge_methods.sh $(BUILD)/svet)
 	$(if $(SVET_MAIN),sh tests/cmd/test_render_parallel.sh $(BUILD)/svet)
 	$(if $(SVET_MAIN),sh tests/cmd/test_frames.sh $(BUILD)/svet)
 
@@ -560,14 +561,17 @@ help:
 -include $(OBJS:.o=.d) $(TESTS:=.d) $(TESTSUP_OBJS:.o=.d)
 
 # `make test-merge`: split renders (--samples, --crop) merged by svet merge
-# to the single render's bits, float and double (tests/cmd/test_merge.sh),
-# and animations frame by frame (tests/cmd/test_frames.sh).
+# to the single render's bits, float and double (tests/cmd/test_merge.sh;
+# the Part II methods: tests/cmd/test_merge_methods.sh), and animations
+# frame by frame (tests/cmd/test_frames.sh).
 .PHONY: test-merge
 test-merge:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
 	sh tests/cmd/test_merge.sh build/float/svet
 	sh tests/cmd/test_merge.sh build/double/svet
+	sh tests/cmd/test_merge_methods.sh build/float/svet
+	sh tests/cmd/test_merge_methods.sh build/double/svet
 	sh tests/cmd/test_render_parallel.sh build/float/svet
 	sh tests/cmd/test_frames.sh build/float/svet
 	sh tests/cmd/test_frames.sh build/double/svet
