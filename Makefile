@@ -488,13 +488,16 @@ ab-render: $(BUILD)/svet
 	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) "$(THREADS)" \
 	    "$(PAIRS)" "$(SPP)"
 
-# `make bench-scale [SCALE_SPP=4096] [THREADS=2]`: the Cornell box split
-# into 2, 4 and 8 parts by samples and merged, against one render
-# (tools/bench-scale.sh; bench/results/scale.md).
+# `make bench-scale [SCALE_SPP=4096] [THREADS=2] [SCALE_SCENE=F]
+# [SCALE_OPTS="--set integrator=irradiance"]`: the Cornell box (or F)
+# split into 2, 4 and 8 parts by samples and merged, against one render
+# (tools/bench-scale.sh; bench/results/scale.md). At 4096 samples it
+# needs an otherwise idle machine: rates are what it measures.
 .PHONY: bench-scale
 bench-scale: $(BUILD)/svet
 	sh tools/bench-scale.sh $(BUILD)/svet $(or $(SCALE_SPP),4096) \
-	    $(or $(THREADS),2)
+	    $(or $(THREADS),2) $(or $(SCALE_SCENE),scenes/cbox.scn) \
+	    "$(SCALE_OPTS)
 
 # `make slurm-check`: a one-node Slurm on this machine runs
 # tools/slurm/*.sbatch and the merge is compared with a single render
