@@ -180,6 +180,7 @@ $(BUILD)/tests/test_%: $(BUILD)/tests/test_%.o $(TESTSUP) $(TESTLIB)
 test: check-tags $(TESTS) $(if $(SVET_MAIN),$(BUILD)/svet) check-links
 	@REAL=$(REAL) sh tools/run-tests.sh $(TESTS)
 	$(if $(SVET_MAIN),sh tests/cmd/test_merge.sh $(BUILD)/svet)
+	$(if $(SVET_MAIN),sh tests/cmd/test_merge_methods.sh $(BUILD)/svet)
 	$(if $(SVET_MAIN),sh tests/cmd/test_render_parallel.sh $(BUILD)/svet)
 	$(if $(SVET_MAIN),sh tests/cmd/test_frames.sh $(BUILD)/svet)
 
@@ -495,13 +496,16 @@ ab-render: $(BUILD)/svet
 	REAL=$(REAL) sh tools/ab-render.sh $(BUILD)/svet $(BASE) "$(THREADS)" \
 	    "$(PAIRS)" "$(SPP)"
 
-# `make bench-scale [SCALE_SPP=4096] [THREADS=2]`: the Cornell box split
-# into 2, 4 and 8 parts by samples and merged, against one render
-# (tools/bench-scale.sh; bench/results/scale.md).
+# `make bench-scale [SCALE_SPP=4096] [THREADS=2] [SCALE_SCENE=F]
+# [SCALE_OPTS="--set integrator=irradiance"]`: the Cornell box (or F)
+# split into 2, 4 and 8 parts by samples and merged, against one render
+# (tools/bench-scale.sh; bench/results/scale.md). At 4096 samples it
+# needs an otherwise idle machine: rates are what it measures.
 .PHONY: bench-scale
 bench-scale: $(BUILD)/svet
 	sh tools/bench-scale.sh $(BUILD)/svet $(or $(SCALE_SPP),4096) \
-	    $(or $(THREADS),2)
+	    $(or $(THREADS),2) $(or $(SCALE_SCENE),scenes/cbox.scn) \
+	    "$(SCALE_OPTS)
 
 # `make slurm-check`: a one-node Slurm on this machine runs
 # tools/slurm/*.sbatch and the merge is compared with a single render
@@ -568,14 +572,17 @@ help:
 -include $(OBJS:.o=.d) $(TESTS:=.d) $(TESTSUP_OBJS:.o=.d)
 
 # `make test-merge`: split renders (--samples, --crop) merged by svet merge
-# to the single render's bits, float and double (tests/cmd/test_merge.sh),
-# and animations frame by frame (tests/cmd/test_frames.sh).
+# to the single render's bits, float and double (tests/cmd/test_merge.sh;
+# the Part II methods: tests/cmd/test_merge_methods.sh), and animations
+# frame by frame (tests/cmd/test_frames.sh).
 .PHONY: test-merge
 test-merge:
 	$(MAKE) REAL=float BUILD=build/float build/float/svet
 	$(MAKE) REAL=double BUILD=build/double build/double/svet
 	sh tests/cmd/test_merge.sh build/float/svet
 	sh tests/cmd/test_merge.sh build/double/svet
+	sh tests/cmd/test_merge_methods.sh build/float/svet
+	sh tests/cmd/test_merge_methods.sh build/double/svet
 	sh tests/cmd/test_render_parallel.sh build/float/svet
 	sh tests/cmd/test_frames.sh build/float/svet
 	sh tests/cmd/test_frames.sh build/double/svet

@@ -47,6 +47,7 @@ typedef struct {
     bool resume;                 /* --resume */
     long frame_a, frame_b;       /* --frame K (K:K+1) or --frames A:B, the
                                     frames A..B-1; frame_b 0: not given */
+    bool frames_range;           /* the frames came as --frames A:B */
     bool frame_count;            /* --frame-count */
     cmd_scene_opts_t so;         /* --threads, --seed, --set */
 } cmd_render_args_t;

@@ -325,6 +325,7 @@ static int opt_frames(void *args, const char *cmd, const char *opt,
             return cmd_bad_value(cmd, opt, v);
     }
     o->frame_a = a, o->frame_b = b;
+    o->frames_range = strcmp(opt, "--frame") != 0;
     return SVET_EXIT_OK;
 }
 
@@ -772,8 +773,9 @@ int cmd_render(int argc, char **argv)
     else if (some && b > n)
         rc = cmd_error("render", SVET_EXIT_USAGE, "%s: --frame%s %ld%s%.0ld: "
                        "the animation has frames 0..%d; nothing was "
-                       "written", o.scene, b - a > 1 ? "s" : "", a,
-                       b - a > 1 ? ":" : "", b - a > 1 ? b : 0, n - 1);
+                       "written", o.scene, o.frames_range ? "s" : "", a,
+                       o.frames_range ? ":" : "", o.frames_range ? b : 0,
+                       n - 1);
     /* every frame's camera and output names before any frame renders */
     svet_error err;
     svet_error_clear(&err);

@@ -1,17 +1,27 @@
 #!/bin/sh
 # bench-scale.sh - the overhead of a split render (README: renders over
-# several machines): the Cornell box rendered once, then split by samples
-# into 2, 4 and 8 parts run one after another on this machine and merged
-# (svet merge). Prints a markdown table: the parts' time plus the merge's
-# over the single render's, the merge alone, the size of one part file,
-# and whether the merged EXR is the single render's bytes (cmp).
-# Usage: sh tools/bench-scale.sh SVET [SPP] [THREADS]   (make bench-scale)
+# several machines): the Cornell box (or SCENE) rendered once, then split
+# by samples into 2, 4 and 8 parts run one after another on this machine
+# and merged (svet merge). Prints a markdown table: the parts' time plus
+# the merge's over the single render's, the merge alone, the size of one
+# part file, and whether the merged EXR is the single render's bytes (cmp).
+# SCENE and OPTS (svet render options, e.g. "--set integrator=irradiance")
+# measure another scene or method: a method with a pre-pass (photon maps,
+# the irradiance cache) computes it in every part, and the ratio shows
+# what that costs. The default, 4096 samples of the Cornell box rendered
+# four times over, is meant for an otherwise idle machine (rates are what
+# it measures).
+# Usage: sh tools/bench-scale.sh SVET [SPP] [THREADS] [SCENE] [OPTS]
+#        (make bench-scale [SCALE_SPP=N] [THREADS=T] [SCALE_SCENE=F]
+#         [SCALE_OPTS="..."])
 set -u
-S=${1:?usage: bench-scale.sh SVET [SPP] [THREADS]}
+S=${1:?usage: bench-scale.sh SVET [SPP] [THREADS] [SCENE] [OPTS]}
 SPP=${2:-4096}
 TH=${3:-2}
+SCENE=${4:-scenes/cbox.scn}
+OPTS=${5:-}
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
-A="scenes/cbox.scn --spp $SPP -q --threads $TH"
+A="$SCENE $OPTS --spp $SPP -q --threads $TH"
 now() { date +%s.%N; }
 t0=$(now)
 $S render $A -o $T/full.exr || exit 1

@@ -9,7 +9,9 @@
 # .exr, as svet render does. From the environment: SVET (default
 # build/float/svet), FRAMES=A:B (frames A..B-1; default all, from svet
 # render --frame-count), PARTS (default 1) and, when PARTS > 1, SPP (the
-# samples per pixel, split as render-parallel.sh splits them). SVET, the
+# samples per pixel, split as render-parallel.sh splits them; at least
+# PARTS, so that no part is empty). A bad FRAMES, PARTS or SPP is refused
+# with a message before anything runs. SVET, the
 # scene and the outputs must be at the same paths on every host (a shared
 # file system): the merges run here.
 # Tests: tests/cmd/test_frames.sh
@@ -21,10 +23,16 @@ PARTS=${PARTS:-1}
 popts=""
 while [ $# -gt 0 ] && [ "$1" != -- ]; do popts="$popts $1"; shift; done
 [ $# -gt 0 ] && shift
-command -v parallel >/dev/null || { echo "render-frames.sh: GNU parallel is not installed" >&2; exit 1; }
+die() { echo "render-frames.sh: $*" >&2; exit 1; }
+command -v parallel >/dev/null || die "GNU parallel is not installed"
+count() { case $1 in ''|*[!0-9]*) return 1 ;; esac; }
+count "$PARTS" && [ "$PARTS" -ge 1 ] ||
+    die "PARTS=$PARTS: expected a whole number of parts, 1 or more"
 case $OUT in *%*) ;; *.exr) OUT="${OUT%.exr}-%04d.exr" ;; *) OUT="$OUT-%04d" ;; esac
 if [ -n "${FRAMES:-}" ]; then
     a=${FRAMES%%:*}; b=${FRAMES#*:}
+    count "$a" && count "$b" && [ "$a" -lt "$b" ] ||
+        die "FRAMES=$FRAMES: expected A:B, the frames A..B-1 (A < B)"
 else
     a=0; b=$("$SVET" render "$SCENE" "$@" --frame-count) || exit 2
     [ "$b" -gt 0 ] || { echo "render-frames.sh: $SCENE has no animation" >&2; exit 1; }
@@ -35,6 +43,8 @@ if [ "$PARTS" -le 1 ]; then
         ::: $(seq "$a" $((b - 1)))
 fi
 SPP=${SPP:?set SPP to the samples per pixel to split a frame in PARTS}
+count "$SPP" && [ "$SPP" -ge "$PARTS" ] ||
+    die "SPP=$SPP: expected a whole number of samples, at least PARTS=$PARTS"
 base=${OUT%.exr}
 list=$(mktemp)
 trap 'rm -f "$list"' EXIT

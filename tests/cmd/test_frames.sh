@@ -6,8 +6,8 @@
 # frame split by samples and by crop and merged is the frame rendered
 # whole, and parts of two frames are refused; tools/render-frames.sh under
 # GNU parallel gives the serial bits, whole frames and frames in parts
-# (skipped with a message without parallel); the refusals print their
-# messages and overwrite nothing.
+# (skipped with a message without parallel); the refusals of svet render
+# and of render-frames.sh print their messages and overwrite nothing.
 # Usage: sh tests/cmd/test_frames.sh build/float/svet
 set -u
 S=${1:?usage: test_frames.sh SVET}
@@ -83,6 +83,9 @@ refuse "a frame out of range" "--frame 3: the animation has frames 0..2" \
     render $R --frame 3 -o $T/keep.exr
 refuse "frames out of range" "--frames 2:5: the animation has frames 0..2" \
     render $R --frames 2:5 -o $T/keep.exr
+refuse "one frame out of range by --frames" \
+    "--frames 3:4: the animation has frames 0..2" \
+    render $R --frames 3:4 -o $T/keep.exr
 refuse "an empty --frames" "bad value" render $R --frames 2:2 -o $T/keep.exr
 refuse "a bad --frame" "bad value" render $R --frame x -o $T/keep.exr
 refuse "--frame of a still scene" "the scene has no animation" \
@@ -120,6 +123,24 @@ if command -v parallel >/dev/null; then
             no "render-frames.sh in parts: frame $k differs"
     done
     [ -f $T/pp-0.exr ] && no "render-frames.sh FRAMES=1:3 rendered frame 0"
+    # its refusals, before anything runs
+    script() { # WHAT MESSAGE ENV...
+        what=$1; msg=$2; shift 2
+        if env SVET=$S "$@" sh tools/render-frames.sh $T/a.scn \
+            "$T/sr-%d.exr" -- --threads 1 2>$T/err; then
+            no "render-frames.sh: $what accepted"
+        fi
+        grep -qF -- "$msg" $T/err ||
+            no "render-frames.sh: $what: no '$msg' in: $(cat $T/err)"
+    }
+    script "an empty FRAMES" "FRAMES=2:2: expected A:B" FRAMES=2:2
+    script "a FRAMES without B" "FRAMES=1: expected A:B" FRAMES=1
+    script "PARTS=0" "PARTS=0: expected a whole number of parts" PARTS=0
+    script "more parts than samples" "SPP=2: expected a whole number of \
+samples, at least PARTS=3" PARTS=3 SPP=2
+    script "a frame out of range" "--frame 3: the animation has frames 0..2" \
+        FRAMES=3:4
+    ls $T/sr-* >/dev/null 2>&1 && no "a refusal of render-frames.sh wrote a frame"
 else
     echo "test_frames: render-frames.sh skipped: GNU parallel is not installed"
 fi
