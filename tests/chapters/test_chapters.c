@@ -21,6 +21,7 @@ static const char *const PROGS[] = {
     "ch01_brdf", "ch01_geometry", "ch02_colour", "ch03_estimator",
     "ch04_montecarlo", "ch05_cases", "ch06_display", "ch07_grids",
     "ch08_photons",
+    "ch09_irradiance",
     "ch10_textures",
     "ch11_media",
 };
@@ -198,6 +199,7 @@ START_TEST(a_bad_value_is_refused)
         { "ch04_montecarlo", "--kmax", "11" },
         { "ch07_grids", "--width", "-4" },
         { "ch10_textures", "--size", "8" },
+        { "ch09_irradiance", "--ref-spp", "0" },
     };
     const char *dir = scratch();
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
@@ -356,6 +358,28 @@ START_TEST(ch07_writes_its_heat_maps_and_makes_its_directory)
 }
 END_TEST
 
+START_TEST(ch09_writes_the_row_and_the_error_against_a)
+{
+    const char *dir = run_small("ch09_irradiance",
+                                "--scale 0.05 --spp 1 --ref-spp 4");
+    int n = read_csv(dir, "row.csv", lines, 1000);
+    ck_assert_str_eq(lines[0], "x,gradients,no_gradients,path");
+    ck_assert_int_eq(n, 1 + 12); /* 256 x 0.05 pixels */
+    n = read_csv(dir, "error.csv", lines, 1000);
+    ck_assert_str_eq(lines[0], "a,records,rel_rmse,records_no_gradients,"
+                               "rel_rmse_no_gradients");
+    ck_assert_int_eq(n, 1 + 5);
+    /* a falls down the table, and a smaller a takes at least as many
+     * records (a record is valid over a radius proportional to a) */
+    for (int i = 2; i < n; i++) {
+        ck_assert(field(lines[i], 0) < field(lines[i - 1], 0));
+        ck_assert(field(lines[i], 1) >= field(lines[i - 1], 1));
+    }
+    ck_assert(field(lines[n - 1], 1) > field(lines[1], 1));
+    rm_dir(dir);
+}
+END_TEST
+
 START_TEST(ch10_writes_the_grazing_errors_and_the_noise)
 {
     const char *dir = run_small("ch10_textures", "--size 16");
@@ -388,6 +412,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, ch05_writes_its_table);
     tcase_add_test(tc, ch06_writes_the_curve_and_the_histogram);
     tcase_add_test(tc, ch07_writes_its_heat_maps_and_makes_its_directory);
+    tcase_add_test(tc, ch09_writes_the_row_and_the_error_against_a);
     tcase_add_test(tc, ch10_writes_the_grazing_errors_and_the_noise);
     suite_add_tcase(s, tc);
     return s;

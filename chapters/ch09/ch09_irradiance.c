@@ -1,0 +1,288 @@
+/* cc -std=c11 -O2 -fopenmp -Iinclude chapters/ch09/ch09_irradiance.c src/irradiance/irrpart.c src/irradiance/irrcache.c src/irradiance/gradients.c src/render/render.c src/render/tracer.c src/render/integrator.c src/render/light.c src/render/camera.c src/render/scene.c src/render/scenefile.c src/materials/material.c src/materials/brdf.c src/core/sample.c src/core/rng.c src/materials/cobject.c src/geometry/shape.c src/geometry/sphere.c src/geometry/plane.c src/geometry/disk.c src/geometry/parallelogram.c src/geometry/triangle.c src/geometry/box.c src/geometry/cylinder.c src/geometry/cone.c src/geometry/quadric.c src/geometry/xform.c src/core/bbox.c src/core/ray.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/colour/tonemap.c src/io/fileio.c src/core/error.c -lm -o ch09 */
+/*
+ * ch09_irradiance.c - chapter 9, the irradiance gradient method (Ward,
+ * Rubinstein, Clear 1988; Ward & Heckbert 1992): the Cornell box of
+ * scenes/cbox-irradiance.scn by the cache, with and without app. E's
+ * gradients, beside the path tracer; the cache's records drawn over the
+ * image (a dot at each, a circle of its radius R); a row of the images
+ * side by side; and the error against a converged path-traced render as
+ * Ward's accuracy a falls, with and without gradients, with the records
+ * it took. Writes PFM and PPM images, row.csv and error.csv (drawn by
+ * row.gp and error.gp beside this file: `make figures`).
+ * The method: src/irradiance/irrpart.c, irrcache.c, gradients.c (tests:
+ * tests/irradiance/).
+ *
+ * usage: ch09 [OUTDIR] [--scale F] [--spp N] [--ref-spp N] [--threads N]
+ * (default out/ch09; run from the top directory, where scenes/ is)
+ */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../chapter.h"
+#include "colour/tonemap.h"
+#include "io/netpbm.h"
+#include "irradiance/irrpart.h"
+#include "render/render.h"
+#include "render/scenefile.h"
+
+/* the one part this program offers: the irradiance cache */
+static const scene_part_t *const parts[] = { &irr_part, NULL };
+static const scene_features_t features = { .parts = parts };
+
+static int fail(const char *what, const svet_error *e)
+{
+    fprintf(stderr, "ch09: %s: %s\n", what, e->msg);
+    return CHAPTER_EXIT_FAIL;
+}
+
+/* scenes/cbox-irradiance.scn at `scale` of its resolution, with `threads`
+ * and extra settings (NULL-terminated, may be NULL) */
+static svet_status load(scene_t *s, double scale, int threads,
+                        const char *const *set, svet_error *e)
+{
+    svet_status st = scenefile_read_with(s, "scenes/cbox-irradiance.scn",
+                                         &features, e);
+    if (st != SVET_OK)
+        return st;
+    char buf[96];
+    snprintf(buf, sizeof buf, "resolution=%dx%d",
+             (int)fmax(8, s->camera.width * scale),
+             (int)fmax(8, s->camera.height * scale));
+    st = scenefile_override(s, buf, e);
+    snprintf(buf, sizeof buf, "threads=%d", threads);
+    if (st == SVET_OK)
+        st = scenefile_override(s, buf, e);
+    for (int i = 0; st == SVET_OK && set && set[i]; i++)
+        st = scenefile_override(s, set[i], e);
+    if (st != SVET_OK)
+        scene_free(s);
+    return st;
+}
+
+/* DIR/STEM.pfm and, with a linear exposure and an sRGB curve,
+ * DIR/STEM.ppm */
+static svet_status write_pair(const char *dir, const char *stem,
+                              const image_t *img, svet_error *e)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s.pfm", dir, stem);
+    svet_status st = netpbm_write_pfm(path, img, e);
+    image_t shown = { 0 };
+    tonemap_params_t tp;
+    tonemap_defaults(&tp, TONEMAP_LINEAR);
+    if (st == SVET_OK)
+        st = tonemap_apply(img, &shown, &tp, NULL, e);
+    if (st == SVET_OK) {
+        snprintf(path, sizeof path, "%s/%s.ppm", dir, stem);
+        st = netpbm_write_ppm(path, &shown, 8, e);
+    }
+    image_free(&shown);
+    return st;
+}
+
+/* A render of the scene with settings `set`: its image, and with
+ * `records` its cache's record count (0 for the path tracer). With
+ * `dots`, the records drawn over a copy of the image into *dots. */
+static svet_status render_one(double scale, long spp, int threads,
+                              const char *const *set, image_t *img,
+                              size_t *records, image_t *dots, svet_error *e)
+{
+    scene_t s;
+    svet_status st = load(&s, scale, threads, set, e);
+    if (st != SVET_OK)
+        return st;
+    render_t r;
+    st = render_init(&r, &s, e);
+    if (st != SVET_OK) {
+        scene_free(&s);
+        return st;
+    }
+    st = render_pass(&r, spp, threads, NULL, NULL);
+    if (st != SVET_OK)
+        *e = r.error;
+    if (st == SVET_OK)
+        st = render_image(&r, img, e);
+    const irrcache_t *c = r.method == &irr_method && r.method_state
+                              ? irr_state_cache(r.method_state) : NULL;
+    if (records)
+        *records = c ? c->n : 0;
+    if (st == SVET_OK && dots && c) {
+        st = image_alloc(dots, img->width, img->height, 3, e);
+        if (st == SVET_OK) {
+            /* the image, dimmed, then each record: its radius R as seen
+             * from the camera (across the view, at the record's
+             * distance), a circle of it, and a dot at its centre */
+            size_t n = (size_t)img->width * (size_t)img->height * 3;
+            for (size_t i = 0; i < n; i++)
+                dots->px[i] = 0.5f * img->px[i];
+            for (size_t i = 0; i < c->n; i++) {
+                const irr_record_t *rec = &c->rec[i];
+                real x, y, x2, y2;
+                VECTOR3 q;
+                vec_copy(q, rec->p);
+                for (int k = 0; k < 3; k++)
+                    q[k] += rec->r * r.camera.u[k];
+                if (!camera_project(&r.camera, rec->p, &x, &y) ||
+                    !camera_project(&r.camera, q, &x2, &y2))
+                    continue;
+                double rad = hypot((double)(x2 - x), (double)(y2 - y));
+                int steps = 8 + (int)(8 * rad);
+                for (int k = 0; k <= steps; k++) {
+                    double a = 2 * 3.14159265358979323846 * k / steps;
+                    int px = (int)floor((double)x + rad * cos(a));
+                    int py = (int)floor((double)y + rad * sin(a));
+                    if (px >= 0 && py >= 0 && px < img->width &&
+                        py < img->height) {
+                        float *p = image_at(dots, px, py);
+                        p[0] = 0.25f, p[1] = 0.5f, p[2] = 1;
+                    }
+                }
+                int px = (int)floor((double)x), py = (int)floor((double)y);
+                if (px >= 0 && py >= 0 && px < img->width && py < img->height) {
+                    float *p = image_at(dots, px, py);
+                    p[0] = 1, p[1] = 0.6f, p[2] = 0.1f;
+                }
+            }
+        }
+    }
+    render_free(&r);
+    scene_free(&s);
+    return st;
+}
+
+/* The root mean square difference of a and the reference b over the
+ * pixels that do not see the light (b below 1 in every channel), relative
+ * to b's mean there */
+static double rel_rmse(const image_t *a, const image_t *b)
+{
+    size_t n = (size_t)a->width * (size_t)a->height;
+    double s = 0, m = 0;
+    long used = 0;
+    for (size_t i = 0; i < n; i++) {
+        const float *p = b->px + 3 * i, *q = a->px + 3 * i;
+        if (p[0] >= 1 || p[1] >= 1 || p[2] >= 1)
+            continue;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)q[c] - (double)p[c];
+            s += d * d;
+            m += (double)p[c];
+        }
+        used += 3;
+    }
+    return used > 0 && m > 0 ? sqrt(s / used) / (m / used) : 0;
+}
+
+int main(int argc, char **argv)
+{
+    double scale = 0.25, spp = 4, ref_spp = 256, threads = 0;
+    const chapter_opt_t opts[] = {
+        { "--scale", "F", "resolution relative to cbox-irradiance.scn's",
+          &scale, 0.03, 4 },
+        { "--spp", "N", "samples per pixel of the cache's renders", &spp, 1,
+          1e5 },
+        { "--ref-spp", "N", "samples per pixel of the path tracer's",
+          &ref_spp, 1, 1e6 },
+        { "--threads", "N", "threads (0 = every core)", &threads, 0, 1024 },
+    };
+    const chapter_cli_t cli = {
+        "ch09_irradiance",
+        "Chapter 9: the Cornell box by the irradiance cache with and without "
+        "gradients,\nbeside the path tracer; the records drawn over the "
+        "image; the error against a\nconverged render as the accuracy a "
+        "falls.",
+        "out/ch09", opts, (int)(sizeof opts / sizeof *opts)
+    };
+    const char *dir;
+    int rc = chapter_begin(&cli, argc, argv, &dir);
+    if (rc >= 0)
+        return rc;
+    svet_error e;
+    int nt = (int)threads;
+    long n = (long)spp;
+    image_t ref = { 0 }, grad = { 0 }, flat = { 0 }, dots = { 0 };
+    size_t records;
+
+    printf("ch09: the path tracer, %ld samples per pixel\n", (long)ref_spp);
+    static const char *const path_set[] = { "integrator=path", NULL };
+    if (render_one(scale, (long)ref_spp, nt, path_set, &ref, NULL, NULL,
+                   &e) != SVET_OK || write_pair(dir, "ch09_path", &ref, &e))
+        return fail("path tracer", &e);
+
+    printf("ch09: the cache with gradients, and its records\n");
+    if (render_one(scale, n, nt, NULL, &grad, &records, &dots, &e) !=
+            SVET_OK || write_pair(dir, "ch09_irradiance", &grad, &e) ||
+        write_pair(dir, "ch09_records", &dots, &e))
+        return fail("cache", &e);
+    printf("  %zu records\n", records);
+    printf("ch09: the cache without gradients\n");
+    static const char *const flat_set[] = { "irradiance.gradients=off",
+                                            NULL };
+    if (render_one(scale, n, nt, flat_set, &flat, NULL, NULL, &e) !=
+            SVET_OK || write_pair(dir, "ch09_no_gradients", &flat, &e))
+        return fail("cache without gradients", &e);
+
+    /* the row through the middle of the image: the green channel */
+    chapter_file_t cf;
+    FILE *f = chapter_open(&cf, "ch09_irradiance", dir, "row.csv");
+    if (!f)
+        return CHAPTER_EXIT_FAIL;
+    int row = ref.height / 2;
+    fprintf(f, "# ch09_irradiance: row %d of the Cornell box, green "
+               "channel: the cache at %ld spp with and without gradients, "
+               "the path tracer at %ld spp\n", row, n, (long)ref_spp);
+    fprintf(f, "x,gradients,no_gradients,path\n");
+    for (int x = 0; x < ref.width; x++)
+        fprintf(f, "%d,%.6g,%.6g,%.6g\n", x, (double)image_at(&grad, x, row)[1],
+                (double)image_at(&flat, x, row)[1],
+                (double)image_at(&ref, x, row)[1]);
+    if (chapter_close(&cf, "ch09_irradiance") != 0)
+        return CHAPTER_EXIT_FAIL;
+    image_free(&grad);
+    image_free(&flat);
+    image_free(&dots);
+
+    printf("ch09: the error against the path tracer as a falls\n");
+    f = chapter_open(&cf, "ch09_irradiance", dir, "error.csv");
+    if (!f)
+        return CHAPTER_EXIT_FAIL;
+    fprintf(f, "# ch09_irradiance: the cache at %ld spp against the path "
+               "tracer at %ld spp, the relative RMS difference over the "
+               "pixels not seeing the light\n", n, (long)ref_spp);
+    fprintf(f, "a,records,rel_rmse,records_no_gradients,"
+               "rel_rmse_no_gradients\n");
+    printf("  %6s %8s %10s %8s %10s\n", "a", "records", "rmse", "records",
+           "rmse (no gradients)");
+    const double as[] = { 0.6, 0.4, 0.25, 0.15, 0.1 };
+    for (int i = 0; i < (int)(sizeof as / sizeof *as); i++) {
+        double err[2];
+        size_t rec[2];
+        for (int g = 0; g < 2; g++) {
+            char a[48];
+            snprintf(a, sizeof a, "irradiance.a=%g", as[i]);
+            const char *const set[] = { a, g ? "irradiance.gradients=off"
+                                             : "irradiance.gradients=on",
+                                        NULL };
+            image_t img = { 0 };
+            if (render_one(scale, n, nt, set, &img, &rec[g], NULL, &e) !=
+                SVET_OK) {
+                chapter_close(&cf, "ch09_irradiance");
+                return fail("error against a", &e);
+            }
+            err[g] = rel_rmse(&img, &ref);
+            image_free(&img);
+        }
+        fprintf(f, "%g,%zu,%.6g,%zu,%.6g\n", as[i], rec[0], err[0], rec[1],
+                err[1]);
+        printf("  %6g %8zu %10.4f %8zu %10.4f\n", as[i], rec[0], err[0],
+               rec[1], err[1]);
+    }
+    if (chapter_close(&cf, "ch09_irradiance") != 0)
+        return CHAPTER_EXIT_FAIL;
+    image_free(&ref);
+    return 0;
+}
