@@ -361,17 +361,10 @@ RADIANCE volpath_li(const void *state, const render_t *r,
         skip[0] = obj;
     bounce:
         depth++;
-        {
-            /* Russian roulette as ch. 5's path tracer */
-            real urr = pcg32_real(g);
-            if (it->roulette && depth >= it->roulette_depth) {
-                real q = real_min(real_max(rad_max(beta), REAL_C(0.05)),
-                                  REAL_C(1.0));
-                if (urr >= q)
-                    break;
-                beta = rad_scale(beta, 1 / q);
-            }
-        }
+        /* Russian roulette as ch. 5's path tracer's, the scattering
+         * events in media counted with the surfaces' */
+        if (!integrator_roulette(it, depth, g, &beta))
+            break;
         if (rad_is_black(beta))
             break;
     }
