@@ -417,9 +417,9 @@ reference:
 tradeoffs-photon: build/float/svet
 	sh tools/tradeoffs-photon.sh
 
-# `make tradeoffs-media`: volpath's error against time on the smoky Cornell
-# box and the cloud (tools/tradeoffs-media.sh; writes
-# docs/tradeoffs-media.md, about 10 minutes on 2 cores).
+# `make tradeoffs-media`: volpath's and volsingle's error against time on
+# the smoky Cornell box and the cloud (tools/tradeoffs-media.sh; writes
+# docs/tradeoffs-media.md, about 15 minutes on 2 cores).
 .PHONY: tradeoffs-media
 tradeoffs-media: build/float/svet
 	sh tools/tradeoffs-media.sh

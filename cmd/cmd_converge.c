@@ -25,6 +25,7 @@
 #include "io/fileio.h"
 #include "render/render.h"
 #include "render/scenefile.h"
+#include "render/scenepart.h"
 #include "stats/ztest.h"
 
 extern char **environ;
@@ -569,9 +570,13 @@ static svet_status run_spps(run_t *u, const double *spp, int ns,
     return SVET_OK;
 }
 
-static const char *integrator_name(scene_integrator i)
+/* The name `render integrator NAME` gives: a part's method (volpath,
+ * volsingle, photon, ...) or the core's integrator. */
+static const char *integrator_name(const scene_render_t *rs)
 {
-    switch (i) {
+    if (rs->method)
+        return rs->method->name;
+    switch (rs->integrator) {
     case SCENE_INTEGRATOR_PATH: return "path";
     case SCENE_INTEGRATOR_DIRECT: return "direct";
     case SCENE_INTEGRATOR_BSDF: return "bsdf";
@@ -858,7 +863,7 @@ int cmd_converge(int argc, char **argv)
         ref_var_path ? ref_var_path : "",
         o.time_mode ? "time budgets" : "sample counts", method,
         (unsigned long long)scene.render.seed, cam->width, cam->height,
-        integrator_name(scene.render.integrator),
+        integrator_name(&scene.render),
         scene.render.max_depth, scene.render.roulette ? "on" : "off",
         REAL_NAME, __VERSION__, r.accel_choice, scene.render.threads,
         CONVERGE_PSNR_PEAK);

@@ -10,7 +10,8 @@
  * tracking otherwise (Novak, Selle, Jarosz, "Residual Ratio Tracking",
  * SIGGRAPH 2014), and a distance to the next scattering event, exact in a
  * homogeneous medium (pbrt-v3 sec. 15.2.1) and by delta tracking
- * (Woodcock et al. 1965) under a majorant otherwise.
+ * (Woodcock et al. 1965) under a majorant otherwise; and the radiance
+ * the medium emits along a segment (pbrt-v4 sec. 11.1.2).
  * Tests: tests/medium/test_medium.c
  */
 #ifndef SVET_MEDIUM_H
@@ -44,9 +45,10 @@ typedef struct medium_s medium_t;
 
 struct medium_s {
     RADIANCE sigma_a, sigma_s; /* per unit length at density 1 */
-    RADIANCE emission;         /* emitted radiance per unit length at
-                                  density 1 (sigma_a times the radiance of
-                                  an emitting medium in equilibrium) */
+    RADIANCE emission;         /* L_e, the radiance the medium emits:
+                                  the source term is sigma_a(x) L_e
+                                  (pbrt-v4 sec. 11.1.2, eq. 11.3), so a
+                                  density scales it as it scales sigma_a */
     phase_t phase;
     /* the density: exactly one of these, or none for 1 everywhere */
     const volgrid_t *grid;     /* channel 0 of a grid */
@@ -124,5 +126,25 @@ RADIANCE medium_tr(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
  * with the per-channel ratio as weight. Draws from g. Can't fail. */
 bool medium_sample(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
                    real tmax, pcg32_t *g, real *t, RADIANCE *weight);
+
+/* true when some component emits: sigma_a > 0 and L_e > 0 in some
+ * channel (a medium with L_e but no absorption emits nothing). */
+bool medium_emits(const medium_t *m);
+
+/* The source term of emission at p, sum over components of sigma_a(p)
+ * L_e (pbrt-v4 sec. 11.1.2). Can't fail. */
+RADIANCE medium_source_at(const medium_t *m, const VECTOR3 p);
+
+/* The emitted radiance reaching o from o + t dir, t in [0, tmax]:
+ *   int_0^tmax Tr(0, t) sigma_a(x_t) L_e dt   (pbrt-v4 eq. 11.3 with
+ * eq. 11.5 integrated along the ray), per channel. Exact when the medium
+ * is homogeneous, S (1 - exp(-sigma_t tmax)) / sigma_t with S the source
+ * term (tmax may be VOLPATH_FAR-large), drawing nothing; otherwise
+ * ratio tracking with emission: tentative collisions at the majorant's
+ * rate mu, each adding the estimate of Tr so far times S(x) / mu (an
+ * unbiased estimate of the integral, by Campbell's theorem for the
+ * Poisson process of collisions), which draws from g. Can't fail. */
+RADIANCE medium_emitted(const medium_t *m, const VECTOR3 o,
+                        const VECTOR3 dir, real tmax, pcg32_t *g);
 
 #endif

@@ -113,4 +113,14 @@ RADIANCE integrator_nee(const integrator_t *it, const PATHPOINT *pp,
  * 0 when a is 0. */
 real integrator_mis_weight(real a, real b);
 
+/* Russian roulette (ch. 4) after a path's events-th scattering event
+ * (surface or medium): draws one number from g whether or not roulette
+ * is on, so the stream does not depend on it; when it->roulette and
+ * events >= it->roulette_depth the path goes on with probability q =
+ * min(1, max(0.05, max channel of *beta)), *beta divided by q (unbiased).
+ * Returns false when the path ends. The path tracer and volpath's walk
+ * share it. */
+bool integrator_roulette(const integrator_t *it, int events, pcg32_t *g,
+                         RADIANCE *beta);
+
 #endif

@@ -2,7 +2,8 @@
  * medium.c - the participating media of ch. 11: coefficients and their
  * checks, Beer-Lambert transmittance, ratio tracking, and distance
  * sampling exactly (homogeneous) or by delta tracking (gridded), for one
- * component or a sum of them (medium.h).
+ * component or a sum of them, and the radiance a medium emits along a
+ * segment (medium.h).
  * Tests: tests/medium/test_medium.c
  */
 #include "medium/medium.h"
@@ -320,5 +321,71 @@ bool medium_sample(const medium_t *m, const VECTOR3 o, const VECTOR3 dir,
         real pn = 1 - pr;
         w = rad_mul(w, rad_make((1 - sig.r / mu) / pn, (1 - sig.g / mu) / pn,
                                 (1 - sig.b / mu) / pn));
+    }
+}
+
+static bool emits_one(const medium_t *m)
+{
+    return (m->sigma_a.r > 0 && m->emission.r > 0) ||
+           (m->sigma_a.g > 0 && m->emission.g > 0) ||
+           (m->sigma_a.b > 0 && m->emission.b > 0);
+}
+
+bool medium_emits(const medium_t *m)
+{
+    for (int i = 0; i < m->ncomponents; i++)
+        if (emits_one(&m->components[i]))
+            return true;
+    return m->ncomponents == 0 && emits_one(m);
+}
+
+RADIANCE medium_source_at(const medium_t *m, const VECTOR3 p)
+{
+    if (m->ncomponents == 0)
+        return rad_scale(rad_mul(m->sigma_a, m->emission),
+                         medium_density(m, p));
+    RADIANCE s = rad_grey(0);
+    for (int i = 0; i < m->ncomponents; i++)
+        s = rad_add(s, medium_source_at(&m->components[i], p));
+    return s;
+}
+
+/* int_0^d S exp(-st t) dt in one channel; st = 0 leaves no absorption,
+ * so S = 0 there as well. */
+static real emitted_channel(real S, real st, real d)
+{
+    if (!(S > 0))
+        return 0;
+    return st > 0 ? S * (real)-expm1(-st * d) / st : S * d;
+}
+
+RADIANCE medium_emitted(const medium_t *m, const VECTOR3 o,
+                        const VECTOR3 dir, real tmax, pcg32_t *g)
+{
+    if (medium_is_homogeneous(m)) {
+        RADIANCE S = medium_source_at(m, o), st = medium_sigma_t(m);
+        return rad_make(emitted_channel(S.r, st.r, tmax),
+                        emitted_channel(S.g, st.g, tmax),
+                        emitted_channel(S.b, st.b, tmax));
+    }
+    real mu = majorant(m);
+    if (!(mu > 0))
+        return rad_grey(0);
+    RADIANCE tr = rad_grey(1), L = rad_grey(0);
+    real t = 0;
+    for (;;) {
+        t -= log(1 - pcg32_real(g)) / mu;
+        if (t >= tmax)
+            return L;
+        VECTOR3 p;
+        point_at(o, dir, t, p);
+        L = rad_add(L, rad_mul(tr, rad_scale(medium_source_at(m, p),
+                                             1 / mu)));
+        RADIANCE sig, ss;
+        medium_coeffs_at(m, p, &sig, &ss);
+        tr = rad_mul(tr, rad_make(1 - sig.r / mu, 1 - sig.g / mu,
+                                  1 - sig.b / mu));
+        if (rad_max(tr) <= 0)
+            return L;
     }
 }

@@ -1,6 +1,7 @@
 /*
  * medpart.c - the participating media of ch. 11 in the scene file
- * (medpart.h): `medium NAME homogeneous|grid KEYS`, the shape keys
+ * (medpart.h): `medium NAME homogeneous|grid KEYS`, `medium NAME mix
+ * A B ...` (medium_mix of named media), the shape keys
  * `medium NAME`, `outside NAME`, `invisible`, and the check that a
  * boundary is closed. The rendering method is in volpath.c.
  * Tests: tests/medium/test_medpart.c
@@ -50,8 +51,8 @@ const medium_t *medpart_global(const scene_t *s)
 
 /* --- `medium NAME KIND KEYS` ---------------------------------------------- */
 
-static const char *const kinds[] = { "homogeneous", "grid", NULL };
-enum { K_HOMOGENEOUS, K_GRID, K_N };
+static const char *const kinds[] = { "homogeneous", "grid", "mix", NULL };
+enum { K_HOMOGENEOUS, K_GRID, K_MIX, K_N };
 static const char *const phases[] = { "isotropic", "hg", "rayleigh", NULL };
 
 enum { M_SIGMA_A, M_SIGMA_S, M_EMISSION, M_PHASE, M_G, M_GLOBAL, M_FILE,
@@ -122,6 +123,107 @@ static svet_status load_grid(scenefile_ctx *c, named_medium_t *nm,
     return SVET_OK;
 }
 
+/* A new named medium at the end of d's list (NULL: out of memory). */
+static named_medium_t *new_medium(medpart_data_t *d, const char *name)
+{
+    named_medium_t **grown = realloc(d->media, (size_t)(d->nmedia + 1) *
+                                                   sizeof *grown);
+    if (!grown)
+        return NULL;
+    d->media = grown;
+    named_medium_t *nm = calloc(1, sizeof *nm);
+    if (!nm)
+        return NULL;
+    d->media[d->nmedia++] = nm;
+    snprintf(nm->name, sizeof nm->name, "%s", name);
+    return nm;
+}
+
+/* `medium NAME mix A B ... [global]`: the sum of media defined above
+ * (medium_mix), each a homogeneous or grid medium; defined above, so a
+ * mix cannot reach itself. */
+static svet_status mix_statement(scenefile_ctx *c, medpart_data_t *d,
+                                 const char *name, int col)
+{
+    int idx[MEDIUM_MAX_COMPONENTS], n = 0, ntok;
+    bool global = false;
+    int global_col = 0;
+    while (scenefile_tokens(c, &ntok), ntok > 0) {
+        const tok_t *t = scenefile_tokens(c, &ntok);
+        if (scenefile_tok_is(&t[0], "global")) {
+            global = true;
+            global_col = t[0].col;
+            scenefile_skip(c, 1);
+            continue;
+        }
+        char comp[SCENE_MAX_NAME + 1];
+        int ccol;
+        svet_status st = scenefile_name(c, "medium (a component of the mix)",
+                                        comp, &ccol);
+        if (st)
+            return st;
+        if (!strcmp(comp, name))
+            return scenefile_fail(c, ccol, SVET_ERR_PARSE,
+                                  "medium '%s' cannot be a component of "
+                                  "itself", name);
+        int k = -1;
+        for (int i = 0; i < d->nmedia; i++)
+            if (!strcmp(d->media[i]->name, comp))
+                k = i;
+        if (k < 0) {
+            const char *names[64];
+            int nn = 0;
+            for (int i = 0; i < d->nmedia && nn < 64; i++)
+                names[nn++] = d->media[i]->name;
+            const char *near = scene_nearest_name(comp, names, nn);
+            return scenefile_fail(c, ccol, SVET_ERR_PARSE,
+                                  "unknown medium '%s'%s%s%s", comp,
+                                  near ? " (did you mean '"
+                                       : " (define the components above "
+                                         "the mix",
+                                  near ? near : "", near ? "'?)" : ")");
+        }
+        if (d->media[k]->m.ncomponents > 0)
+            return scenefile_fail(c, ccol, SVET_ERR_PARSE,
+                                  "'%s' is a mix itself: a mix sums "
+                                  "homogeneous and grid media", comp);
+        if (n == MEDIUM_MAX_COMPONENTS)
+            return scenefile_fail(c, ccol, SVET_ERR_RANGE,
+                                  "a mix has at most %d components",
+                                  MEDIUM_MAX_COMPONENTS);
+        idx[n++] = k;
+    }
+    if (n == 0)
+        return scenefile_fail(c, scenefile_eol_col(c), SVET_ERR_PARSE,
+                              "medium '%s' mix expects the names of its "
+                              "components", name);
+    if (global && d->global >= 0)
+        return scenefile_fail(c, global_col, SVET_ERR_PARSE,
+                              "medium '%s' is the global medium already",
+                              d->media[d->global]->name);
+    for (int i = 0; global && i < n; i++)
+        if (!medium_is_homogeneous(&d->media[idx[i]]->m))
+            return scenefile_fail(c, global_col, SVET_ERR_PARSE,
+                                  "'%s' is a grid, which fills a box, not "
+                                  "the whole scene", d->media[idx[i]]->name);
+    if (d->nmedia == MEDPART_MAX_MEDIA)
+        return scenefile_fail(c, col, SVET_ERR_RANGE, "more than %d media",
+                              MEDPART_MAX_MEDIA);
+    named_medium_t *nm = new_medium(d, name);
+    if (!nm)
+        return scenefile_fail(c, col, SVET_ERR_NOMEM, "out of memory");
+    for (int i = 0; i < n; i++)
+        nm->parts[i] = d->media[idx[i]]->m;
+    nm->m = medium_mix(nm->parts, n);
+    svet_error e;
+    if (medium_check(&nm->m, &e))
+        return scenefile_fail(c, col, SVET_ERR_RANGE, "medium '%s': %s",
+                              name, e.msg);
+    if (global)
+        d->global = d->nmedia - 1;
+    return SVET_OK;
+}
+
 static svet_status medium_statement(scenefile_ctx *c)
 {
     char name[SCENE_MAX_NAME + 1];
@@ -140,6 +242,8 @@ static svet_status medium_statement(scenefile_ctx *c)
     st = scenefile_kind(c, "medium", name, kinds, &kind);
     if (st)
         return st;
+    if (kind == K_MIX)
+        return mix_statement(c, d, name, col);
     val_t v[M_N];
     char stmt[64];
     snprintf(stmt, sizeof stmt, "medium %s", kinds[kind]);
@@ -159,6 +263,11 @@ static svet_status medium_statement(scenefile_ctx *c)
         return scenefile_fail(c, v[M_G].col, SVET_ERR_RANGE,
                               "g must be in (-1, 1) (at most %g in size)",
                               (double)PHASE_MAX_G);
+    if (v[M_EMISSION].set && !rad_is_black(colour_of(&v[M_EMISSION], 0)) &&
+        rad_is_black(colour_of(&v[M_SIGMA_A], 0)))
+        return scenefile_fail(c, v[M_EMISSION].col, SVET_ERR_PARSE,
+                              "a medium emits sigma_a times 'emission' "
+                              "(pbrt-v4's L_e): give it 'sigma_a' > 0");
     if (v[M_GLOBAL].on && d->global >= 0)
         return scenefile_fail(c, v[M_GLOBAL].col, SVET_ERR_PARSE,
                               "medium '%s' is the global medium already",
@@ -171,16 +280,9 @@ static svet_status medium_statement(scenefile_ctx *c)
     if (d->nmedia == MEDPART_MAX_MEDIA)
         return scenefile_fail(c, col, SVET_ERR_RANGE, "more than %d media",
                               MEDPART_MAX_MEDIA);
-    named_medium_t **grown = realloc(d->media, (size_t)(d->nmedia + 1) *
-                                                   sizeof *grown);
-    if (!grown)
-        return scenefile_fail(c, col, SVET_ERR_NOMEM, "out of memory");
-    d->media = grown;
-    named_medium_t *nm = calloc(1, sizeof *nm);
+    named_medium_t *nm = new_medium(d, name);
     if (!nm)
         return scenefile_fail(c, col, SVET_ERR_NOMEM, "out of memory");
-    d->media[d->nmedia++] = nm;
-    snprintf(nm->name, sizeof nm->name, "%s", name);
     nm->m = medium_homogeneous(colour_of(&v[M_SIGMA_A], 0),
                                colour_of(&v[M_SIGMA_S], 0));
     nm->m.emission = colour_of(&v[M_EMISSION], 0);

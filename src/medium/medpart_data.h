@@ -16,6 +16,9 @@ typedef struct {
     medium_t m;
     volgrid_t grid;
     bool has_grid;
+    /* `mix`: copies of its components (their grids stay with the media
+       that read them), m.components points here */
+    medium_t parts[MEDIUM_MAX_COMPONENTS];
 } named_medium_t;
 
 /* One side of the boundaries of one shape statement: the record objects
@@ -95,6 +98,11 @@ typedef struct {
     const COBJECT *obj;
     VECTOR3 dir;
     const phase_t *ph; /* the scattering component's phase; NULL: med's */
+    bool mix;          /* med is a mix whose components' phases scatter
+                          together, each weighted by its sigma_s at x
+                          (volsingle): phase_toward gives
+                          sum_i sigma_s_i(x) p_i per channel */
+    VECTOR3 x;         /* the point, for mix */
 } volpath_at_t;
 
 /* integrator_shadow_fn with ctx a volpath_at_t: the shadow ray's

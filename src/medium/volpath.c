@@ -12,6 +12,8 @@
  * by the power heuristic (Veach 1997, sec. 9.2) exactly as ch. 5's path
  * tracer combines light and BSDF sampling at surfaces (integrator.c);
  * where the scene has no medium the two estimate the same image.
+ * A medium's emission, the source term sigma_a L_e of pbrt-v4 (sec.
+ * 11.1.2), is added along each segment before the distance is sampled.
  * Boundaries follow pbrt-v3's medium interface (medpart.h); an invisible
  * boundary only changes the medium of the rays that cross it.
  * Tests: tests/medium/test_medpart.c
@@ -137,8 +139,28 @@ RADIANCE volpath_shadow(const void *ctx, const integrator_t *it,
 static RADIANCE phase_toward(const void *ctx, const VECTOR3 wi, real *pdf)
 {
     const volpath_at_t *at = ctx;
-    real p = phase_eval(at->ph ? at->ph : &at->med->phase,
-                       SVECTOR3(wi, at->dir));
+    const real c = SVECTOR3(wi, at->dir);
+    if (at->mix) {
+        /* the mix's components scatter together: sum_i sigma_s_i(x)
+         * p_i(c) per channel (medium.h); as a density of directions,
+         * the mixture of the p_i by the means of their sigma_s */
+        const medium_t *m = at->med;
+        RADIANCE f = rad_grey(0);
+        real wsum = 0, psum = 0;
+        for (int i = 0; i < m->ncomponents; i++) {
+            RADIANCE st, ss;
+            medium_coeffs_at(&m->components[i], at->x, &st, &ss);
+            real p = phase_eval(&m->components[i].phase, c);
+            f = rad_add(f, rad_scale(ss, p));
+            real w = (ss.r + ss.g + ss.b) / 3;
+            wsum += w;
+            psum += w * p;
+        }
+        if (pdf)
+            *pdf = wsum > 0 ? psum / wsum : 0;
+        return f;
+    }
+    real p = phase_eval(at->ph ? at->ph : &at->med->phase, c);
     if (pdf)
         *pdf = p;
     return rad_grey(p);
@@ -215,6 +237,14 @@ RADIANCE volpath_li(const void *state, const render_t *r,
             if (rad_is_black(beta))
                 break;
         } else if (med) {
+            /* the light the medium emits along the whole segment, exact
+             * or tracked (medium_emitted); then the walk samples where
+             * it scatters, which estimates the rest of the equation */
+            if (medium_emits(med))
+                L = rad_add(L, rad_mul(beta, medium_emitted(
+                                                 med, ray.o, dir,
+                                                 hit ? h.t * len : VOLPATH_FAR,
+                                                 g)));
             real t;
             RADIANCE w;
             bool scattered = medium_sample(med, ray.o, dir,
@@ -239,7 +269,8 @@ RADIANCE volpath_li(const void *state, const render_t *r,
                 }
                 if (nee) {
                     volpath_at_t at = { s, med, NULL, { dir[X], dir[Y],
-                                                        dir[Z] }, ph };
+                                                        dir[Z] }, ph, false,
+                                        { 0, 0, 0 } };
                     L = rad_add(L, rad_mul(beta, volpath_direct(&at, it, pp,
                                                                 NULL, NULL,
                                                                 true, g, st)));
@@ -309,7 +340,7 @@ RADIANCE volpath_li(const void *state, const render_t *r,
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
         if (nee && !material_is_specular(m)) {
             volpath_at_t at = { s, med, obj, { dir[X], dir[Y], dir[Z] },
-                                NULL };
+                                NULL, false, { 0, 0, 0 } };
             L = rad_add(L, rad_mul(beta, volpath_direct(&at, it, pp, m, wo,
                                                         true, g, st)));
         }
@@ -330,17 +361,10 @@ RADIANCE volpath_li(const void *state, const render_t *r,
         skip[0] = obj;
     bounce:
         depth++;
-        {
-            /* Russian roulette as ch. 5's path tracer */
-            real urr = pcg32_real(g);
-            if (it->roulette && depth >= it->roulette_depth) {
-                real q = real_min(real_max(rad_max(beta), REAL_C(0.05)),
-                                  REAL_C(1.0));
-                if (urr >= q)
-                    break;
-                beta = rad_scale(beta, 1 / q);
-            }
-        }
+        /* Russian roulette as ch. 5's path tracer's, the scattering
+         * events in media counted with the surfaces' */
+        if (!integrator_roulette(it, depth, g, &beta))
+            break;
         if (rad_is_black(beta))
             break;
     }

@@ -495,7 +495,7 @@ static RADIANCE march(const state_t *s, const render_t *r,
             if (med->ncomponents > 0)
                 ph = &medium_scatterer(med, x, pcg32_real(g), &wc)->phase;
             volpath_at_t at = { &s->vp, med, NULL, { dir[X], dir[Y], dir[Z] },
-                                ph };
+                                ph, false, { 0, 0, 0 } };
             RADIANCE Ld = volpath_direct(&at, it, &pp, NULL, NULL, false, g,
                                          st);
             Lx = rad_add(Lx, rad_mul(rad_mul(sig_s, wc), Ld));
@@ -580,7 +580,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
         const material_t *m = obj->material;
         material_t shaded;
         if (obj->texture)
-            m = sc->shade(sc, obj, &ray, depth, &pp, &shaded);
+            m = sc->shade(sc, obj, &ray, depth, &pp, NULL, &shaded);
         VECTOR3 wo, wi;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         bool diffuse = !material_is_specular(m) && m->ncomp > 0;
@@ -588,7 +588,8 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
             RADIANCE Ls = photon_radiance(&s->surf, &pp, m, wo, &s->surfq);
             if (nee) {
                 volpath_at_t at = { &s->vp, med, obj,
-                                    { dir[X], dir[Y], dir[Z] }, NULL };
+                                    { dir[X], dir[Y], dir[Z] }, NULL, false,
+                                    { 0, 0, 0 } };
                 Ls = rad_add(Ls, volpath_direct(&at, it, &pp, m, wo, false, g,
                                                 st));
             }

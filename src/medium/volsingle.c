@@ -55,7 +55,11 @@ RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
 {
     const real u = pcg32_real(g); /* the jittered start */
     const RADIANCE sigma_t = medium_sigma_t(med);
-    const bool homogeneous = medium_is_homogeneous(med);
+    /* the components marched: a one-component medium is its own */
+    const int nc = med->ncomponents > 0 ? med->ncomponents : 1;
+    const medium_t *comp = med->ncomponents > 0 ? med->components : med;
+    const bool mix = med->ncomponents > 0;
+    const bool emits = medium_emits(med);
     bool cut = false;
     if (len >= VOLPATH_FAR) {
         /* to infinity (the global medium, homogeneous): Tr is exactly 0
@@ -77,48 +81,88 @@ RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
     if (len / h > VOLSINGLE_MAX_STEPS)
         h = len / VOLSINGLE_MAX_STEPS;
     RADIANCE L = rad_grey(0);
-    /* tau: the optical depth at density 1 from the segment's start */
-    real tau = 0, t_prev = 0;
-    real d_prev = homogeneous ? 1 : medium_density(med, ray->o);
+    /* tau[i]: component i's optical depth at density 1 from the
+     * segment's start, exact where it is homogeneous, by the trapezoid
+     * rule on its density otherwise; d[i] its density at the point */
+    real tau[MEDIUM_MAX_COMPONENTS], d_prev[MEDIUM_MAX_COMPONENTS];
+    real d[MEDIUM_MAX_COMPONENTS];
+    bool flat[MEDIUM_MAX_COMPONENTS];
+    for (int k = 0; k < nc; k++) {
+        flat[k] = medium_is_homogeneous(&comp[k]);
+        tau[k] = 0;
+        d_prev[k] = flat[k] ? 1 : medium_density(&comp[k], ray->o);
+    }
+    real t_prev = 0;
     for (int i = 0;; i++) {
         const real t = ((real)i + u) * h;
         if (!(t < len))
             break;
         VECTOR3 x;
         vec_add_scaled(x, ray->o, t, dir);
-        real d = 1;
-        if (homogeneous) {
-            tau = t;
-        } else {
-            d = medium_density(med, x);
-            tau += (d_prev + d) / 2 * (t - t_prev);
+        bool any = false;
+        for (int k = 0; k < nc; k++) {
+            d[k] = 1;
+            if (flat[k]) {
+                tau[k] = t;
+            } else {
+                d[k] = medium_density(&comp[k], x);
+                tau[k] += (d_prev[k] + d[k]) / 2 * (t - t_prev);
+            }
+            d_prev[k] = d[k];
+            any |= d[k] > 0;
         }
         t_prev = t;
-        d_prev = d;
-        if (!nee || !(d > 0))
+        if (!any || (!nee && !emits))
+            continue;
+        /* Tr from the segment's start: exp of minus the sum of the
+         * components' optical depths */
+        RADIANCE depth = rad_grey(0);
+        for (int k = 0; k < nc; k++)
+            depth = rad_add(depth, rad_scale(medium_sigma_t(&comp[k]),
+                                             tau[k]));
+        const RADIANCE T = rad_make(exp(-depth.r), exp(-depth.g),
+                                    exp(-depth.b));
+        if (emits) {
+            /* the emission of pbrt-v4 sec. 11.1.2, sigma_a L_e, by the
+             * same shifted rectangle rule */
+            RADIANCE S = rad_grey(0);
+            for (int k = 0; k < nc; k++)
+                S = rad_add(S, rad_scale(rad_mul(comp[k].sigma_a,
+                                                 comp[k].emission),
+                                         d[k]));
+            L = rad_add(L, rad_mul(T, rad_scale(S, h)));
+        }
+        if (!nee)
             continue;
         PATHPOINT pp;
         volpath_medium_point(&pp, ray, dir, t);
         volpath_at_t at = { s, med, NULL, { dir[X], dir[Y], dir[Z] },
-                            NULL };
-        /* no phase sampling follows: the light sample takes it all */
+                            NULL, mix, { x[X], x[Y], x[Z] } };
+        /* no phase sampling follows: the light sample takes it all; a
+         * mix's phase comes weighted by each component's sigma_s at x
+         * (phase_toward in volpath.c) */
         RADIANCE Ld = volpath_direct(&at, it, &pp, NULL, NULL, false, g, st);
         if (rad_is_black(Ld))
             continue;
-        RADIANCE T = medium_tr_homogeneous(med, tau);
-        L = rad_add(L, rad_mul(rad_mul(T, rad_scale(med->sigma_s, d * h)),
-                               Ld));
+        const RADIANCE ss = mix ? rad_grey(h)
+                                : rad_scale(med->sigma_s, d[0] * h);
+        L = rad_add(L, rad_mul(rad_mul(T, ss), Ld));
     }
     if (!cut) {
-        if (homogeneous) {
-            *tr = medium_tr_homogeneous(med, len);
-        } else {
-            VECTOR3 x;
-            vec_add_scaled(x, ray->o, len, dir);
-            real d = medium_density(med, x);
-            tau += (d_prev + d) / 2 * (len - t_prev);
-            *tr = medium_tr_homogeneous(med, tau);
+        RADIANCE depth = rad_grey(0);
+        VECTOR3 x;
+        vec_add_scaled(x, ray->o, len, dir);
+        for (int k = 0; k < nc; k++) {
+            if (flat[k]) {
+                tau[k] = len;
+            } else {
+                real dk = medium_density(&comp[k], x);
+                tau[k] += (d_prev[k] + dk) / 2 * (len - t_prev);
+            }
+            depth = rad_add(depth, rad_scale(medium_sigma_t(&comp[k]),
+                                             tau[k]));
         }
+        *tr = rad_make(exp(-depth.r), exp(-depth.g), exp(-depth.b));
     }
     return L;
 }

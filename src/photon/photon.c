@@ -396,7 +396,8 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
         const material_t *m = obj->material;
         material_t shaded;
         if (obj->texture)
-            m = r->scene->shade(r->scene, obj, &ray, depth + 1, &pp, &shaded);
+            m = r->scene->shade(r->scene, obj, &ray, depth + 1, &pp, NULL,
+                                &shaded);
         VECTOR3 dir;
         vec_normalize(dir, ray.d);
         if (!material_is_specular(m) && m->ncomp > 0) {
@@ -726,7 +727,8 @@ static RADIANCE gather_lookup(const state_t *s, const render_t *r, ray_t ray,
         const material_t *m = obj->material;
         material_t shaded;
         if (obj->texture)
-            m = r->scene->shade(r->scene, obj, &ray, depth + 1, &pp, &shaded);
+            m = r->scene->shade(r->scene, obj, &ray, depth + 1, &pp, NULL,
+                                &shaded);
         VECTOR3 wo, wi;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         if (!material_is_specular(m)) {
@@ -836,7 +838,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
         const material_t *m = obj->material;
         material_t shaded;
         if (obj->texture)
-            m = sc->shade(sc, obj, &ray, depth, &pp, &shaded);
+            m = sc->shade(sc, obj, &ray, depth, &pp, NULL, &shaded);
         VECTOR3 wo, wi;
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         bool diffuse = !material_is_specular(m) && m->ncomp > 0;

@@ -332,23 +332,31 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         ray_spawn(&r, pp->cross_point, pp->p_error, pp->ng, wi);
         skip[0] = obj;
 
-        /* Russian roulette (ch. 4): continue with probability q, dividing
-         * by q keeps the estimate unbiased; q follows the throughput so
-         * that dim paths end early, and is at least 0.05 */
-        real urr = pcg32_real(g);
-        if (it->roulette && depth + 1 >= it->roulette_depth) {
-            /* as fmin(1, fmax(0.05, .)), a NaN throughput included, without
-             * the libm calls */
-            real q = real_min(real_max(rad_max(beta), REAL_C(0.05)),
-                              REAL_C(1.0));
-            if (urr >= q)
-                break;
-            beta = rad_scale(beta, 1 / q);
-        }
+        if (!integrator_roulette(it, depth + 1, g, &beta))
+            break;
         if (rad_is_black(beta))
             break;
     }
     return L;
+}
+
+bool integrator_roulette(const integrator_t *it, int events, pcg32_t *g,
+                         RADIANCE *beta)
+{
+    /* continue with probability q, dividing by q keeps the estimate
+     * unbiased; q follows the throughput so that dim paths end early,
+     * and is at least 0.05 */
+    real urr = pcg32_real(g);
+    if (it->roulette && events >= it->roulette_depth) {
+        /* as fmin(1, fmax(0.05, .)), a NaN throughput included, without
+         * the libm calls */
+        real q = real_min(real_max(rad_max(*beta), REAL_C(0.05)),
+                          REAL_C(1.0));
+        if (urr >= q)
+            return false;
+        *beta = rad_scale(*beta, 1 / q);
+    }
+    return true;
 }
 
 RADIANCE integrator_li(const integrator_t *it, const ray_t *camera,

@@ -3,7 +3,7 @@
  * exit codes and `svet diff` on files made here; inputs beyond the pixel
  * limit, inputs that are not regular files, and a full disk; outputs that
  * are inputs; and what `svet render` says about a scene (its warnings,
- * --strict). The command is the one built beside this suite: <build>/svet
+ * --strict); the integrator svet converge's CSV names. The command is the one built beside this suite: <build>/svet
  * for <build>/tests/test_svet, so `make test` (which builds it first)
  * tests the matching REAL.
  */
@@ -454,6 +454,48 @@ START_TEST(render_refuses_empty_and_too_bright_scenes_and_warns_of_dark)
 }
 END_TEST
 
+/* svet converge's CSV names the scene's rendering method in its header
+ * (`integrator NAME`): a part's method (volsingle, volpath) as the core's
+ * integrators, also when --set changes it. */
+START_TEST(the_converge_csv_names_the_scenes_integrator)
+{
+    char scn[1024], ref[1024], dir[1024], csv[1100], args[4096];
+    snprintf(scn, sizeof scn, "%s", imgtest_path("fog.scn"));
+    snprintf(ref, sizeof ref, "%s", imgtest_path("fog-ref.exr"));
+    snprintf(dir, sizeof dir, "%s", imgtest_path("."));
+    const char text[] =
+        "camera position 0 0 3 target 0 0 0 fov 30 width 4 height 4\n"
+        "render spp 2 maxdepth 2 integrator volsingle seed 3\n"
+        "material black lambert rho 0\n"
+        "environment radiance 1\n"
+        "medium fog homogeneous sigma_a 0.5 sigma_s 0.5\n"
+        "sphere centre 0 0 0 radius 1 material black medium fog invisible\n";
+    imgtest_write_bytes(scn, text, sizeof text - 1);
+    expect(0, NULL, "render '%s' -o '%s' -q", scn, ref);
+    const char *sets[3][2] = { { "", "integrator volsingle," },
+                               { "--set integrator=volpath",
+                                 "integrator volpath," },
+                               { "--set integrator=path",
+                                 "integrator path," } };
+    for (int i = 0; i < 3; i++) {
+        snprintf(args, sizeof args, "converge '%s' --ref '%s' --out '%s' "
+                 "--label m%d --no-plot -q %s", scn, ref, dir, i, sets[i][0]);
+        expect(0, NULL, "%s", args);
+        snprintf(csv, sizeof csv, "%s/m%d.csv", dir, i);
+        unsigned char *bytes;
+        size_t n = imgtest_read_bytes(csv, &bytes);
+        char *t = malloc(n + 1);
+        ck_assert_ptr_nonnull(t);
+        memcpy(t, bytes, n);
+        t[n] = '\0';
+        free(bytes);
+        ck_assert_msg(strstr(t, sets[i][1]), "no '%s' in:\n%s", sets[i][1],
+                      t);
+        free(t);
+    }
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
@@ -472,6 +514,7 @@ Suite *test_suite(void)
         tc, render_prints_the_mesh_warnings_and_strict_refuses_them);
     tcase_add_test(
         tc, render_refuses_empty_and_too_bright_scenes_and_warns_of_dark);
+    tcase_add_test(tc, the_converge_csv_names_the_scenes_integrator);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -11,7 +11,8 @@
  *  - a disk light of radius a and radiance Le at height h above a diffuse
  *    point, facing it: E = pi Le a^2 / (h^2 + a^2), L = rho E / pi, by every
  *    strategy (path with MIS, direct, BSDF only, light sampling only);
- *  - an emitter seen directly, from the front and from the back.
+ *  - an emitter seen directly, from the front and from the back;
+ *  - Russian roulette keeps the expected throughput.
  * Statistical tolerances are 5 standard errors of the estimate (the
  * standard error measured from the same samples): a correct estimator
  * fails with probability below 6e-7 per check.
@@ -25,6 +26,7 @@
 #include "geometry/sphere.h"
 
 #include <math.h>
+#include <string.h>
 
 static material_t *lambert(real rho)
 {
@@ -261,12 +263,61 @@ START_TEST(power_heuristic_weights_sum_to_one)
 }
 END_TEST
 
+/* Russian roulette, shared by the path tracer and volpath: one number
+ * drawn whatever the settings; off or before roulette_depth beta is kept;
+ * after it the path survives exactly when u < q = max channel of beta
+ * (clamped to [0.05, 1]), beta / q then, so E[beta] is kept: over many
+ * draws the survivors' mean weight times their share is beta within 5
+ * standard errors. */
+START_TEST(roulette_keeps_the_expected_throughput)
+{
+    integrator_t it;
+    memset(&it, 0, sizeof it);
+    it.roulette_depth = 3;
+    pcg32_t g, h;
+    pcg32_seed(&g, 9, 2);
+    const RADIANCE b0 = rad_make(REAL_C(0.25), REAL_C(0.5), REAL_C(0.125));
+    for (int on = 0; on < 2; on++) {
+        it.roulette = on;
+        RADIANCE b = b0;
+        h = g;
+        ck_assert(integrator_roulette(&it, 2, &g, &b));
+        ck_assert(b.r == b0.r && b.g == b0.g && b.b == b0.b);
+        (void)pcg32_real(&h);
+        ck_assert(memcmp(&g, &h, sizeof g) == 0);
+    }
+    it.roulette = false;
+    RADIANCE b = b0;
+    ck_assert(integrator_roulette(&it, 10, &g, &b));
+    ck_assert(b.g == b0.g);
+    it.roulette = true;
+    const int n = 100000;
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < n; i++) {
+        b = b0;
+        h = g;
+        real u = pcg32_real(&h);
+        bool alive = integrator_roulette(&it, 3, &g, &b);
+        ck_assert(alive == (u < REAL_C(0.5)));
+        double w = alive ? (double)b.g : 0;
+        if (alive)
+            ck_assert(b.g == 1 && b.r == REAL_C(0.5));
+        sum += w;
+        sum2 += w * w;
+    }
+    double mean = sum / n, se = sqrt((sum2 / n - mean * mean) / n);
+    ck_assert_msg(fabs(mean - 0.5) < 5 * se, "E[beta] %g, not 0.5 (se %g)",
+                  mean, se);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("integrator (" REAL_NAME ")");
     TCase *tc = tcase_create("analytic");
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, power_heuristic_weights_sum_to_one);
+    tcase_add_test(tc, roulette_keeps_the_expected_throughput);
     tcase_add_test(tc, furnace_sphere_looks_exactly_its_albedo);
     tcase_add_test(tc, point_light_inside_a_closed_sphere_gives_radiance_one);
     tcase_add_test(tc, diffuse_plane_under_a_point_light_follows_the_inverse_square_law);
