@@ -238,7 +238,7 @@ static svet_status medium_statement(scenefile_ctx *c)
         if (!strcmp(d->media[i]->name, name))
             return scenefile_fail(c, col, SVET_ERR_PARSE,
                                   "medium '%s' is already defined", name);
-    int kind;
+    int kind = 0;
     st = scenefile_kind(c, "medium", name, kinds, &kind);
     if (st)
         return st;

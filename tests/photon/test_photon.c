@@ -247,7 +247,7 @@ START_TEST(emission_by_power_with_an_environment_and_a_disc_light)
     scene_t s;
     render_t r;
     svet_error e;
-    parse_ok(&s, text);
+    scenecheck_parse_ok(&s, text);
     ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
     const uint64_t n = 400000;
     photonmap_t m;
@@ -312,7 +312,7 @@ START_TEST(environment_photons_reach_an_infinite_plane_where_the_camera_looks)
     scene_t s;
     render_t r;
     svet_error e;
-    parse_ok(&s, text);
+    scenecheck_parse_ok(&s, text);
     ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
     photonmap_t m;
     ck_assert_int_eq(photon_trace(&r, 100000, PHOTON_GLOBAL, 0, 0, &m, &e),
@@ -369,9 +369,9 @@ START_TEST(photon_tracing_reads_the_texture)
     scene_t s, sp;
     render_t r, rp;
     svet_error e;
-    parse_ok(&s, textured);
+    scenecheck_parse_ok(&s, textured);
     ck_assert(s.shade != NULL);
-    parse_ok(&sp, plain);
+    scenecheck_parse_ok(&sp, plain);
     ck_assert_msg(render_init(&r, &s, &e) == SVET_OK, "%s", e.msg);
     ck_assert_msg(render_init(&rp, &sp, &e) == SVET_OK, "%s", e.msg);
     const uint64_t n = 40000;

@@ -323,18 +323,18 @@ START_TEST(a_constant_texture_emits_the_same_bits_as_its_colour)
     char text[1024];
     image_t plain, tex;
     snprintf(text, sizeof text, "%s" EMITTER("3 2 1"), head);
-    render_text(text, 1, &plain);
+    scenecheck_render(text, 1, &plain);
     snprintf(text, sizeof text,
              "texture k checker a 3 2 1 b 3 2 1 scale 2\n%s" EMITTER("k"),
              head);
-    render_text(text, 1, &tex);
+    scenecheck_render(text, 1, &tex);
     ck_assert(same_bits(&plain, &tex));
     image_free(&tex);
     /* a texture that varies does change the image */
     snprintf(text, sizeof text,
              "texture k checker a 3 2 1 b 1 2 3 scale 2\n%s" EMITTER("k"),
              head);
-    render_text(text, 2, &tex);
+    scenecheck_render(text, 2, &tex);
     ck_assert(!same_bits(&plain, &tex));
     image_free(&plain);
     image_free(&tex);
@@ -353,7 +353,7 @@ START_TEST(a_checker_emitter_seen_by_the_camera_shows_both_colours)
         "texture k checker a 4 1 0.5 b 0.25 0.5 2 scale 2\n"
         "material m lambert rho 0.5\n" EMITTER("k");
     image_t img;
-    render_text(text, 1, &img);
+    scenecheck_render(text, 1, &img);
     int na = 0, nb = 0;
     for (int y = 0; y < img.height; y++)
         for (int x = 0; x < img.width; x++) {
@@ -374,8 +374,8 @@ START_TEST(a_checker_emitter_seen_by_the_camera_shows_both_colours)
     ck_assert_int_gt(nb, 0);
     image_free(&img);
     /* a name that is no texture, and a program without textures */
-    refused(HEAD "material m lambert rho 0.5\n" EMITTER("glow"),
-            "t.scn:3:62:", "neither a colour nor a texture");
+    scenecheck_refused(HEAD "material m lambert rho 0.5\n" EMITTER("glow"),
+                       "t.scn:3:62:", "neither a colour nor a texture");
     scene_t s;
     svet_error e;
     const char *t2 = HEAD "material m lambert rho 0.5\n" EMITTER("glow");
@@ -400,7 +400,7 @@ static void floor_under(const char *emitters, image_t *img)
              "texture k checker a 8 4 2 b 0.5 1 0.25 scale 2\n"
              "material m lambert rho 0.7\n"
              "plane point 0 0 0 normal 0 1 0 material m\n%s", emitters);
-    render_text(text, 0, img);
+    scenecheck_render(text, 0, img);
 }
 
 START_TEST(a_textured_emitter_lights_as_its_squares_do)
