@@ -25,6 +25,14 @@
 
 #define DATA "tests/data/scene"
 
+/* Every statement keyword, in the order the parser's error lists them:
+ * the core's, then each part's (allparts.c). */
+#define KEYWORDS                                                             \
+    "camera, render, output, tonemap, material, light, environment, "       \
+    "sphere, plane, disk, parallelogram, triangle, box, cylinder, cone, "   \
+    "mesh, photonmap, irradiance, texture, medium, volsingle, volphoton, "  \
+    "animation, key"
+
 /* Parse text (a C string) as the file "t.scn" with meshes in DATA. */
 static svet_status parse(scene_t *s, const char *text, svet_error *err)
 {
@@ -226,9 +234,7 @@ START_TEST(a_byte_order_mark_at_the_start_is_skipped)
     /* anywhere else it is no blank */
     parse_err(M "\xEF\xBB\xBF" "sphere centre 0 0 0 radius 1 material m\n",
               SVET_ERR_PARSE, "t.scn:2:1: unknown keyword '???sphere': "
-              "expected one of camera, render, output, tonemap, material, "
-              "light, environment, sphere, plane, disk, parallelogram, "
-              "triangle, box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, volsingle, animation, key");
+              "expected one of " KEYWORDS);
 }
 END_TEST
 
@@ -945,9 +951,7 @@ static const struct {
     { "sphear centre 0 0 0 radius 1\n", SVET_ERR_PARSE,
       "t.scn:1:1: unknown keyword 'sphear' (did you mean 'sphere'?)" },
     { "\n  teapot\n", SVET_ERR_PARSE,
-      "t.scn:2:3: unknown keyword 'teapot': expected one of camera, render, "
-      "output, tonemap, material, light, environment, sphere, plane, disk, "
-      "parallelogram, triangle, box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, volsingle, animation, key" },
+      "t.scn:2:3: unknown keyword 'teapot': expected one of " KEYWORDS },
     { M "sphere centre 0 0 0 radus 1 material m\n", SVET_ERR_PARSE,
       "t.scn:2:21: unknown parameter of sphere 'radus' (did you mean "
       "'radius'?)" },
@@ -1219,9 +1223,7 @@ START_TEST(long_tokens_are_cut_and_unprintable_bytes_shown_as_question_marks)
     parse_err(text, SVET_ERR_PARSE,
               "t.scn:1:1: unknown keyword "
               "'zzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzzz...': expected one "
-              "of camera, render, output, tonemap, material, light, "
-              "environment, sphere, plane, disk, parallelogram, triangle, "
-              "box, cylinder, cone, mesh, photonmap, irradiance, texture, medium, volsingle, animation, key");
+              "of " KEYWORDS);
     parse_err("camer\xc3\xa9 1\n", SVET_ERR_PARSE,
               "t.scn:1:1: unknown keyword 'camer?" "?' (did you mean "
               "'camera'?)");
