@@ -32,6 +32,9 @@ static void camera(camera_t *c, const VECTOR3 eye, const VECTOR3 target,
                                  &e), SVET_OK);
 }
 
+/* the normal's change on a flat surface */
+static const VECTOR3 flat = { 0, 0, 0 };
+
 static void near3(const VECTOR3 a, const VECTOR3 b, real tol)
 {
     for (int k = 0; k < 3; k++)
@@ -105,7 +108,7 @@ START_TEST(a_flat_mirror_gives_the_mirrored_cameras_differentials)
          * meets the mirror at the same point, at the same distance */
         real t = -eye[Y] / r.d[Y];
         ck_assert(raydiff_transfer(&a, r.d, t, n));
-        raydiff_reflect(&a, r.d, n);
+        raydiff_reflect(&a, r.d, n, flat, flat);
         ck_assert(raydiff_transfer(&b, d2, t, n));
         near3(a.dpdx, b.dpdx, TOL);
         near3(a.dpdy, b.dpdy, TOL);
@@ -163,9 +166,9 @@ START_TEST(a_glass_slab_gives_the_closed_form_footprint)
         snell(t1, r.d, n, (real)(1 / nn));
         snell(t2, t1, n, (real)nn);
         ck_assert(raydiff_transfer(&rd, r.d, (real)(a / -(double)r.d[Z]), n));
-        ck_assert(raydiff_refract(&rd, r.d, n, (real)(1 / nn), t1));
+        ck_assert(raydiff_refract(&rd, r.d, n, flat, flat, (real)(1 / nn), t1));
         ck_assert(raydiff_transfer(&rd, t1, (real)(h / -(double)t1[Z]), n));
-        ck_assert(raydiff_refract(&rd, t1, n, (real)nn, t2));
+        ck_assert(raydiff_refract(&rd, t1, n, flat, flat, (real)nn, t2));
         ck_assert(raydiff_transfer(&rd, t2, (real)((L - a - h) / -(double)t2[Z]),
                                    n));
         double dx = (double)r.d[X], dz = -(double)r.d[Z];
