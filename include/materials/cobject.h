@@ -102,7 +102,8 @@ typedef struct {
      * first order (the surface's Weingarten map): what Igehy's ray
      * differentials need to reflect and refract off a curved surface
      * (texture/raydiff.h). May be NULL: a flat surface, dn = 0 (call it
-     * through cobject_normal_change()). */
+     * through cobject_normal_change()). Each curved primitive's is checked
+     * against traced neighbouring rays in tests/texture/test_raydiff.c. */
     void (*normal_change)(const COBJECT *obj, const PATHPOINT *pp,
                           const VECTOR3 dp, VECTOR3 dn);
 } cobject_ops;
