@@ -151,6 +151,17 @@ void quadric_disk_surface(const quadric_frame_t *f, const VECTOR3 centre,
                           real zc, real R, real sign, real x, real y,
                           PATHPOINT *pp);
 
+/* --- the normal's change ----------------------------------------------- */
+
+/* The change dn of the unit normal pp->n of the lateral face
+ * F = x^2 + y^2 + a_z z^2 + ... in frame f (a_z = 0: a cylinder about f's
+ * axis; -k^2: a cone of apex f->o and slope k), for a world step dp along
+ * it: shape_normal_change() of the half gradient (x, y, a_z z) and the
+ * half Hessian diag(1, 1, a_z). This function can't fail. */
+void quadric_lateral_normal_change(const quadric_frame_t *f, real a_z,
+                                   const PATHPOINT *pp, const VECTOR3 dp,
+                                   VECTOR3 dn);
+
 /* A point of that disk, uniform by area: rho = R sqrt(u0), phi = 2 pi u1
  * (the inverse of the radial CDF rho^2 / R^2), rho kept within
  * quadric_sample_margin of the rim. Sets s->p, s->n, s->p_error;

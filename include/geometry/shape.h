@@ -49,6 +49,16 @@ real shape_cross_length(const VECTOR3 a, const VECTOR3 b);
  * frame_from_normal(n) instead. This function can't fail. */
 void shape_frame(VECTOR3 u, VECTOR3 v, const VECTOR3 n, const VECTOR3 dpds);
 
+/* The change dn of a unit normal n = +-g / |g| (either way round) for a
+ * change dg of the vector g it is the direction of: the derivative of
+ * g / |g|, dn = (dg - (dg . n) n) / (g . n). For a surface F = 0, g its
+ * half gradient and dg its half Hessian times a step dp along it (pbrt-v3
+ * sec. 3.2.3 reaches the sphere's by the Weingarten equations); for a
+ * mesh's interpolated normal, g the interpolation. dn = 0 where g . n is
+ * 0 or the result is not finite. This function can't fail. */
+void shape_normal_change(const VECTOR3 g, const VECTOR3 dg, const VECTOR3 n,
+                         VECTOR3 dn);
+
 /* max(|a_x|, |a_y|, |a_z|) */
 static inline real shape_max_abs(const VECTOR3 a)
 {

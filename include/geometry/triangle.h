@@ -199,6 +199,18 @@ void triangle_fill_surface(const VECTOR3 p0, const VECTOR3 p1,
                            const VECTOR3 p2, const VECTOR3 normals[3],
                            const real b[3], PATHPOINT *pp);
 
+/* The change dn of the shading normal pp->n that triangle_fill_surface
+ * interpolated from normals (either way round, as a mesh may turn it),
+ * for a step dp of the point in the triangle's plane: the barycentrics'
+ * change db1, db2 from the least-squares solution of dp = db1 (p1 - p0) +
+ * db2 (p2 - p0), the interpolation's db1 (n1 - n0) + db2 (n2 - n0), and
+ * shape_normal_change(). dn = 0 where normals is NULL or the triangle is
+ * degenerate. This function can't fail. */
+void triangle_normal_change(const VECTOR3 p0, const VECTOR3 p1,
+                            const VECTOR3 p2, const VECTOR3 normals[3],
+                            const PATHPOINT *pp, const VECTOR3 dp,
+                            VECTOR3 dn);
+
 /* Uniform point of the triangle by area from u in [0,1)^2: pdf = 1/area,
  * normal along (p1 - p0) x (p2 - p0), and the point's error bound. A
  * degenerate triangle returns p0 with pdf 0 (it has no area to sample).

@@ -96,6 +96,16 @@ typedef struct {
 
     /* Free what the primitive allocated in obj->shape. May be NULL. */
     void (*destroy)(COBJECT *obj);
+
+    /* The change dn of the unit shading normal pp->n of a hit that
+     * surface() filled, for a change dp of the point along the surface, to
+     * first order (the surface's Weingarten map): what Igehy's ray
+     * differentials need to reflect and refract off a curved surface
+     * (texture/raydiff.h). May be NULL: a flat surface, dn = 0 (call it
+     * through cobject_normal_change()). Each curved primitive's is checked
+     * against traced neighbouring rays in tests/texture/test_raydiff.c. */
+    void (*normal_change)(const COBJECT *obj, const PATHPOINT *pp,
+                          const VECTOR3 dp, VECTOR3 dn);
 } cobject_ops;
 
 /* Forward declarations: what later chapters hang on a surface. The geometry
@@ -143,6 +153,10 @@ bool cobject_intersect(const COBJECT *obj, const ray_t *r, real tmin,
  * surface() runs unless obj->surface_fills. This function can't fail. */
 void cobject_fill(const COBJECT *obj, const ray_t *r, const hit_t *hit,
                   PATHPOINT *pp);
+
+/* obj's normal_change(), or dn = 0 where it has none (a flat surface). */
+void cobject_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                           const VECTOR3 dp, VECTOR3 dn);
 
 /* Set pp->in to the unit direction w and bin = (in . n > 0). */
 void pathpoint_set_in(PATHPOINT *pp, const VECTOR3 w);

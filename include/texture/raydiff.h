@@ -10,11 +10,11 @@
  * part installs (scene_t.raydiff, texpart.c), only when the scene reads a
  * texture, so that other scenes compute nothing new and the programs
  * without textures link none of this.
- * The normal's own derivatives dN/dx, which Igehy's reflection and
- * refraction carry for curved surfaces, are taken as 0: svet's primitives
- * give dP/ds and dP/dt but not dN/ds, so the result is exact for flat
- * mirrors and glass and, on curved ones, a footprint too small (a finer
- * mip level: the image then aliases, it does not blur).
+ * On a curved surface the normal turns from one pixel's hit to the next,
+ * by dN/dx, which the primitive gives (cobject_normal_change(), the
+ * surface's Weingarten map applied to dP/dx) and which enters Igehy's
+ * reflection and refraction: a curved mirror spreads (convex) or focuses
+ * (concave) the footprint as the real neighbouring rays do.
  * Tests: tests/texture/test_raydiff.c
  */
 #ifndef SVET_RAYDIFF_H
@@ -42,18 +42,22 @@ bool raydiff_transfer(raydiff_t *rd, const VECTOR3 d, real t,
                       const VECTOR3 n);
 
 /* At a hit already transferred to, the differentials of the mirror
- * direction R = D - 2 (D . n) n of unit direction d about unit normal n
- * (Igehy's eq. 4-5 with dN = 0): dR = dD - 2 (dD . n) n. Can't fail. */
-void raydiff_reflect(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n);
+ * direction R = D - 2 (D . n) n of unit direction d about unit normal n,
+ * whose change per pixel is dndx, dndy (Igehy's eq. 4-5):
+ * dR = dD - 2 ((dD . n + d . dN) n + (d . n) dN). Can't fail. */
+void raydiff_reflect(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n,
+                     const VECTOR3 dndx, const VECTOR3 dndy);
 
 /* At a hit already transferred to, the differentials of the refracted
- * unit direction tr = eta d - mu n of unit d through unit normal n, eta
- * the ratio n_from / n_to of the indices (Igehy's eq. 6-7 with dN = 0):
- * mu = eta (d . n) - (tr . n), dtr = eta dD - dmu n, dmu = (eta - eta^2
- * (d . n) / (tr . n)) (dD . n). False (rd untouched) where tr . n is 0
- * (grazing). Can't fail. */
+ * unit direction tr = eta d - mu n of unit d through unit normal n (its
+ * change per pixel dndx, dndy), eta the ratio n_from / n_to of the
+ * indices (Igehy's eq. 6-7): mu = eta (d . n) - (tr . n),
+ * dtr = eta dD - dmu n - mu dN, dmu = (eta - eta^2 (d . n) / (tr . n))
+ * (dD . n + d . dN). False (rd untouched) where tr . n is 0 (grazing).
+ * Can't fail. */
 bool raydiff_refract(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n,
-                     real eta, const VECTOR3 tr);
+                     const VECTOR3 dndx, const VECTOR3 dndy, real eta,
+                     const VECTOR3 tr);
 
 /* The pixel's footprint in a surface's parameters (s, t), whose tangents
  * are dpds and dpdt: the least-squares (s, t) steps of dP/dx and dP/dy

@@ -197,7 +197,7 @@ static void box_sample(const COBJECT *obj, const real u[2],
 
 static const cobject_ops box_ops = {
     "box", box_intersect, box_surface, box_bounds, box_area, box_sample,
-    NULL
+    NULL, NULL
 };
 
 COBJECT *box_new(const VECTOR3 min, const VECTOR3 max, svet_error *err)

@@ -211,9 +211,21 @@ static void cone_sample(const COBJECT *obj, const real u[2],
     s->pdf = 1 / cn->total;
 }
 
+/* The lateral face, F = x^2 + y^2 - k^2 z^2 about the apex; the base is
+ * flat. */
+static void cone_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                               const VECTOR3 dp, VECTOR3 dn)
+{
+    const cone_t *cn = obj->shape;
+    if (pp->prim == CONE_LATERAL)
+        quadric_lateral_normal_change(&cn->f, -cn->k2, pp, dp, dn);
+    else
+        vec_set(dn, 0, 0, 0);
+}
+
 static const cobject_ops cone_ops = {
     "cone", cone_intersect, cone_surface, cone_bounds,
-    cone_area, cone_sample, NULL
+    cone_area, cone_sample, NULL, cone_normal_change
 };
 
 COBJECT *cone_new(const VECTOR3 base, const VECTOR3 apex, real radius,

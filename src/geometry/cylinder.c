@@ -144,9 +144,21 @@ static void cylinder_sample(const COBJECT *obj, const real u[2],
     s->pdf = 1 / cy->total;
 }
 
+/* The lateral face, F = x^2 + y^2 - R^2 about the axis; the caps are
+ * flat. */
+static void cylinder_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                                   const VECTOR3 dp, VECTOR3 dn)
+{
+    const cylinder_t *cy = obj->shape;
+    if (pp->prim == CYLINDER_LATERAL)
+        quadric_lateral_normal_change(&cy->f, 0, pp, dp, dn);
+    else
+        vec_set(dn, 0, 0, 0);
+}
+
 static const cobject_ops cylinder_ops = {
     "cylinder", cylinder_intersect, cylinder_surface, cylinder_bounds,
-    cylinder_area, cylinder_sample, NULL
+    cylinder_area, cylinder_sample, NULL, cylinder_normal_change
 };
 
 COBJECT *cylinder_new(const VECTOR3 base, const VECTOR3 top, real radius,

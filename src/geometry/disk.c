@@ -59,7 +59,7 @@ static void disk_sample(const COBJECT *obj, const real u[2],
 
 static const cobject_ops disk_ops = {
     "disk", disk_intersect, disk_surface, disk_bounds,
-    disk_area, disk_sample, NULL
+    disk_area, disk_sample, NULL, NULL
 };
 
 COBJECT *disk_new(const VECTOR3 centre, const VECTOR3 normal, real radius,

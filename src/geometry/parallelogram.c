@@ -135,7 +135,7 @@ static void para_sample(const COBJECT *obj, const real u[2],
 
 static const cobject_ops parallelogram_ops = {
     "parallelogram", para_intersect, para_surface, para_bounds, para_area,
-    para_sample, NULL
+    para_sample, NULL, NULL
 };
 
 bool parallelogram_is(const COBJECT *obj)

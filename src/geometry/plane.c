@@ -117,7 +117,7 @@ static void plane_sample(const COBJECT *obj, const real u[2],
 
 static const cobject_ops plane_ops = {
     "plane", plane_intersect, plane_surface, plane_bounds, plane_area,
-    plane_sample, NULL
+    plane_sample, NULL, NULL
 };
 
 COBJECT *plane_new(const VECTOR3 point, const VECTOR3 normal,

@@ -158,6 +158,21 @@ bool quadric_disk_hit(const VECTOR3 ol, const VECTOR3 dl, real zc, real R,
     return true;
 }
 
+void quadric_lateral_normal_change(const quadric_frame_t *f, real a_z,
+                                   const PATHPOINT *pp, const VECTOR3 dp,
+                                   VECTOR3 dn)
+{
+    VECTOR3 q, x, dx, g, dg;
+    vec_sub(q, pp->cross_point, f->o);
+    frame_to_local(x, q, f->e1, f->e2, f->w);
+    frame_to_local(dx, dp, f->e1, f->e2, f->w);
+    x[Z] *= a_z;
+    dx[Z] *= a_z;
+    frame_to_world(g, x, f->e1, f->e2, f->w);
+    frame_to_world(dg, dx, f->e1, f->e2, f->w);
+    shape_normal_change(g, dg, pp->n, dn);
+}
+
 void quadric_disk_surface(const quadric_frame_t *f, const VECTOR3 centre,
                           real zc, real R, real sign, real x, real y,
                           PATHPOINT *pp)

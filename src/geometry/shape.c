@@ -89,3 +89,13 @@ void shape_frame(VECTOR3 u, VECTOR3 v, const VECTOR3 n, const VECTOR3 dpds)
     }
     VVECTOR3(u, v, n);
 }
+
+void shape_normal_change(const VECTOR3 g, const VECTOR3 dg, const VECTOR3 n,
+                         VECTOR3 dn)
+{
+    real gn = SVECTOR3(g, n), k = SVECTOR3(dg, n);
+    for (int i = 0; i < 3; i++)
+        dn[i] = (dg[i] - k * n[i]) / gn;
+    if (gn == 0 || !vec_is_finite(dn))
+        vec_set(dn, 0, 0, 0);
+}

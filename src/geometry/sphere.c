@@ -133,9 +133,20 @@ static void sphere_sample(const COBJECT *obj, const real u[2],
     s->pdf = 1 / sp->area;
 }
 
+/* F = |p - c|^2 - r^2: half gradient p - c, half Hessian the identity, so
+ * dn = dp / r along the surface. */
+static void sphere_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                                 const VECTOR3 dp, VECTOR3 dn)
+{
+    const sphere_t *sp = obj->shape;
+    VECTOR3 g;
+    vec_sub(g, pp->cross_point, sp->c);
+    shape_normal_change(g, dp, pp->n, dn);
+}
+
 static const cobject_ops sphere_ops = {
     "sphere", sphere_intersect, sphere_surface, sphere_bounds,
-    sphere_area, sphere_sample, NULL
+    sphere_area, sphere_sample, NULL, sphere_normal_change
 };
 
 COBJECT *sphere_new(const VECTOR3 centre, real radius, svet_error *err)

@@ -220,6 +220,46 @@ void triangle_fill_surface(const VECTOR3 p0, const VECTOR3 p1,
     shape_frame(pp->u, pp->v, pp->n, pp->dpds);
 }
 
+/* (b1, b2) with q = b1 e1 + b2 e2 in the least-squares sense (the 2 x 2
+ * normal equations of the plane of e1, e2); false where they are
+ * singular. */
+static bool plane_coords(const VECTOR3 e1, const VECTOR3 e2, const VECTOR3 q,
+                         real b[2])
+{
+    real a = SVECTOR3(e1, e1), c = SVECTOR3(e1, e2), d = SVECTOR3(e2, e2);
+    real det = a * d - c * c;
+    if (!(det > 0))
+        return false;
+    real p1 = SVECTOR3(e1, q), p2 = SVECTOR3(e2, q);
+    b[0] = (d * p1 - c * p2) / det;
+    b[1] = (a * p2 - c * p1) / det;
+    return true;
+}
+
+void triangle_normal_change(const VECTOR3 p0, const VECTOR3 p1,
+                            const VECTOR3 p2, const VECTOR3 normals[3],
+                            const PATHPOINT *pp, const VECTOR3 dp,
+                            VECTOR3 dn)
+{
+    vec_set(dn, 0, 0, 0);
+    if (!normals)
+        return;
+    VECTOR3 e1, e2, q, g, dg;
+    vec_sub(e1, p1, p0);
+    vec_sub(e2, p2, p0);
+    vec_sub(q, pp->cross_point, p0);
+    real b[2], db[2];
+    if (!plane_coords(e1, e2, q, b) || !plane_coords(e1, e2, dp, db))
+        return;
+    for (int k = 0; k < 3; k++) {
+        g[k] = (1 - b[0] - b[1]) * normals[0][k] + b[0] * normals[1][k] +
+               b[1] * normals[2][k];
+        dg[k] = db[0] * (normals[1][k] - normals[0][k]) +
+                db[1] * (normals[2][k] - normals[0][k]);
+    }
+    shape_normal_change(g, dg, pp->n, dn);
+}
+
 void triangle_sample_point(const VECTOR3 p0, const VECTOR3 p1,
                            const VECTOR3 p2, const real u[2],
                            cobject_sample_t *s)
@@ -298,9 +338,17 @@ static void tri_sample(const COBJECT *obj, const real u[2],
     triangle_sample_point(s->p[0], s->p[1], s->p[2], u, smp);
 }
 
+static void tri_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                              const VECTOR3 dp, VECTOR3 dn)
+{
+    const triangle_shape *s = obj->shape;
+    triangle_normal_change(s->p[0], s->p[1], s->p[2],
+                           s->has_normals ? s->normals : NULL, pp, dp, dn);
+}
+
 static const cobject_ops triangle_ops = {
     "triangle", tri_intersect, tri_surface, tri_bounds, tri_area, tri_sample,
-    NULL
+    NULL, tri_normal_change
 };
 
 COBJECT *triangle_new(const VECTOR3 p0, const VECTOR3 p1, const VECTOR3 p2,

@@ -493,9 +493,35 @@ static void xf_destroy(COBJECT *obj)
     cobject_free(sh->inner);
 }
 
+/* The inner object's normal change at the hit mapped back to object
+ * space (point by M^-1, normal by M^T, step by M^-1's linear part), and
+ * the world normal's M^-T dn_o through shape_normal_change(), which
+ * accounts for the renormalisation. */
+static void xf_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                             const VECTOR3 dp, VECTOR3 dn)
+{
+    const xf_shape *sh = obj->shape;
+    vec_set(dn, 0, 0, 0);
+    if (!sh->inner->ops->normal_change)
+        return;
+    PATHPOINT po = *pp;
+    VECTOR3 dpo, no, g, dg, dno;
+    apply(MAT(sh->x.inv), po.cross_point, pp->cross_point, true);
+    apply(MAT(sh->x.inv), dpo, dp, false);
+    for (int j = 0; j < 3; j++)
+        no[j] = sh->x.m[0][j] * pp->n[X] + sh->x.m[1][j] * pp->n[Y] +
+                sh->x.m[2][j] * pp->n[Z];
+    if (vec_normalize(po.n, no) == 0)
+        return;
+    sh->inner->ops->normal_change(sh->inner, &po, dpo, dno);
+    xform_normal(&sh->x, g, po.n);
+    xform_normal(&sh->x, dg, dno);
+    shape_normal_change(g, dg, pp->n, dn);
+}
+
 static const cobject_ops xform_ops = {
     "xform", xf_intersect, xf_surface, xf_bounds, xf_area, xf_sample,
-    xf_destroy
+    xf_destroy, xf_normal_change
 };
 
 const xform_t *xform_of(const COBJECT *obj)

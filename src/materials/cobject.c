@@ -62,6 +62,15 @@ void cobject_fill(const COBJECT *obj, const ray_t *r, const hit_t *hit,
     pp->IntersectObj = obj;
 }
 
+void cobject_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                           const VECTOR3 dp, VECTOR3 dn)
+{
+    if (obj->ops->normal_change)
+        obj->ops->normal_change(obj, pp, dp, dn);
+    else
+        vec_set(dn, 0, 0, 0);
+}
+
 void pathpoint_set_in(PATHPOINT *pp, const VECTOR3 w)
 {
     vec_copy(pp->in, w);

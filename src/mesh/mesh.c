@@ -208,9 +208,31 @@ static void mesh_destroy(COBJECT *obj)
     obj->shape = NULL;
 }
 
+/* Where the triangle hit has a normal at each vertex, the change of
+ * their interpolation (turned round or not, triangle_normal_change); a
+ * flat facet otherwise. */
+static void mesh_normal_change(const COBJECT *obj, const PATHPOINT *pp,
+                               const VECTOR3 dp, VECTOR3 dn)
+{
+    const mesh_t *m = obj->shape;
+    vec_set(dn, 0, 0, 0);
+    if (!m->n || pp->prim < 0 || pp->prim >= obj->nprims)
+        return;
+    const int32_t *v = m->tri[pp->prim];
+    VECTOR3 nv[3];
+    for (int k = 0; k < 3; k++) {
+        vec_copy(nv[k], m->n[v[k]]);
+        if (vec_length2(nv[k]) == 0)
+            return;
+    }
+    const real *p0, *p1, *p2;
+    corners(m, pp->prim, &p0, &p1, &p2);
+    triangle_normal_change(p0, p1, p2, (const VECTOR3 *)nv, pp, dp, dn);
+}
+
 static const cobject_ops mesh_ops = {
     "mesh", mesh_intersect, mesh_surface, mesh_bounds, mesh_area,
-    mesh_sample, mesh_destroy,
+    mesh_sample, mesh_destroy, mesh_normal_change
 };
 
 /* --- construction ------------------------------------------------------- */

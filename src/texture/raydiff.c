@@ -55,27 +55,35 @@ bool raydiff_transfer(raydiff_t *rd, const VECTOR3 d, real t,
     return true;
 }
 
-void raydiff_reflect(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n)
+void raydiff_reflect(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n,
+                     const VECTOR3 dndx, const VECTOR3 dndy)
 {
-    (void)d; /* with dN = 0 only dD . n enters */
-    real kx = 2 * SVECTOR3(rd->dddx, n), ky = 2 * SVECTOR3(rd->dddy, n);
-    for (int i = 0; i < 3; i++) {
-        rd->dddx[i] -= kx * n[i];
-        rd->dddy[i] -= ky * n[i];
+    real dn = SVECTOR3(d, n);
+    real *dd[2] = { rd->dddx, rd->dddy };
+    const real *dN[2] = { dndx, dndy };
+    for (int k = 0; k < 2; k++) {
+        /* d(D . N) = dD . N + D . dN */
+        real ddn = SVECTOR3(dd[k], n) + SVECTOR3(d, dN[k]);
+        for (int i = 0; i < 3; i++)
+            dd[k][i] -= 2 * (ddn * n[i] + dn * dN[k][i]);
     }
 }
 
 bool raydiff_refract(raydiff_t *rd, const VECTOR3 d, const VECTOR3 n,
-                     real eta, const VECTOR3 tr)
+                     const VECTOR3 dndx, const VECTOR3 dndy, real eta,
+                     const VECTOR3 tr)
 {
     real dn = SVECTOR3(d, n), tn = SVECTOR3(tr, n);
     if (tn == 0)
         return false;
+    real mu = eta * dn - tn;
     real k = eta - eta * eta * dn / tn;
-    real mx = k * SVECTOR3(rd->dddx, n), my = k * SVECTOR3(rd->dddy, n);
-    for (int i = 0; i < 3; i++) {
-        rd->dddx[i] = eta * rd->dddx[i] - mx * n[i];
-        rd->dddy[i] = eta * rd->dddy[i] - my * n[i];
+    real *dd[2] = { rd->dddx, rd->dddy };
+    const real *dN[2] = { dndx, dndy };
+    for (int j = 0; j < 2; j++) {
+        real dmu = k * (SVECTOR3(dd[j], n) + SVECTOR3(d, dN[j]));
+        for (int i = 0; i < 3; i++)
+            dd[j][i] = eta * dd[j][i] - dmu * n[i] - mu * dN[j][i];
     }
     return true;
 }

@@ -575,19 +575,25 @@ static bool diff_hit(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp)
  * reflection, through to the other side the glass's refraction, whose
  * index ratio n_from / n_to is 1 / eta entering from the +n side
  * (material.h's eta = n_inside / n_outside) and eta leaving. About the
- * shading normal, the frame the material sampled wi in. */
+ * shading normal, the frame the material sampled wi in, whose change per
+ * pixel is the surface's for the hit's (cobject_normal_change(): 0 on
+ * flat ones); a bump map's own turning is left out, as pbrt-v3's bump
+ * mapping (sec. 9.3) keeps the surface's dn/du. */
 static bool diff_scatter(raydiff_t *rd, const ray_t *r, const PATHPOINT *pp,
                          const material_t *m, const VECTOR3 wi)
 {
-    VECTOR3 d;
+    VECTOR3 d, dndx, dndy;
     vec_normalize(d, r->d);
+    cobject_normal_change(pp->IntersectObj, pp, rd->dpdx, dndx);
+    cobject_normal_change(pp->IntersectObj, pp, rd->dpdy, dndy);
     real dn = SVECTOR3(d, pp->n), wn = SVECTOR3(wi, pp->n);
     if ((dn < 0) != (wn < 0)) {
-        raydiff_reflect(rd, d, pp->n);
+        raydiff_reflect(rd, d, pp->n, dndx, dndy);
         return true;
     }
     real eta = m->params.eta > 0 ? m->params.eta : 1;
-    return raydiff_refract(rd, d, pp->n, dn < 0 ? 1 / eta : eta, wi);
+    return raydiff_refract(rd, d, pp->n, dndx, dndy,
+                           dn < 0 ? 1 / eta : eta, wi);
 }
 
 static const scene_raydiff_ops_t raydiff_ops = {

@@ -261,7 +261,7 @@ static void win_destroy(COBJECT *obj)
 
 static const cobject_ops window_ops = { "plane", win_intersect, win_surface,
                                         win_bounds, win_area, win_sample,
-                                        win_destroy };
+                                        win_destroy, NULL };
 
 static COBJECT *make_window(real s, const VECTOR3 c, void *ctx)
 {

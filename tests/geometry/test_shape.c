@@ -13,7 +13,7 @@
 #include <string.h>
 
 static const cobject_ops dummy_ops = { "dummy", NULL, NULL, NULL, NULL, NULL,
-                                       NULL };
+                                       NULL, NULL };
 
 START_TEST(shape_alloc_gives_zeroed_aligned_data_freed_with_the_object)
 {

@@ -636,7 +636,7 @@ START_TEST(shading_normals_are_interpolated_and_ng_stays_geometric)
                      SVET_ERR_RANGE);
     COBJECT not_tri;
     static const cobject_ops other = { "other", NULL, NULL, NULL, NULL, NULL,
-                                       NULL };
+                                       NULL, NULL };
     cobject_init(&not_tri, &other, NULL);
     ck_assert_int_eq(triangle_set_normals(&not_tri, n0, n1, n2, &err),
                      SVET_ERR_RANGE);

@@ -56,7 +56,8 @@ static real toy_area(const COBJECT *obj)
 }
 
 static const cobject_ops toy_ops = { "toy", toy_intersect, toy_surface,
-                                     toy_bounds, toy_area, NULL, NULL };
+                                     toy_bounds, toy_area, NULL, NULL,
+                                     NULL };
 
 START_TEST(nearest_of_many_sub_primitives_is_kept)
 {
