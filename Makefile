@@ -505,7 +505,7 @@ ab-render: $(BUILD)/svet
 bench-scale: $(BUILD)/svet
 	sh tools/bench-scale.sh $(BUILD)/svet $(or $(SCALE_SPP),4096) \
 	    $(or $(THREADS),2) $(or $(SCALE_SCENE),scenes/cbox.scn) \
-	    "$(SCALE_OPTS)
+	    "$(SCALE_OPTS)"
 
 # `make slurm-check`: a one-node Slurm on this machine runs
 # tools/slurm/*.sbatch and the merge is compared with a single render

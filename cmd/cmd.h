@@ -75,12 +75,13 @@ typedef struct {
     uint64_t count, nonfinite;
 } cmd_part_pixel_t;
 
-/* A part file read back (FILE.exr.part): its header, tone map, and the
- * pixels of the crop, row by row. */
+/* A part file read back (FILE.exr.part): its header, tone map, EXR pixel
+ * type, and the pixels of the crop, row by row. */
 typedef struct {
     cmd_part_t p;
     int tm_op, tm_curve;
     double tm[5];
+    bool half;                   /* the part's EXR was --half */
     cmd_part_pixel_t *v;
 } cmd_part_file_t;
 

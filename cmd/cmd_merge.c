@@ -67,9 +67,10 @@ void cmd_merge_help(FILE *f)
 "and its variance, with OUT.exr.part (the samples FROM:TO of every pixel,\n"
 "so that merged images merge again). Refuses parts of different scenes,\n"
 "seeds, settings or sizes and overlapping sample ranges, and says which\n"
-"samples or pixels are missing. Exit 1: bad command line or parts that do\n"
-"not fit together; 2: a part is missing or malformed; 3: an output could\n"
-"not be written.\n");
+"samples or pixels are missing. OUT.exr holds half floats when the parts\n"
+"were rendered with --half, else floats; half and float parts together\n"
+"are refused. Exit 1: bad command line or parts that do not fit together;\n"
+"2: a part is missing or malformed; 3: an output could not be written.\n");
 }
 
 void cmd_fixed_write(FILE *f, const image_fixed_t *v)
@@ -138,7 +139,7 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
                &ver, &p->identity, &p->width, &p->height, &p->from, &p->to,
                &p->x0, &p->x1, &p->y0, &p->y1, &q->tm_op, &q->tm[0],
                &q->tm[1], &q->tm[2], &q->tm[3], &q->tm_curve,
-               &q->tm[4]) != 17 || ver != 2 || p->width <= 0 ||
+               &q->tm[4]) != 17 || (ver != 2 && ver != 3) || p->width <= 0 ||
         p->height <= 0 || p->x0 < 0 || p->x1 > p->width || p->x0 >= p->x1 ||
         p->y0 < 0 || p->y1 > p->height || p->y0 >= p->y1 || p->from < 0 ||
         p->to <= p->from) {
@@ -146,6 +147,16 @@ int cmd_part_read(const char *exr, cmd_part_file_t *q)
         fclose(f);
         return SVET_EXIT_INPUT;
     }
+    /* version 3 names the EXR's pixel type; version 2 wrote float only */
+    char px[8] = "float";
+    if (ver == 3 && (fscanf(f, " exr %7s", px) != 1 ||
+                     (strcmp(px, "half") && strcmp(px, "float")))) {
+        fprintf(stderr, "svet merge: %s: not a part file (no 'exr half' or "
+                        "'exr float' line)\n", path);
+        fclose(f);
+        return SVET_EXIT_INPUT;
+    }
+    q->half = !strcmp(px, "half");
     size_t n = (size_t)(p->x1 - p->x0) * (size_t)(p->y1 - p->y0);
     q->v = malloc(n * sizeof *q->v);
     if (!q->v) {
@@ -259,6 +270,12 @@ int cmd_merge(int argc, char **argv)
                            "scenes, seeds or settings", ins[0], ins[k]);
             goto done;
         }
+        if (q[k].half != q[0].half) {
+            rc = cmd_error("merge", SVET_EXIT_USAGE, "%s and %s: one EXR is "
+                           "half, the other float: render every part with "
+                           "--half or none", ins[0], ins[k]);
+            goto done;
+        }
         if (b->width != a->width || b->height != a->height) {
             rc = cmd_error("merge", SVET_EXIT_USAGE, "%s and %s: different "
                            "sizes (%dx%d, %dx%d)", ins[0], ins[k], a->width,
@@ -356,7 +373,7 @@ int cmd_merge(int argc, char **argv)
     sprintf(part_path, "%s.part", exr);
     whole.path = part_path;
     r.spp_done = spp;
-    outputs_t out = { exr, png, var, false, &whole };
+    outputs_t out = { exr, png, var, q[0].half, &whole };
     if (cmd_render_write(&r, &s, &out, &err) != SVET_OK) {
         fprintf(stderr, "svet merge: %s\n", err.msg);
         rc = SVET_EXIT_OUTPUT;

@@ -73,7 +73,8 @@ void cmd_render_help(FILE *f)
 "  -h, --help              this text\n"
 "\n"
 "Progress with an ETA goes to stderr when it is a terminal; otherwise one\n"
-"summary line (time, samples per second, rays per second) at the end.\n"
+"summary line (time, set-up time: acceleration structure and a method's\n"
+"pre-pass, samples per second, rays per second) at the end.\n"
 "The image depends only on the scene, the seed and the sample count: the\n"
 "same for any number of threads or passes.\n"
 "\n"
@@ -165,17 +166,19 @@ static void ensure_dir(const char *path)
 /* The part file beside a part's EXR (cmd.h: cmd_part_t): the exact
  * per-pixel sums, sums of squares and counts of its crop, the sums as
  * the hexadecimal integers of image.h's fixed point, so that svet merge
- * adds the same integers. */
+ * adds the same integers; and the EXR's pixel type (--half), so that the
+ * merge writes what one render would. */
 static void write_part(FILE *f, const render_t *r, const scene_t *s,
-                       const cmd_part_t *p)
+                       const cmd_part_t *p, bool half)
 {
     const scene_tonemap_t *t = &s->render.tonemap;
-    fprintf(f, "svet-part 2\nidentity %016llx\nsize %d %d\nsamples %ld %ld\n"
-               "crop %d %d %d %d\ntonemap %d %a %a %a %a %d %a\n",
+    fprintf(f, "svet-part 3\nidentity %016llx\nsize %d %d\nsamples %ld %ld\n"
+               "crop %d %d %d %d\ntonemap %d %a %a %a %a %d %a\nexr %s\n",
             (unsigned long long)p->identity, p->width, p->height, p->from,
             r->spp_done, p->x0, p->x1, p->y0, p->y1, (int)t->op,
             (double)t->exposure, (double)t->key, (double)t->white,
-            (double)t->bias, (int)t->curve, (double)t->gamma);
+            (double)t->bias, (int)t->curve, (double)t->gamma,
+            half ? "half" : "float");
     for (int y = p->y0; y < p->y1; y++)
         for (int x = p->x0; x < p->x1; x++) {
             size_t i = (size_t)y * (size_t)p->width + (size_t)x;
@@ -240,7 +243,7 @@ svet_status cmd_render_write(const render_t *r, const scene_t *s,
     if (st == SVET_OK && o->part) {
         st = fileio_set_begin(&set, o->part->path, &f, err);
         if (st == SVET_OK) {
-            write_part(f->f, r, s, o->part);
+            write_part(f->f, r, s, o->part, o->half);
             if (ferror(f->f))
                 st = svet_error_set(err, SVET_ERR_IO, "%s: write failed",
                                     o->part->path);
@@ -548,6 +551,9 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
     rc = cmd_check_outputs("render", outs, 3, ins, 1);
     if (rc != SVET_EXIT_OK)
         goto done;
+    /* the set-up's time (acceleration structure, lights, a method's
+     * pre-pass) is in the summary: every part of a split render pays it */
+    const double t_setup = cmd_now();
     if (scene_validate(scene, &err) != SVET_OK ||
         render_init(&r, scene, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);
@@ -555,6 +561,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         goto done;
     }
     r_live = true;
+    const double setup_secs = cmd_now() - t_setup;
     if (scene->render.subsample_step > 0 &&
         (o->part || o->checkpoint || o->resume)) {
         /* app. F refines on every pixel's final value: a part of the
@@ -706,11 +713,12 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
     if (!o->quiet) {
         double samples = (double)r.spp_done * (double)scene->camera.width *
                          (double)scene->camera.height;
-        fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s: %.3g "
+        fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s "
+                        "after %.2f s of set-up: %.3g "
                         "samples/s, %.3g rays/s; %s%s%s; wrote %s and "
                         "%s%s%s\n",
                 scene_path, scene->camera.width, scene->camera.height,
-                r.spp_done, secs, samples / secs,
+                r.spp_done, secs, setup_secs, samples / secs,
                 (double)r.stats.rays / secs,
                 r.method ? r.method->describe : "", r.method ? "; " : "",
                 r.accel_choice, exr, png,

@@ -9,8 +9,8 @@
 # measure another scene or method: a method with a pre-pass (photon maps,
 # the irradiance cache) computes it in every part, and the ratio shows
 # what that costs. The default, 4096 samples of the Cornell box rendered
-# four times over, is meant for an otherwise idle machine (rates are what
-# it measures).
+# five times over, is meant for an otherwise idle machine (rates are what
+# it measures); the load average printed beside each row says how idle.
 # Usage: sh tools/bench-scale.sh SVET [SPP] [THREADS] [SCENE] [OPTS]
 #        (make bench-scale [SCALE_SPP=N] [THREADS=T] [SCALE_SCENE=F]
 #         [SCALE_OPTS="..."])
@@ -23,15 +23,23 @@ OPTS=${5:-}
 T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 A="$SCENE $OPTS --spp $SPP -q --threads $TH"
 now() { date +%s.%N; }
-t0=$(now)
-$S render $A -o $T/full.exr || exit 1
-t1=$(now)
-single=$(echo "$t0 $t1" | awk '{ printf "%.2f", $2 - $1 }')
-echo "| parts | seconds (parts + merge) | over the single render | merge seconds | bytes of one part file | merged = single |"
-echo "|---:|---:|---:|---:|---:|:---|"
-echo "| 1 (single render) | $single | 1 | | | |"
+load() { cut -d' ' -f1 /proc/loadavg; }
+single() {
+    t0=$(now)
+    $S render $A -o $T/full$1.exr || exit 1
+    t1=$(now)
+    echo "$t0 $t1" | awk '{ printf "%.2f", $2 - $1 }'
+}
+# The single render runs before and after the parts and its mean is the
+# reference: on a shared machine the load drifts over the run, and the
+# mean of both ends cancels a steady drift to first order.
+l0=$(load)
+s0=$(single 0)
+echo "bench-scale: single render $s0 s, load $l0 to $(load)" >&2
+rows=""
 for n in 2 4 8; do
     list=""; i=0
+    la=$(load)
     t0=$(now)
     while [ $i -lt $n ]; do
         f=$((SPP * i / n)); t=$((SPP * (i + 1) / n))
@@ -41,9 +49,19 @@ for n in 2 4 8; do
     tm=$(now)
     $S merge $list -o $T/m$n.exr || exit 1
     t1=$(now)
-    same=no; cmp -s $T/full.exr $T/m$n.exr && same=yes
+    same=no; cmp -s $T/full0.exr $T/m$n.exr && same=yes
     bytes=$(wc -c < $T/p$n-0.exr.part)
-    echo "$t0 $tm $t1 $single" | awk -v n=$n -v b=$bytes -v s=$same '{
-        printf "| %d | %.2f | %.3f | %.2f | %d | %s |\n", n, $3 - $1,
-               ($3 - $1) / $4, $3 - $2, b, s }'
+    rows="$rows$n $t0 $tm $t1 $bytes $same $la $(load)
+"
+    echo "$n $t0 $tm $t1 $la $(load)" | awk '{ printf "bench-scale: %d parts %.2f s, merge %.2f s, load %s to %s\n", $1, $4 - $2, $4 - $3, $5, $6 }' >&2
 done
+l1=$(load)
+s1=$(single 1)
+cmp -s $T/full0.exr $T/full1.exr || { echo "bench-scale: the two single renders differ" >&2; exit 1; }
+single=$(echo "$s0 $s1" | awk '{ printf "%.2f", ($1 + $2) / 2 }')
+echo "| parts | seconds (parts + merge) | over the single render | merge seconds | bytes of one part file | merged = single | load average (1 min) at start, end |"
+echo "|---:|---:|---:|---:|---:|:---|:---|"
+echo "| 1 (single render, mean of $s0 before and $s1 after) | $single | 1 | | | | $l0, $l1 |"
+printf '%s' "$rows" | awk -v s=$single '{
+    printf "| %d | %.2f | %.3f | %.2f | %d | %s | %s, %s |\n", $1, $4 - $2,
+           ($4 - $2) / s, $4 - $3, $5, $6, $7, $8 }'

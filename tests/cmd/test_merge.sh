@@ -4,7 +4,7 @@
 # EXR, PNG and variance bit for bit (an independent reference: the one-pass
 # render), every refusal prints its message, and --resume after SIGINT,
 # SIGTERM or SIGKILL ends on the uninterrupted render's bits; the photon
-# and ppm methods merge too.
+# and ppm methods merge too; --half parts merge to a --half render.
 # Usage: sh tests/cmd/test_merge.sh build/float/svet
 set -u
 S=${1:?usage: test_merge.sh SVET}
@@ -94,6 +94,22 @@ refuse() { # WHAT MESSAGE ARGS...
     if "$S" "$@" 2>$T/err; then no "$what accepted"; fi
     grep -q "$msg" $T/err || no "$what: no '$msg' in: $(cat $T/err)"
 }
+# --half parts merge to a single --half render's bytes (half floats; an
+# independent check: the part file says so and the EXR is smaller), and
+# half and float parts together are refused
+$S render $A --half -o $T/hfull.exr || no "single --half render"
+$S render $A --half --samples 0:5 -o $T/h0.exr || no "--half part 0:5"
+$S render $A --half --samples 5:14 -o $T/h1.exr || no "--half part 5:14"
+$S merge $T/h0.exr $T/h1.exr -o $T/hm.exr || no "merge of --half parts"
+cmp -s $T/hfull.exr $T/hm.exr || no "2 --half parts: EXR differs"
+cmp -s $T/hfull.png $T/hm.png || no "2 --half parts: PNG differs"
+grep -qx "exr half" $T/hm.exr.part || no "the merged part file is not half"
+grep -qx "exr float" $T/m2.exr.part || no "a float part file is not float"
+[ "$(wc -c < $T/hm.exr)" -lt "$(wc -c < $T/m2.exr)" ] ||
+    no "the merged --half EXR is not smaller than the float one"
+$S merge $T/hm.exr -o $T/hmm.exr || no "merge of a merged --half image"
+cmp -s $T/hfull.exr $T/hmm.exr || no "a merge of the --half merge differs"
+refuse "half and float parts" "one EXR is half, the other float" merge $T/h0.exr $T/p2-1.exr -o $T/x.exr
 refuse "a gap" "samples 4:9 of pixel (0, 0) are missing" merge $T/p3-0.exr $T/p3-2.exr -o $T/x.exr
 refuse "an overlap" "overlap another part" merge $T/p2-0.exr $T/p2-0.exr -o $T/x.exr
 refuse "a missing crop" "pixel (20, 0) is in no part" merge $T/c0:20,0:15.exr -o $T/x.exr
@@ -118,7 +134,7 @@ $S merge $T/t0.exr $T/t1.exr -o $T/tm.exr || no "the same mesh's parts"
 printf 'v -1 -1 0\nv 1 -1 0\nv 0 0.9 0\nf 1 2 3\n' > $T/tri.obj
 $S render $T/tri.scn -q --samples 2:4 -o $T/t2.exr || no "edited mesh part"
 refuse "an edited mesh" "different scenes, seeds or settings" merge $T/t0.exr $T/t2.exr -o $T/x.exr
-sed '7,$s/^[0-9a-f-]*/nan/' $T/p2-1.exr.part > $T/nan.exr.part; cp $T/p2-1.exr $T/nan.exr
+sed '8,$s/^[0-9a-f-]*/nan/' $T/p2-1.exr.part > $T/nan.exr.part; cp $T/p2-1.exr $T/nan.exr
 refuse "a NaN sum" "'nan' is not a sum" merge $T/p2-0.exr $T/nan.exr -o $T/x.exr
 head -c 300 $T/p2-1.exr.part > $T/cut.exr.part; cp $T/p2-1.exr $T/cut.exr
 refuse "a truncated part" "truncated at pixel" merge $T/p2-0.exr $T/cut.exr -o $T/x.exr
