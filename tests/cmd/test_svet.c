@@ -467,24 +467,33 @@ static char *file_text(const char *path)
     return t;
 }
 
+/* Write the scene `text` to NAME.scn and render it to NAME-ref.exr, both
+ * in the test's directory: their paths to scn and ref, the directory to
+ * dir (each of 1024 bytes). */
+static void scene_and_ref(const char *name, const char *text, char *scn,
+                          char *ref, char *dir)
+{
+    snprintf(scn, 1024, "%s/%s.scn", imgtest_path("."), name);
+    snprintf(ref, 1024, "%s/%s-ref.exr", imgtest_path("."), name);
+    snprintf(dir, 1024, "%s", imgtest_path("."));
+    imgtest_write_bytes(scn, text, strlen(text));
+    expect(0, NULL, "render '%s' -o '%s' -q", scn, ref);
+}
+
 /* svet converge's CSV names the scene's rendering method in its header
  * (`integrator NAME`): a part's method (volsingle, volpath) as the core's
  * integrators, also when --set changes it. */
 START_TEST(the_converge_csv_names_the_scenes_integrator)
 {
     char scn[1024], ref[1024], dir[1024], csv[1100], args[4096];
-    snprintf(scn, sizeof scn, "%s", imgtest_path("fog.scn"));
-    snprintf(ref, sizeof ref, "%s", imgtest_path("fog-ref.exr"));
-    snprintf(dir, sizeof dir, "%s", imgtest_path("."));
-    const char text[] =
+    scene_and_ref("fog",
         "camera position 0 0 3 target 0 0 0 fov 30 width 4 height 4\n"
         "render spp 2 maxdepth 2 integrator volsingle seed 3\n"
         "material black lambert rho 0\n"
         "environment radiance 1\n"
         "medium fog homogeneous sigma_a 0.5 sigma_s 0.5\n"
-        "sphere centre 0 0 0 radius 1 material black medium fog invisible\n";
-    imgtest_write_bytes(scn, text, sizeof text - 1);
-    expect(0, NULL, "render '%s' -o '%s' -q", scn, ref);
+        "sphere centre 0 0 0 radius 1 material black medium fog invisible\n",
+        scn, ref, dir);
     const char *sets[3][2] = { { "", "integrator volsingle," },
                                { "--set integrator=volpath",
                                  "integrator volpath," },
@@ -509,17 +518,12 @@ END_TEST
 START_TEST(converge_clock_is_named_in_the_csv_and_refused_when_mixed)
 {
     char scn[1024], ref[1024], dir[1024], csv[2][1100];
-    snprintf(scn, sizeof scn, "%s", imgtest_path("clock.scn"));
-    snprintf(ref, sizeof ref, "%s", imgtest_path("clock-ref.exr"));
-    snprintf(dir, sizeof dir, "%s", imgtest_path("."));
-    const char text[] =
+    scene_and_ref("clock",
         "camera position 0 0 3 target 0 0 0 fov 30 width 4 height 4\n"
         "render spp 4 maxdepth 2 seed 3\n"
         "material grey lambert rho 0.5\n"
         "environment radiance 1\n"
-        "sphere centre 0 0 0 radius 1 material grey\n";
-    imgtest_write_bytes(scn, text, sizeof text - 1);
-    expect(0, NULL, "render '%s' -o '%s' -q", scn, ref);
+        "sphere centre 0 0 0 radius 1 material grey\n", scn, ref, dir);
     expect(1, "bad value 'gpu' for --clock: expected wall or cpu",
            "converge '%s' --ref '%s' --clock gpu", scn, ref);
     expect(1, NULL, "converge '%s' --ref '%s' --clock", scn, ref);
