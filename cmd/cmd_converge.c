@@ -231,17 +231,17 @@ static bool run_gnuplot(const char *script, const char *assign, bool *missing)
     return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-/* Plot csv to png with the script, or say how to. */
+/* Plot csv, timed by clock, to png with the script, or say how to. */
 static void plot(const char *script, const char *csv, const char *png,
-                 const char *title, bool quiet)
+                 const char *title, converge_clock clock, bool quiet)
 {
     char assign[8192];
     if (strchr(csv, '\'') || strchr(png, '\'') || strchr(title, '\'')) {
         fprintf(stderr, "svet converge: no plot: a file name holds a quote\n");
         return;
     }
-    snprintf(assign, sizeof assign, "files='%s'; out='%s'; ttl='%s'", csv,
-             png, title);
+    snprintf(assign, sizeof assign, "files='%s'; out='%s'; ttl='%s'; "
+             "clock='%s'", csv, png, title, converge_clock_name(clock));
     if (!file_exists(script)) {
         fprintf(stderr, "svet converge: no plot: the gnuplot script %s is "
                         "not here (run from svet's top directory, or give "
@@ -960,7 +960,7 @@ int cmd_converge(int argc, char **argv)
         printf("%s: estimated relative bias %.4g (the floor of the relative "
                "RMSE)\n", method, bias);
     if (!o.no_plot)
-        plot(o.script, csv, png, method, quiet);
+        plot(o.script, csv, png, method, o.clock, quiet);
 done:
     if (r_live)
         render_free(&r);
