@@ -143,6 +143,7 @@ typedef struct {
     const char *ztest_img, *ztest_var, *pvalue;
     const char *max_pixels;               /* --max-pixels, or NULL */
     converge_metric metric;               /* --metric */
+    converge_clock clock;                 /* --clock */
     bool time_mode, have_list, no_plot, quiet, report;
     cmd_scene_opts_t so;
 } cmd_converge_args_t;

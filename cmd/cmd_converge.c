@@ -73,6 +73,12 @@ void cmd_converge_help(FILE *f)
 "                        accel, ...: scenefile_override), repeatable\n"
 "  --strict              refuse a scene that reading warns about (exit 2)\n"
 "  --threads N           render threads (0 = every core)\n"
+"  --clock wall|cpu      what the seconds and --time-list count: wall, the\n"
+"                        time waited (default); cpu, the process's CPU time,\n"
+"                        all its threads together, which other jobs on the\n"
+"                        machine hardly change (a budget of 2 s at 2\n"
+"                        threads is 1 s of wall on a quiet machine). The\n"
+"                        CSV's seconds column is then cpu_seconds\n"
 "  --seed N              seed of the random numbers (use one other than the\n"
 "                        reference's, so that the errors are independent)\n"
 "  --max-pixels N        read images of up to N pixels (default 67108864,\n"
@@ -108,7 +114,10 @@ void cmd_converge_help(FILE *f)
 "`gnuplot -e \"files=...; out=...\" SCRIPT` (posix_spawnp) and writes\n"
 "DIR/LABEL.png, the relative RMSE against time on log-log axes; otherwise it\n"
 "says so and prints the command to run later.\n"
-"Timings are wall-clock: render set-up and passes, not the measurements.\n"
+"Timings are of the render set-up (the photon tracing included) and the\n"
+"passes, not the measurements, on the clock of --clock. --report reads the\n"
+"clock from the CSV's seconds column (seconds or cpu_seconds), refuses to\n"
+"compare series of different clocks and gives times as s or CPU-s.\n"
 "\n"
 "exit codes: 0 done; 1 bad command line; 2 the scene, the reference or a CSV\n"
 "is missing or malformed, or they do not fit together; 3 an output could\n"
@@ -222,17 +231,17 @@ static bool run_gnuplot(const char *script, const char *assign, bool *missing)
     return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-/* Plot csv to png with the script, or say how to. */
+/* Plot csv, timed by clock, to png with the script, or say how to. */
 static void plot(const char *script, const char *csv, const char *png,
-                 const char *title, bool quiet)
+                 const char *title, converge_clock clock, bool quiet)
 {
     char assign[8192];
     if (strchr(csv, '\'') || strchr(png, '\'') || strchr(title, '\'')) {
         fprintf(stderr, "svet converge: no plot: a file name holds a quote\n");
         return;
     }
-    snprintf(assign, sizeof assign, "files='%s'; out='%s'; ttl='%s'", csv,
-             png, title);
+    snprintf(assign, sizeof assign, "files='%s'; out='%s'; ttl='%s'; "
+             "clock='%s'", csv, png, title, converge_clock_name(clock));
     if (!file_exists(script)) {
         fprintf(stderr, "svet converge: no plot: the gnuplot script %s is "
                         "not here (run from svet's top directory, or give "
@@ -258,14 +267,15 @@ static const char *how_mark(converge_how h)
     return h == CONVERGE_EXTRAPOLATED ? "~" : "";
 }
 
-static void fmt_time(char *out, size_t n, double t, converge_how h)
+static void fmt_time(char *out, size_t n, double t, converge_how h,
+                     const char *unit)
 {
     if (h == CONVERGE_NEVER)
         snprintf(out, n, "never (bias)");
     else if (h == CONVERGE_UNKNOWN || !isfinite(t))
         snprintf(out, n, "-");
     else
-        snprintf(out, n, "%s%.3g s", how_mark(h), t);
+        snprintf(out, n, "%s%.3g %s", how_mark(h), t, unit);
 }
 
 static int report(int nfiles, const char *const *files, converge_metric m, double T,
@@ -283,16 +293,35 @@ static int report(int nfiles, const char *const *files, converge_metric m, doubl
     }
     int rc = SVET_EXIT_OK;
     svet_error err;
-    for (int i = 0; i < nfiles; i++)
+    converge_clock clock0 = CONVERGE_WALL;
+    for (int i = 0; i < nfiles; i++) {
+        converge_clock clock;
+        svet_error_clear(&err);
         if (converge_csv_read(files[i], s[i].method, sizeof s[i].method,
-                              &s[i].p, &s[i].n, &err) != SVET_OK ||
+                              &clock, &s[i].p, &s[i].n, &err) != SVET_OK ||
             s[i].n == 0) {
-            fprintf(stderr, "svet converge: %s\n", s[i].n == 0 &&
-                    err.status == SVET_OK ? "a series without points" :
-                    err.msg);
+            if (err.status == SVET_OK)
+                fprintf(stderr, "svet converge: %s: a series without "
+                                "points\n", files[i]);
+            else
+                fprintf(stderr, "svet converge: %s\n", err.msg);
             rc = SVET_EXIT_INPUT;
             goto done;
         }
+        if (i == 0)
+            clock0 = clock;
+        else if (clock != clock0) {
+            /* a CPU-second is not a wall-second: no common time axis */
+            fprintf(stderr, "svet converge: %s is timed by the %s clock, %s "
+                            "by the %s clock: times on different clocks do "
+                            "not compare\n", files[i],
+                    converge_clock_name(clock), files[0],
+                    converge_clock_name(clock0));
+            rc = SVET_EXIT_INPUT;
+            goto done;
+        }
+    }
+    const char *unit = clock0 == CONVERGE_CPU ? "CPU-s" : "s";
     if (!(T > 0)) {
         T = s[0].p[s[0].n - 1].seconds;
         for (int i = 1; i < nfiles; i++)
@@ -303,15 +332,18 @@ static int report(int nfiles, const char *const *files, converge_metric m, doubl
     double eff0 = converge_efficiency(&s[0].p[s[0].n - 1], m);
     double t0 = converge_time_to(s[0].p, s[0].n, m, E, NULL);
     const char *what = m == CONVERGE_REL ? "relative RMSE" : "RMSE";
-    printf("Error at %.3g s, and time to reach the %s of %.3g that the "
-           "baseline (%s) reaches at %.3g s; the reference's noise removed; "
-           "efficiency "
-           "1/(variance x time) with the %s variance. ~ marks a value "
-           "extrapolated by MSE = bias^2 + c/t.\n\n",
-           T, what, E, s[0].method, T,
+    printf("Times on the %s clock%s. Error at %.3g %s, and time to reach the "
+           "%s of %.3g that the baseline (%s) reaches at %.3g %s; the "
+           "reference's noise removed; efficiency 1/(variance x time) with "
+           "the %s variance. ~ marks a value extrapolated by MSE = bias^2 + "
+           "c/t.\n\n", converge_clock_name(clock0),
+           clock0 == CONVERGE_CPU ? " (CPU-seconds, all threads together)"
+                                  : "",
+           T, unit, what, E, s[0].method, T, unit,
            m == CONVERGE_REL ? "relative" : "absolute");
-    printf("| method | spp | %s at %.3g s | time to %.3g | speed-up | "
-           "efficiency | x baseline | rays/s | biased? |\n", what, T, E);
+    printf("| method | spp | %s at %.3g %s | time to %.3g | speed-up | "
+           "efficiency | x baseline | rays/%s | biased? |\n", what, T, unit,
+           E, unit);
     printf("|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (int i = 0; i < nfiles; i++) {
         const converge_point_t *p = s[i].p, *last = &p[s[i].n - 1];
@@ -321,7 +353,7 @@ static int report(int nfiles, const char *const *files, converge_metric m, doubl
         double bias, eff = converge_efficiency(last, m);
         bool biased = converge_biased(p, s[i].n, m, &bias);
         char ts[64], sp[64], bs[64];
-        fmt_time(ts, sizeof ts, t, ht);
+        fmt_time(ts, sizeof ts, t, ht, unit);
         if (isfinite(t) && t > 0 && isfinite(t0))
             snprintf(sp, sizeof sp, "%.2f", t0 / t);
         else
@@ -483,17 +515,23 @@ typedef struct {
     const image_t *ref, *ref_var;
     converge_point_t *pts;
     int n;
-    double render_secs;   /* set-up + passes so far */
+    double render_secs;   /* set-up + passes so far, on `clock` */
+    converge_clock clock;
     int threads;
     bool quiet;
 } run_t;
 
+static double clock_now(converge_clock c)
+{
+    return c == CONVERGE_CPU ? cmd_cpu_now() : cmd_now();
+}
+
 /* Render up to spp_end samples and add them to the render clock. */
 static void render_to(run_t *u, long spp_end)
 {
-    double t = cmd_now();
+    double t = clock_now(u->clock);
     render_pass(u->r, spp_end, u->threads, NULL, NULL);
-    u->render_secs += cmd_now() - t;
+    u->render_secs += clock_now(u->clock) - t;
 }
 
 /* Measure the image as it is, append a point and rewrite the CSV (so an
@@ -522,12 +560,15 @@ static svet_status measure(run_t *u, const char *csv, const char *method,
         return st;
     u->n++;
     if (!u->quiet)
-        fprintf(stderr, "  %6ld spp  %8.3f s  RMSE %.4g  relative RMSE "
+        fprintf(stderr, "  %6ld spp  %8.3f %s  RMSE %.4g  relative RMSE "
                         "%.4g  (noise removed)  efficiency %.3g\n",
-                p->spp, p->seconds, converge_error(p, CONVERGE_ABS),
+                p->spp, p->seconds,
+                u->clock == CONVERGE_CPU ? "CPU-s" : "s",
+                converge_error(p, CONVERGE_ABS),
                 converge_error(p, CONVERGE_REL),
                 converge_efficiency(p, CONVERGE_REL));
-    return converge_csv_write(csv, method, comment, u->pts, u->n, err);
+    return converge_csv_write(csv, method, comment, u->clock, u->pts, u->n,
+                              err);
 }
 
 /* The time-budget series: passes sized from the measured rate so that
@@ -659,6 +700,20 @@ static int opt_metric(void *args, const char *cmd, const char *opt,
     return SVET_EXIT_OK;
 }
 
+static int opt_clock(void *args, const char *cmd, const char *opt,
+                     const char *v)
+{
+    cmd_converge_args_t *o = args;
+    if (!strcmp(v, "wall"))
+        o->clock = CONVERGE_WALL;
+    else if (!strcmp(v, "cpu"))
+        o->clock = CONVERGE_CPU;
+    else
+        return cmd_error(cmd, SVET_EXIT_USAGE, "bad value '%s' for %s: "
+                         "expected wall or cpu", v, opt);
+    return SVET_EXIT_OK;
+}
+
 static int file_arg(void *args, const char *cmd, const char *a)
 {
     (void)cmd;
@@ -693,6 +748,7 @@ static const cmd_option_t options[] = {
     { "--ref-spp", NULL, true, CMD_CALL, 0, opt_count },
     { "--max-pixels", NULL, true, CMD_SET_TEXT, AT(max_pixels), NULL },
     { "--metric", NULL, true, CMD_CALL, 0, opt_metric },
+    { "--clock", NULL, true, CMD_CALL, 0, opt_clock },
     { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
 };
 #undef AT
@@ -703,6 +759,7 @@ int cmd_converge_parse(int argc, char **argv, cmd_converge_args_t *o)
     o->out_dir = "out/converge";
     o->script = DEFAULT_SCRIPT;
     o->metric = CONVERGE_REL;
+    o->clock = CONVERGE_WALL;
     cmd_scene_opts_init(&o->so);
     const cmd_parser_t p = { "converge", options, o, file_arg,
                              cmd_converge_help, &o->so, false, NULL };
@@ -838,7 +895,7 @@ int cmd_converge(int argc, char **argv)
     }
     make_dirs(out_dir);
 
-    double t0 = cmd_now();
+    double t0 = clock_now(o.clock);
     if (scene_validate(&scene, &err) != SVET_OK ||
         render_init(&r, &scene, &err) != SVET_OK) {
         fprintf(stderr, "svet converge: %s: %s\n", scene_path, err.msg);
@@ -846,8 +903,9 @@ int cmd_converge(int argc, char **argv)
         goto done;
     }
     r_live = true;
-    run_t u = { &r, &ref, have_var ? &ref_var : NULL, pts, 0, cmd_now() - t0,
-                scene.render.threads, quiet };
+    run_t u = { &r, &ref, have_var ? &ref_var : NULL, pts, 0,
+                clock_now(o.clock) - t0, o.clock, scene.render.threads,
+                quiet };
 
     int len = snprintf(comment, 8192,
         "svet converge %s --ref %s%s%s: %s\n"
@@ -855,7 +913,7 @@ int cmd_converge(int argc, char **argv)
         "roulette %s, %s build "
         "(%s)\n"
         "accel: %s\n"
-        "threads %d (0 = every core); seconds = wall-clock render set-up "
+        "threads %d (0 = every core); %s = %s render set-up "
         "and passes, measurements excluded\n"
         "rmse_noref = sqrt(mse - ref_variance); bias2 = mse - variance - "
         "ref_variance; efficiency = 1/(variance x seconds); PSNR peak %g",
@@ -866,6 +924,9 @@ int cmd_converge(int argc, char **argv)
         integrator_name(&scene.render),
         scene.render.max_depth, scene.render.roulette ? "on" : "off",
         REAL_NAME, __VERSION__, r.accel_choice, scene.render.threads,
+        converge_clock_column(o.clock),
+        o.clock == CONVERGE_CPU ? "CPU time (all threads) of the"
+                                : "wall-clock",
         CONVERGE_PSNR_PEAK);
     for (int i = 0; i < o.so.nsets && len > 0 && len < 8000; i++)
         len += snprintf(comment + len, 8192 - (size_t)len, "%s--set %s",
@@ -886,10 +947,11 @@ int cmd_converge(int argc, char **argv)
     const converge_point_t *last = &pts[u.n - 1];
     double bias;
     bool biased = converge_biased(pts, u.n, CONVERGE_REL, &bias);
-    printf("%s: %d points, %ld spp in %.3g s; with the reference's noise "
+    printf("%s: %d points, %ld spp in %.3g %s; with the reference's noise "
            "removed: RMSE %.4g, relative RMSE %.4g; efficiency "
            "1/(variance x time) %.4g (relative variance); %s; wrote %s\n",
            method, u.n, last->spp, last->seconds,
+           o.clock == CONVERGE_CPU ? "CPU-s" : "s",
            converge_error(last, CONVERGE_ABS),
            converge_error(last, CONVERGE_REL),
            converge_efficiency(last, CONVERGE_REL),
@@ -898,7 +960,7 @@ int cmd_converge(int argc, char **argv)
         printf("%s: estimated relative bias %.4g (the floor of the relative "
                "RMSE)\n", method, bias);
     if (!o.no_plot)
-        plot(o.script, csv, png, method, quiet);
+        plot(o.script, csv, png, method, o.clock, quiet);
 done:
     if (r_live)
         render_free(&r);

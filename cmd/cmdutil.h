@@ -25,6 +25,10 @@
  * can't fail. */
 double cmd_now(void);
 
+/* Seconds of CPU time the process has used, all its threads together
+ * (CLOCK_PROCESS_CPUTIME_ID). This function can't fail. */
+double cmd_cpu_now(void);
+
 /* The whole of s as a decimal integer in [lo, hi], into *out. Returns
  * false (and leaves *out alone) on anything else: empty, trailing bytes,
  * overflow, out of range. */

@@ -7,8 +7,9 @@
 # Variables: files (CSV paths separated by blanks; required), out (the PNG;
 # required), titles (one word per file; default: the file names without
 # .csv), ttl (the plot's title; default none), metric ("rel", the default,
-# or "abs").
-# Plotted against the column seconds: relrmse_noref, the relative RMSE
+# or "abs"), clock ("wall", the default, or "cpu": the series were timed
+# by `svet converge --clock cpu` and their time column is cpu_seconds).
+# Plotted against the time column: relrmse_noref, the relative RMSE
 # (sqrt of the relative MSE, each value's error over sqrt(b^2 + 0.01)), or
 # with metric='abs' rmse_noref, the RMSE; both with the reference's own
 # noise taken out. The dashed line falls as 1/sqrt(t), the rate of an
@@ -36,7 +37,9 @@ set format y "%g"
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
 abs = exists("metric") && metric eq "abs"
 col = abs ? "rmse_noref" : "relrmse_noref"
-set xlabel "render time (s)"
+cpu = exists("clock") && clock eq "cpu"
+secs = cpu ? "cpu_seconds" : "seconds"
+set xlabel (cpu ? "render time (CPU-seconds, all threads)" : "render time (s)")
 set ylabel (abs ? "RMSE" : "relative RMSE") . \
            " against the reference (its noise removed)"
 set key outside right top noenhanced
@@ -44,15 +47,15 @@ if (exists("ttl")) { set title ttl noenhanced }
 
 # the 1/sqrt(t) guide through the last (longest) point of the first series
 first = word(files, 1)
-stats first using "seconds" nooutput
+stats first using secs nooutput
 t_last = STATS_max
-stats first using (column("seconds") == t_last ? column(col) : NaN) nooutput
+stats first using (column(secs) == t_last ? column(col) : NaN) nooutput
 e_last = STATS_max
 guide(t) = e_last * sqrt(t_last / t)
 
 # gnuplot cycles 8 colours: series 9 to 16 are dashed, each with its own
 # point type
-plot for [i = 1:words(files)] word(files, i) using "seconds":col \
+plot for [i = 1:words(files)] word(files, i) using secs:col \
          with linespoints lc i dashtype 1 + (i - 1) / 8 \
          pointtype ((i - 1) % 13 + 1) pointsize 0.8 linewidth 1.5 \
          title title_of(i), \

@@ -8,13 +8,18 @@
 # (Russian roulette off; a lower maxdepth, biased by design), and
 # single scattering by ray marching (`render integrator volsingle`) at
 # the march steps of STEPS, at the sample counts of SPP_LIST; `svet
-# converge --report` turns each series into a table. Writes docs/tradeoffs-media.md.
+# converge --report` turns each series into a table. The times are
+# CPU-seconds by default (`svet converge --clock cpu`, all threads
+# together), which the machine's other jobs hardly change. Writes
+# docs/tradeoffs-media.md.
 # usage: sh tools/tradeoffs-media.sh   (environment: SVET (build/float/svet),
+#        CLOCK (cpu, or wall),
 #        SPP_LIST (1,2,4,...,128), STEPS (0.1 0.05 0.025), THREADS (0),
 #        REF_SPP (2048), OUT, DOC,
 #        DOC_ONLY=1 to write the document from the last run's series)
 set -eu
 svet=${SVET:-build/float/svet}
+clock=${CLOCK:-cpu}
 spps=${SPP_LIST:-1,2,4,8,16,32,64,128}
 threads=${THREADS:-0}
 refspp=${REF_SPP:-2048}
@@ -22,6 +27,11 @@ steps=${STEPS:-0.1 0.05 0.025}
 out=${OUT:-out/tradeoffs-media}
 doc=${DOC:-docs/tradeoffs-media.md}
 [ -x "$svet" ] || { echo "tradeoffs-media: no $svet (make first)" >&2; exit 1; }
+case $clock in
+cpu) secs="CPU-seconds" ;;
+wall) secs="seconds" ;;
+*) echo "tradeoffs-media: CLOCK=$clock: expected cpu or wall" >&2; exit 1 ;;
+esac
 mkdir -p "$out"
 t0=$(date +%s)
 load0=$(cut -d' ' -f1-3 /proc/loadavg)
@@ -49,7 +59,8 @@ for name in $names; do
         label=$1; shift
         echo "tradeoffs-media: $name: $label" >&2
         "$svet" converge "$scene" --ref "$out/$name-ref.exr" --seed 1 \
-            --spp-list "$spps" --threads "$threads" --out "$out/$name" \
+            --spp-list "$spps" --clock "$clock" --threads "$threads" \
+            --out "$out/$name" \
             --label "$label" --no-plot -q "$@" >/dev/null
     done
     set -- "$out/$name/baseline.csv" "$out/$name/roulette=off.csv" \
@@ -74,7 +85,14 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
     echo "Written by \`make tradeoffs-media\` (tools/tradeoffs-media.sh) on"
     echo "$(date -u +%Y-%m-%d) UTC, $cpu, $(nproc) cores, threads $threads, in"
     echo "$((t1 - t0)) s (load average $load0 before, $load1 after: other"
-    echo "work shared the machine, so times are noisy). Each scene against its"
+    if [ "$clock" = cpu ]; then
+        echo "work shared the machine; the times are CPU-seconds, \`svet"
+        echo "converge --clock cpu\`, all threads together, which the load"
+        echo "hardly changes). Each scene against its"
+    else
+        echo "work shared the machine, so the wall-clock times are noisy)."
+        echo "Each scene against its"
+    fi
     echo "own volpath reference of $refspp spp (seed 7, half the scene's"
     echo "resolution); the series render with seed 1 at $spps spp. \`svet"
     echo "converge --report\` (see docs/tradeoffs.md, How to read the tables)."
@@ -93,9 +111,9 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
         cat "$out/$name.md"
         echo
         echo "The baseline's series: relative RMSE (the reference's noise"
-        echo "removed) against samples per pixel and seconds."
+        echo "removed) against samples per pixel and $secs."
         echo
-        echo "| spp | seconds | relative RMSE |"
+        echo "| spp | $secs | relative RMSE |"
         echo "|---:|---:|---:|"
         grep -v '^#' "$out/$name/baseline.csv" | awk -F, 'NR > 1 {
             printf "| %d | %.3g | %.3g |\n", $2, $3, $16 }'

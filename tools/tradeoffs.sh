@@ -185,7 +185,8 @@ machine gives the same tables with smaller times.
 
 The photon maps of ch. 8 (their counts, k, radius and gather rays, and
 progressive photon mapping) against the path tracer on \`caustic.scn\` are
-measured apart, by \`make tradeoffs-photon\`: \`docs/tradeoffs-photon.md\`.
+measured apart, by \`make tradeoffs-photon\`, in CPU-seconds:
+[docs/tradeoffs-photon.md](tradeoffs-photon.md).
 The media of ch. 11 (volumetric path tracing on \`smoky-cbox.scn\` and
 \`cloud.scn\`) are measured apart too, by \`make tradeoffs-media\`:
 \`docs/tradeoffs-media.md\`; their cross-check against Mitsuba 3 is

@@ -33,12 +33,29 @@ typedef enum {
     CONVERGE_REL
 } converge_metric;
 
+/* The clock a series' seconds come from.
+ *  WALL: the monotonic clock, the time one waits for the render.
+ *  CPU: the process's CPU time (CLOCK_PROCESS_CPUTIME_ID), the work of all
+ *       its threads: on a machine shared with other jobs it counts the
+ *       work done rather than the waiting, so series measured at different
+ *       loads stay comparable. One CPU-second is a wall-second of one
+ *       core. */
+typedef enum {
+    CONVERGE_WALL,
+    CONVERGE_CPU
+} converge_clock;
+
+/* "wall" or "cpu"; the CSV's name of the seconds column ("seconds" or
+ * "cpu_seconds"). These functions can't fail. */
+const char *converge_clock_name(converge_clock c);
+const char *converge_clock_column(converge_clock c);
+
 /* One point of a series: a render after `spp` samples per pixel. The error
  * measures are means over every R, G, B value of the image. */
 typedef struct {
     long spp;            /* samples per pixel so far */
-    double seconds;      /* wall-clock render time so far (set-up included,
-                            measurement excluded) */
+    double seconds;      /* render time so far on the series' clock
+                            (set-up included, measurement excluded) */
     double rays;         /* rays traced so far; 0 if unknown */
     double rmse, psnr;   /* imgcompare's, reference noise included; PSNR
                             in dB with peak CONVERGE_PSNR_PEAK */
@@ -111,9 +128,9 @@ double converge_time_to(const converge_point_t *p, int n, converge_metric m,
                         double e, converge_how *how);
 
 /* Write series p[0..n) of method `method` (no commas, quotes or line
- * breaks) to path as CSV: the lines of `comment` (may be NULL) each after
- * "# ", then the header row and one row per point:
- *   method, spp, seconds, rays,
+ * breaks), timed by clock, to path as CSV: the lines of `comment` (may be
+ * NULL) each after "# ", then the header row and one row per point:
+ *   method, spp, seconds (cpu_seconds for CONVERGE_CPU), rays,
  *   rmse, psnr                  (imgcompare's)
  *   mse, variance, ref_variance, rmse_noref, bias2, efficiency
  *   relmse, relvariance, ref_relvariance, relrmse_noref, relbias2,
@@ -123,17 +140,19 @@ double converge_time_to(const converge_point_t *p, int n, converge_metric m,
  * replaced only when the new one is complete. Fails with SVET_ERR_RANGE on
  * a bad method name, SVET_ERR_IO, SVET_ERR_NOMEM. */
 svet_status converge_csv_write(const char *path, const char *method,
-                               const char *comment, const converge_point_t *p,
-                               int n, svet_error *err);
+                               const char *comment, converge_clock clock,
+                               const converge_point_t *p, int n,
+                               svet_error *err);
 
 /* Read a file written by converge_csv_write: '#' lines are skipped,
  * columns found by name (the derived ones, rmse_noref, bias2, efficiency
  * and their rel forms, are not read). The method of the first row goes to
- * method (truncated to method_len). *p is malloc'ed (free it), *n its
- * length (0 for a file without rows). Fails with SVET_ERR_IO,
- * SVET_ERR_PARSE (path:line: what is wrong), SVET_ERR_NOMEM. */
+ * method (truncated to method_len), the clock the seconds column names to
+ * *clock (may be NULL). *p is malloc'ed (free it), *n its length (0 for a
+ * file without rows). Fails with SVET_ERR_IO, SVET_ERR_PARSE (path:line:
+ * what is wrong, e.g. both seconds columns or neither), SVET_ERR_NOMEM. */
 svet_status converge_csv_read(const char *path, char *method,
-                              size_t method_len, converge_point_t **p,
-                              int *n, svet_error *err);
+                              size_t method_len, converge_clock *clock,
+                              converge_point_t **p, int *n, svet_error *err);
 
 #endif

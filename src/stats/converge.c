@@ -206,14 +206,26 @@ double converge_time_to(const converge_point_t *p, int n, converge_metric m,
 
 /* --- CSV ----------------------------------------------------------------- */
 
-static const char *const header =
-    "method,spp,seconds,rays,rmse,psnr,"
+const char *converge_clock_name(converge_clock c)
+{
+    return c == CONVERGE_CPU ? "cpu" : "wall";
+}
+
+const char *converge_clock_column(converge_clock c)
+{
+    return c == CONVERGE_CPU ? "cpu_seconds" : "seconds";
+}
+
+/* The header after "method,spp,SECONDS," */
+static const char *const header_rest =
+    "rays,rmse,psnr,"
     "mse,variance,ref_variance,rmse_noref,bias2,efficiency,"
     "relmse,relvariance,ref_relvariance,relrmse_noref,relbias2,relefficiency";
 
 svet_status converge_csv_write(const char *path, const char *method,
-                               const char *comment, const converge_point_t *p,
-                               int n, svet_error *err)
+                               const char *comment, converge_clock clock,
+                               const converge_point_t *p, int n,
+                               svet_error *err)
 {
     if (!method || !*method || method[0] == '#' ||
         strpbrk(method, ",\"\r\n"))
@@ -230,7 +242,8 @@ svet_status converge_csv_write(const char *path, const char *method,
         fprintf(f, "# %.*s\n", (int)len, c);
         c += len + (c[len] == '\n');
     }
-    fprintf(f, "%s\n", header);
+    fprintf(f, "method,spp,%s,%s\n", converge_clock_column(clock),
+            header_rest);
     for (int i = 0; i < n; i++) {
         const converge_point_t *q = &p[i];
         fprintf(f, "%s,%ld,%.9g,%.17g,%.9g,%.9g", method, q->spp, q->seconds,
@@ -284,13 +297,15 @@ static bool parse_double(const char *s, double *out)
 }
 
 svet_status converge_csv_read(const char *path, char *method,
-                              size_t method_len, converge_point_t **p,
-                              int *n, svet_error *err)
+                              size_t method_len, converge_clock *clock,
+                              converge_point_t **p, int *n, svet_error *err)
 {
     *p = NULL;
     *n = 0;
     if (method_len)
         method[0] = '\0';
+    if (clock)
+        *clock = CONVERGE_WALL;
     FILE *f;
     svet_status st = fileio_open_read(path, &f, err);
     if (st != SVET_OK)
@@ -319,9 +334,27 @@ svet_status converge_csv_read(const char *path, char *method,
             break;
         }
         if (!have_header) {
+            /* the seconds column names its clock */
+            int wall = -1, cpu = -1;
+            for (int j = 0; j < nf; j++) {
+                if (!strcmp(field[j], converge_clock_column(CONVERGE_WALL)))
+                    wall = j;
+                if (!strcmp(field[j], converge_clock_column(CONVERGE_CPU)))
+                    cpu = j;
+            }
+            if ((wall >= 0) == (cpu >= 0)) {
+                st = svet_error_set(err, SVET_ERR_PARSE, "%s:%d: %s column "
+                                    "'seconds' (wall clock) or "
+                                    "'cpu_seconds' (CPU clock) in the "
+                                    "header", path, lineno,
+                                    wall >= 0 ? "both a" : "no");
+                break;
+            }
+            if (clock)
+                *clock = cpu >= 0 ? CONVERGE_CPU : CONVERGE_WALL;
             for (int k = 0; k < NCOLS; k++) {
-                col[k] = -1;
-                for (int j = 0; j < nf; j++)
+                col[k] = k == COL_SECONDS ? (cpu >= 0 ? cpu : wall) : -1;
+                for (int j = 0; j < nf && k != COL_SECONDS; j++)
                     if (strcmp(field[j], wanted[k]) == 0)
                         col[k] = j;
                 if (col[k] < 0) {

@@ -3,7 +3,7 @@
  * exit codes and `svet diff` on files made here; inputs beyond the pixel
  * limit, inputs that are not regular files, and a full disk; outputs that
  * are inputs; and what `svet render` says about a scene (its warnings,
- * --strict); the integrator svet converge's CSV names. The command is the one built beside this suite: <build>/svet
+ * --strict); the integrator and the clock svet converge's CSV names. The command is the one built beside this suite: <build>/svet
  * for <build>/tests/test_svet, so `make test` (which builds it first)
  * tests the matching REAL.
  */
@@ -454,24 +454,46 @@ START_TEST(render_refuses_empty_and_too_bright_scenes_and_warns_of_dark)
 }
 END_TEST
 
+/* The text of file path (malloc'ed). */
+static char *file_text(const char *path)
+{
+    unsigned char *bytes;
+    size_t n = imgtest_read_bytes(path, &bytes);
+    char *t = malloc(n + 1);
+    ck_assert_ptr_nonnull(t);
+    memcpy(t, bytes, n);
+    t[n] = '\0';
+    free(bytes);
+    return t;
+}
+
+/* Write the scene `text` to NAME.scn and render it to NAME-ref.exr, both
+ * in the test's directory: their paths to scn and ref, the directory to
+ * dir (each of 1024 bytes). */
+static void scene_and_ref(const char *name, const char *text, char *scn,
+                          char *ref, char *dir)
+{
+    snprintf(scn, 1024, "%s/%s.scn", imgtest_path("."), name);
+    snprintf(ref, 1024, "%s/%s-ref.exr", imgtest_path("."), name);
+    snprintf(dir, 1024, "%s", imgtest_path("."));
+    imgtest_write_bytes(scn, text, strlen(text));
+    expect(0, NULL, "render '%s' -o '%s' -q", scn, ref);
+}
+
 /* svet converge's CSV names the scene's rendering method in its header
  * (`integrator NAME`): a part's method (volsingle, volpath) as the core's
  * integrators, also when --set changes it. */
 START_TEST(the_converge_csv_names_the_scenes_integrator)
 {
     char scn[1024], ref[1024], dir[1024], csv[1100], args[4096];
-    snprintf(scn, sizeof scn, "%s", imgtest_path("fog.scn"));
-    snprintf(ref, sizeof ref, "%s", imgtest_path("fog-ref.exr"));
-    snprintf(dir, sizeof dir, "%s", imgtest_path("."));
-    const char text[] =
+    scene_and_ref("fog",
         "camera position 0 0 3 target 0 0 0 fov 30 width 4 height 4\n"
         "render spp 2 maxdepth 2 integrator volsingle seed 3\n"
         "material black lambert rho 0\n"
         "environment radiance 1\n"
         "medium fog homogeneous sigma_a 0.5 sigma_s 0.5\n"
-        "sphere centre 0 0 0 radius 1 material black medium fog invisible\n";
-    imgtest_write_bytes(scn, text, sizeof text - 1);
-    expect(0, NULL, "render '%s' -o '%s' -q", scn, ref);
+        "sphere centre 0 0 0 radius 1 material black medium fog invisible\n",
+        scn, ref, dir);
     const char *sets[3][2] = { { "", "integrator volsingle," },
                                { "--set integrator=volpath",
                                  "integrator volpath," },
@@ -482,17 +504,49 @@ START_TEST(the_converge_csv_names_the_scenes_integrator)
                  "--label m%d --no-plot -q %s", scn, ref, dir, i, sets[i][0]);
         expect(0, NULL, "%s", args);
         snprintf(csv, sizeof csv, "%s/m%d.csv", dir, i);
-        unsigned char *bytes;
-        size_t n = imgtest_read_bytes(csv, &bytes);
-        char *t = malloc(n + 1);
-        ck_assert_ptr_nonnull(t);
-        memcpy(t, bytes, n);
-        t[n] = '\0';
-        free(bytes);
+        char *t = file_text(csv);
         ck_assert_msg(strstr(t, sets[i][1]), "no '%s' in:\n%s", sets[i][1],
                       t);
         free(t);
     }
+}
+END_TEST
+
+/* svet converge --clock: wall or cpu, anything else refused with what it
+ * takes; the CSV's seconds column names the clock, and --report refuses
+ * to put series of two clocks on one time axis. */
+START_TEST(converge_clock_is_named_in_the_csv_and_refused_when_mixed)
+{
+    char scn[1024], ref[1024], dir[1024], csv[2][1100];
+    scene_and_ref("clock",
+        "camera position 0 0 3 target 0 0 0 fov 30 width 4 height 4\n"
+        "render spp 4 maxdepth 2 seed 3\n"
+        "material grey lambert rho 0.5\n"
+        "environment radiance 1\n"
+        "sphere centre 0 0 0 radius 1 material grey\n", scn, ref, dir);
+    expect(1, "bad value 'gpu' for --clock: expected wall or cpu",
+           "converge '%s' --ref '%s' --clock gpu", scn, ref);
+    expect(1, NULL, "converge '%s' --ref '%s' --clock", scn, ref);
+    const char *clock[2] = { "wall", "cpu" };
+    const char *head[2] = { "\nmethod,spp,seconds,rays,",
+                            "\nmethod,spp,cpu_seconds,rays," };
+    const char *says[2] = { "seconds = wall-clock render set-up",
+                            "cpu_seconds = CPU time (all threads)" };
+    for (int i = 0; i < 2; i++) {
+        expect(0, NULL, "converge '%s' --ref '%s' --out '%s' --label c%s "
+               "--clock %s --time-list 0.001,0.002 --no-plot -q", scn, ref,
+               dir, clock[i], clock[i]);
+        snprintf(csv[i], sizeof csv[i], "%s/c%s.csv", dir, clock[i]);
+        char *t = file_text(csv[i]);
+        ck_assert_msg(strstr(t, head[i]) && strstr(t, says[i]),
+                      "--clock %s:\n%s", clock[i], t);
+        free(t);
+    }
+    expect(0, "| rays/CPU-s |", "converge --report '%s'", csv[1]);
+    expect(0, "Times on the cpu clock", "converge --report '%s'", csv[1]);
+    expect(0, "Times on the wall clock", "converge --report '%s'", csv[0]);
+    expect(2, "by the cpu clock", "converge --report '%s' '%s'", csv[0],
+           csv[1]);
 }
 END_TEST
 
@@ -515,6 +569,8 @@ Suite *test_suite(void)
     tcase_add_test(
         tc, render_refuses_empty_and_too_bright_scenes_and_warns_of_dark);
     tcase_add_test(tc, the_converge_csv_names_the_scenes_integrator);
+    tcase_add_test(tc,
+                   converge_clock_is_named_in_the_csv_and_refused_when_mixed);
     suite_add_tcase(s, tc);
     return s;
 }

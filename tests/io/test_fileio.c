@@ -136,8 +136,8 @@ START_TEST(readers_refuse_what_is_not_a_regular_file_without_blocking)
         char method[32];
         converge_point_t *pts = NULL;
         int npts = 0;
-        ck_assert_int_eq(converge_csv_read(p, method, sizeof method, &pts,
-                                           &npts, &err), SVET_ERR_IO);
+        ck_assert_int_eq(converge_csv_read(p, method, sizeof method, NULL,
+                                           &pts, &npts, &err), SVET_ERR_IO);
         ck_assert_str_eq(err.msg, want);
         free(pts);
         image_t img;

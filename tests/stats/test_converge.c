@@ -171,6 +171,22 @@ START_TEST(a_biased_series_never_falls_below_its_bias)
 }
 END_TEST
 
+/* Read path back: n points, timed by clock (the caller frees them). */
+static converge_point_t *read_back(const char *path, char *method,
+                                   size_t method_len, converge_clock clock,
+                                   int n)
+{
+    converge_point_t *q;
+    int got;
+    converge_clock c = clock == CONVERGE_CPU ? CONVERGE_WALL : CONVERGE_CPU;
+    svet_error err;
+    ck_assert_int_eq(converge_csv_read(path, method, method_len, &c, &q,
+                                       &got, &err), SVET_OK);
+    ck_assert_int_eq(got, n);
+    ck_assert_int_eq(c, clock);
+    return q;
+}
+
 START_TEST(csv_files_read_back)
 {
     const double t[] = { 0.25, 0.5, 1 };
@@ -185,14 +201,12 @@ START_TEST(csv_files_read_back)
     const char *path = imgtest_path("series.csv");
     svet_error err;
     ck_assert_int_eq(converge_csv_write(path, "path-maxdepth=7",
-                                        "scene cbox\nbuild float", p, 3,
-                                        &err), SVET_OK);
+                                        "scene cbox\nbuild float",
+                                        CONVERGE_WALL, p, 3, &err), SVET_OK);
     char method[64];
-    converge_point_t *q;
+    converge_point_t *q = read_back(path, method, sizeof method,
+                                    CONVERGE_WALL, 3);
     int n;
-    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, &q, &n,
-                                       &err), SVET_OK);
-    ck_assert_int_eq(n, 3);
     ck_assert_str_eq(method, "path-maxdepth=7");
     for (int i = 0; i < 3; i++) {
         /* 9 significant digits written */
@@ -216,14 +230,44 @@ START_TEST(csv_files_read_back)
                       "seconds,rays,", 46) == 0);
     free(bytes);
     /* names that would break the CSV are refused, and the file kept */
-    ck_assert_int_eq(converge_csv_write(path, "a,b", NULL, p, 3, &err),
+    ck_assert_int_eq(converge_csv_write(path, "a,b", NULL, CONVERGE_WALL,
+                                        p, 3, &err),
                      SVET_ERR_RANGE);
-    ck_assert_int_eq(converge_csv_write(path, "", NULL, p, 3, &err),
+    ck_assert_int_eq(converge_csv_write(path, "", NULL, CONVERGE_WALL, p,
+                                        3, &err),
                      SVET_ERR_RANGE);
-    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, &q, &n,
-                                       &err), SVET_OK);
+    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, NULL,
+                                       &q, &n, &err), SVET_OK);
     ck_assert_int_eq(n, 3);
     free(q);
+}
+END_TEST
+
+/* a series on the CPU clock names it in the header, and reads back so */
+START_TEST(the_csv_header_names_the_clock)
+{
+    const double t[] = { 0.25, 0.5, 1 };
+    converge_point_t p[3];
+    series(p, 3, t, 0.03, 0.0001);
+    const char *path = imgtest_path("cpu.csv");
+    svet_error err;
+    ck_assert_int_eq(converge_csv_write(path, "photon", "c", CONVERGE_CPU, p,
+                                        3, &err), SVET_OK);
+    unsigned char *bytes;
+    size_t len = imgtest_read_bytes(path, &bytes);
+    const char *want = "# c\nmethod,spp,cpu_seconds,rays,";
+    ck_assert(len > strlen(want));
+    ck_assert(strncmp((char *)bytes, want, strlen(want)) == 0);
+    free(bytes);
+    char method[16];
+    converge_point_t *q = read_back(path, method, sizeof method,
+                                    CONVERGE_CPU, 3);
+    ck_assert_str_eq(method, "photon");
+    for (int i = 0; i < 3; i++)
+        ck_assert_rel(q[i].seconds, p[i].seconds, 1e-8, 0);
+    free(q);
+    ck_assert_str_eq(converge_clock_name(CONVERGE_CPU), "cpu");
+    ck_assert_str_eq(converge_clock_name(CONVERGE_WALL), "wall");
 }
 END_TEST
 
@@ -239,6 +283,10 @@ START_TEST(malformed_csv_files_are_refused_with_their_line)
     } bad[] = {
         { "# only a comment\n", "no header row", SVET_ERR_PARSE },
         { "method,spp,seconds,rays\n", "no column 'rmse'", SVET_ERR_PARSE },
+        { "method,spp,rays,rmse\n", "no column 'seconds' (wall clock) or "
+          "'cpu_seconds'", SVET_ERR_PARSE },
+        { "method,spp,seconds,cpu_seconds,rays\n", "both a column",
+          SVET_ERR_PARSE },
         { HEADER "a,1,0.5,0,1,1,x,1,1,1,1,1\n", ":2: column 'mse'",
           SVET_ERR_PARSE },
         { HEADER "a,1,0.5,0,1\n", ":2: column 'psnr'", SVET_ERR_PARSE },
@@ -252,8 +300,8 @@ START_TEST(malformed_csv_files_are_refused_with_their_line)
         int n = -1;
         char method[8];
         svet_error err;
-        ck_assert_int_eq(converge_csv_read(path, method, sizeof method, &q,
-                                           &n, &err), bad[i].st);
+        ck_assert_int_eq(converge_csv_read(path, method, sizeof method, NULL,
+                                           &q, &n, &err), bad[i].st);
         ck_assert_msg(strstr(err.msg, bad[i].words) && strstr(err.msg, path),
                       "case %zu: '%s'", i, err.msg);
         ck_assert(q == NULL && n == 0);
@@ -264,21 +312,21 @@ START_TEST(malformed_csv_files_are_refused_with_their_line)
     converge_point_t *q;
     int n;
     char method[8];
-    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, &q, &n,
-                                       NULL), SVET_OK);
+    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, NULL,
+                                       &q, &n, NULL), SVET_OK);
     ck_assert(n == 0 && method[0] == '\0');
     free(q);
     /* a byte-order mark before the header is skipped, not glued to
      * "method" (a spreadsheet's "CSV UTF-8" writes one) */
     const char *bom = "\xEF\xBB\xBF" HEADER "a,1,0.5,0,1,1,1,1,1,1,1,1\n";
     imgtest_write_bytes(path, bom, strlen(bom));
-    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, &q, &n,
-                                       NULL), SVET_OK);
+    ck_assert_int_eq(converge_csv_read(path, method, sizeof method, NULL,
+                                       &q, &n, NULL), SVET_OK);
     ck_assert(n == 1 && strcmp(method, "a") == 0);
     free(q);
     svet_error err;
     ck_assert_int_eq(converge_csv_read(imgtest_path("missing.csv"), method,
-                                       sizeof method, &q, &n, &err),
+                                       sizeof method, NULL, &q, &n, &err),
                      SVET_ERR_IO);
 }
 END_TEST
@@ -291,6 +339,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, an_unbiased_series_is_read_exactly_off_its_power_law);
     tcase_add_test(tc, a_biased_series_never_falls_below_its_bias);
     tcase_add_test(tc, csv_files_read_back);
+    tcase_add_test(tc, the_csv_header_names_the_clock);
     tcase_add_test(tc, malformed_csv_files_are_refused_with_their_line);
     suite_add_tcase(s, tc);
     return s;
