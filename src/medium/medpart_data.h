@@ -1,13 +1,16 @@
 /*
  * medpart_data.h - what the files of the media part (medpart.c, the
- * scene file; volpath.c, the renderer) share and nothing else: the media
- * a scene names and the records its boundaries point at.
+ * scene file; volpath.c, volsingle.c and volphoton.c, the renderers)
+ * share and nothing else: the media a scene names, the records its
+ * boundaries point at, and volpath.c's walk, shadow rays and light
+ * sampling.
  * Tests: tests/medium/test_medpart.c
  */
 #ifndef SVET_MEDPART_DATA_H
 #define SVET_MEDPART_DATA_H
 
 #include "medium/medpart.h"
+#include "medium/volsingle.h"
 #include "render/integrator.h"
 
 /* A named medium; its grid (when it has one) is owned here. */
@@ -45,25 +48,11 @@ typedef struct {
 extern const render_method_t volpath_method;
 extern const render_method_t volsingle_method;
 
-/* --- what volsingle.c takes from volpath.c ------------------------------ */
-
-/* Where a segment to infinity ends in a medium: any positive extinction
- * makes exp(-sigma_t VOLPATH_FAR) 0, and a zero one gives 1 where an
- * infinite length would give exp(-0 inf), NaN. */
-#define VOLPATH_FAR REAL_C(1e30)
+/* --- what volsingle.c and volphoton.c take from volpath.c ------------- */
 
 /* The most invisible boundaries one segment may cross before the path
  * is given up (a ray caught between coincident surfaces). */
 #define VOLPATH_MAX_CROSSINGS 256
-
-/* What both methods prepare: the camera's medium and whether shadow rays
- * must look for invisible boundaries. */
-typedef struct {
-    const medium_t *global; /* the camera's medium: the scene's, or NULL */
-    bool invisible;         /* some boundary is invisible: shadow rays
-                               must find where they cross it */
-    real step;              /* > 0: volsingle's march step; 0: volpath */
-} volpath_state_t;
 
 svet_status volpath_prepare(void **out, const struct render *r, int threads,
                             svet_error *err);
@@ -121,15 +110,4 @@ RADIANCE volpath_direct(const volpath_at_t *at, const integrator_t *it,
                         const PATHPOINT *pp, const struct material *m,
                         const VECTOR3 wo, bool mis, pcg32_t *g,
                         integrator_stats_t *st);
-
-
-/* The light singly scattered toward the ray's origin along ray (unit
- * dir) over [0, len] in med (len VOLPATH_FAR: to infinity, homogeneous
- * media only), marched with step s->step, a light sampled at each point
- * when nee; *tr the segment's transmittance. Draws from g. */
-RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
-                         const medium_t *med, const ray_t *ray,
-                         const VECTOR3 dir, real len, bool nee, pcg32_t *g,
-                         integrator_stats_t *st, RADIANCE *tr);
-
 #endif

@@ -395,6 +395,16 @@ static void state_free(void *p)
     free(s);
 }
 
+/* The march's term beyond the light sampled at a point
+ * (volsingle_inscatter_fn): the volume map's multiple scattering. */
+static RADIANCE map_inscatter(const void *ctx, const medium_t *med,
+                              const VECTOR3 x, const VECTOR3 dir)
+{
+    const state_t *s = ctx;
+    return volphoton_radiance(&s->vol, med, x, dir, s->set.k,
+                              s->set.max_radius);
+}
+
 static svet_status prepare(void **out, const render_t *r, int threads,
                            svet_error *err)
 {
@@ -411,6 +421,9 @@ static svet_status prepare(void **out, const render_t *r, int threads,
     s->vp = *(const volpath_state_t *)vp;
     volpath_free(vp);
     volphoton_settings_of(r->scene, &s->set);
+    s->vp.step = s->set.step;
+    s->vp.inscatter = map_inscatter;
+    s->vp.inscatter_ctx = s;
     photon_settings_t ps;
     photon_settings_of(r->scene, &ps);
     photonmap_query_t q = { ps.k, ps.max_radius, ps.filter, REAL_C(1.1),
@@ -423,101 +436,6 @@ static svet_status prepare(void **out, const render_t *r, int threads,
     }
     *out = s;
     return SVET_OK;
-}
-
-/* The most points one segment is marched at (a longer segment takes a
- * longer step, so that a tiny step cannot stall a render), and the
- * transmittance at which a segment to infinity in the global medium is
- * cut: as volsingle.c's. */
-#define VOLPHOTON_MAX_STEPS 65536
-#define VOLPHOTON_CUT 1e-6
-
-static RADIANCE rad_exp_neg(RADIANCE tau)
-{
-    return rad_make(exp(-tau.r), exp(-tau.g), exp(-tau.b));
-}
-
-/* The light scattered toward the ray's origin along [0, len] of ray (unit
- * dir) in med: single scattering by light sampling and multiple from the
- * volume map at each march point; *tr the segment's transmittance, from
- * the trapezoid rule on sigma_t at the points (exact where sigma_t is
- * constant). */
-static RADIANCE march(const state_t *s, const render_t *r,
-                      const medium_t *med, const ray_t *ray,
-                      const VECTOR3 dir, real len, bool nee, pcg32_t *g,
-                      integrator_stats_t *st, RADIANCE *tr)
-{
-    const integrator_t *it = &r->integrator;
-    const real u = pcg32_real(g);
-    const bool homogeneous = medium_is_homogeneous(med);
-    bool cut = false;
-    if (len >= VOLPATH_FAR) {
-        /* to infinity (the global medium, homogeneous): as volsingle.c */
-        *tr = medium_tr_homogeneous(med, VOLPATH_FAR);
-        const RADIANCE sigma_t = medium_sigma_t(med);
-        const real c[3] = { sigma_t.r, sigma_t.g, sigma_t.b };
-        real smin = (real)INFINITY;
-        for (int k = 0; k < 3; k++)
-            if (c[k] > 0 && c[k] < smin)
-                smin = c[k];
-        if (!(smin < (real)INFINITY))
-            return rad_grey(0);
-        len = (real)-log(VOLPHOTON_CUT) / smin;
-        cut = true;
-    }
-    real h = s->set.step;
-    if (len / h > VOLPHOTON_MAX_STEPS)
-        h = len / VOLPHOTON_MAX_STEPS;
-    RADIANCE L = rad_grey(0), tau = rad_grey(0), st_prev, ss;
-    medium_coeffs_at(med, ray->o, &st_prev, &ss);
-    real t_prev = 0;
-    for (int i = 0;; i++) {
-        const real t = ((real)i + u) * h;
-        if (!(t < len))
-            break;
-        VECTOR3 x;
-        vec_add_scaled(x, ray->o, t, dir);
-        RADIANCE sig_t, sig_s;
-        medium_coeffs_at(med, x, &sig_t, &sig_s);
-        tau = rad_add(tau, rad_scale(rad_add(st_prev, sig_t),
-                                     (t - t_prev) / 2));
-        st_prev = sig_t;
-        t_prev = t;
-        if (rad_is_black(sig_s))
-            continue;
-        RADIANCE Lx = volphoton_radiance(&s->vol, med, x, dir, s->set.k,
-                                         s->set.max_radius);
-        if (nee) {
-            PATHPOINT pp;
-            volpath_medium_point(&pp, ray, dir, t);
-            const phase_t *ph = &med->phase;
-            RADIANCE wc = rad_grey(1);
-            if (med->ncomponents > 0)
-                ph = &medium_scatterer(med, x, pcg32_real(g), &wc)->phase;
-            volpath_at_t at = { &s->vp, med, NULL, { dir[X], dir[Y], dir[Z] },
-                                ph, false, { 0, 0, 0 } };
-            RADIANCE Ld = volpath_direct(&at, it, &pp, NULL, NULL, false, g,
-                                         st);
-            Lx = rad_add(Lx, rad_mul(rad_mul(sig_s, wc), Ld));
-        }
-        if (rad_is_black(Lx))
-            continue;
-        L = rad_add(L, rad_mul(rad_exp_neg(tau), rad_scale(Lx, h)));
-    }
-    if (!cut) {
-        if (homogeneous) {
-            *tr = medium_tr_homogeneous(med, len);
-        } else {
-            VECTOR3 x;
-            vec_add_scaled(x, ray->o, len, dir);
-            RADIANCE sig_t, sig_s;
-            medium_coeffs_at(med, x, &sig_t, &sig_s);
-            tau = rad_add(tau, rad_scale(rad_add(st_prev, sig_t),
-                                         (len - t_prev) / 2));
-            *tr = rad_exp_neg(tau);
-        }
-    }
-    return L;
 }
 
 /* The camera path: the march along every segment in a medium, emitters
@@ -550,9 +468,10 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
             med = NULL; /* slipped out of its medium (volpath_segment_tr) */
         if (med) {
             RADIANCE tr = rad_grey(1);
-            L = rad_add(L, rad_mul(beta, march(s, r, med, &ray, dir,
-                                               hit ? h.t * len : VOLPATH_FAR,
-                                               nee, g, st, &tr)));
+            L = rad_add(L, rad_mul(beta, volsingle_march(
+                                             &s->vp, it, med, &ray, dir,
+                                             hit ? h.t * len : VOLPATH_FAR,
+                                             nee, g, st, &tr)));
             beta = rad_mul(beta, tr);
             if (rad_is_black(beta))
                 break;

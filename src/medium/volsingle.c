@@ -16,9 +16,13 @@
  * scattered in a medium at most once: the path continues only at
  * surfaces, as the path tracer's does (volpath.c's walk with the march
  * in place of distance sampling), each segment's throughput multiplied by
- * its transmittance.
+ * its transmittance. The volume photon map's camera rays are marched by
+ * the same function, its volume estimate added at each point
+ * (volpath_state_t.inscatter).
  * Tests: tests/medium/test_volsingle.c
  */
+#include "medium/volsingle.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -112,7 +116,7 @@ RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
             any |= d[k] > 0;
         }
         t_prev = t;
-        if (!any || (!nee && !emits))
+        if (!any || (!nee && !emits && !s->inscatter))
             continue;
         /* Tr from the segment's start: exp of minus the sum of the
          * components' optical depths */
@@ -132,6 +136,11 @@ RADIANCE volsingle_march(const volpath_state_t *s, const integrator_t *it,
                                          d[k]));
             L = rad_add(L, rad_mul(T, rad_scale(S, h)));
         }
+        if (s->inscatter)
+            L = rad_add(L, rad_mul(T, rad_scale(s->inscatter(
+                                                    s->inscatter_ctx, med, x,
+                                                    dir),
+                                                h)));
         if (!nee)
             continue;
         PATHPOINT pp;

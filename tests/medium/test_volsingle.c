@@ -18,12 +18,10 @@
 #include <string.h>
 
 #include "medium/medpart.h"
+#include "medium/volsingle.h"
 #include "render/allparts.h"
 #include "render/render.h"
 #include "render/scenefile.h"
-/* the march itself (volsingle_march), which the media part keeps to its
- * own files */
-#include "../../src/medium/medpart_data.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -223,7 +221,7 @@ START_TEST(the_marched_transmittance_of_a_varying_density_is_second_order)
     double prev = 0;
     for (int i = 0; i < 3; i++) {
         double h = 0.1 / (1 << i);
-        volpath_state_t s = { NULL, false, (real)h };
+        volpath_state_t s = { .step = (real)h };
         pcg32_t g, g2;
         pcg32_seed(&g, 3, 7);
         g2 = g;
