@@ -120,6 +120,79 @@ bool photon_emit(const struct render *r, const photon_emitters_t *em,
                  uint64_t count, pcg32_t *g, ray_t *ray, RADIANCE *power,
                  const COBJECT **from);
 
+/* The pieces of photon_trace that another map's tracing (ch. 11's volume
+ * photon map, medium/volphoton.h) shares. A photon on its way to a map:
+ * where it was stored, the direction it travelled, the normal of the
+ * surface on the side it arrived from (zero where there is none, in a
+ * medium), and its power. */
+typedef struct {
+    VECTOR3 pos, dir, n;
+    RADIANCE power;
+} photon_record_t;
+
+/* A growing list of records; `failed` once a push ran out of memory
+ * (that record and every later one are dropped). Zeroed: empty. */
+typedef struct {
+    photon_record_t *r;
+    size_t n, cap;
+    bool failed;
+} photon_records_t;
+
+/* Append a record to b (its memory grows by doubling). Can't fail: a
+ * failure sets b->failed. */
+void photon_records_push(photon_records_t *b, const VECTOR3 pos,
+                         const VECTOR3 dir, const VECTOR3 n, RADIANCE power);
+
+/* Free n lists' records and the array of lists (NULL: nothing). */
+void photon_records_free(photon_records_t *lists, uint64_t n);
+
+/* Photon `index` of `count`: its whole walk from photon_emit, its
+ * numbers from its own stream (rng_for_sample), its records pushed into
+ * out[0 .. nlists) of photon_trace_records. */
+typedef void (*photon_walk_fn)(const struct render *r,
+                               const photon_emitters_t *em, uint64_t count,
+                               uint64_t index, void *ctx,
+                               photon_records_t *out);
+
+/* photons in a chunk, a thread's unit of work; and the most lists a
+ * photon's walk may fill */
+#define PHOTON_CHUNK 4096
+#define PHOTON_MAX_LISTS 4
+
+/* Build the emitters of r, and walk photons 0 .. count - 1 by `walk`
+ * (with ctx), `threads` at a time (0: all), in chunks of PHOTON_CHUNK
+ * photons, each chunk into nlists (1 .. PHOTON_MAX_LISTS) lists of its
+ * own: list j of chunk c is (*lists)[j * *nchunks + c], so list j's
+ * records joined in chunk order do not depend on which thread walked
+ * which photon. No lights or count 0: *lists NULL, *nchunks 0. Fails
+ * with SVET_ERR_NOMEM, the message starting with `what`; a list that ran
+ * out of memory on the way says so in its `failed`. Free the lists with
+ * photon_records_free(*lists, nlists * *nchunks). */
+svet_status photon_trace_records(const struct render *r, uint64_t count,
+                                 int threads, int nlists, photon_walk_fn walk,
+                                 void *ctx, const char *what,
+                                 photon_records_t **lists, uint64_t *nchunks,
+                                 svet_error *err);
+
+/* Store the records of lists[0 .. n) in order into the empty map m, with
+ * `flags` (photonmap_store), and balance it; no records leave m as it
+ * was. Fails with SVET_ERR_NOMEM (the message starting with `what`) when
+ * a list ran out of memory, or as photonmap_init and photonmap_balance
+ * do. */
+svet_status photon_records_store(const photon_records_t *lists, uint64_t n,
+                                 uint8_t flags, const char *what,
+                                 photonmap_t *m, svet_error *err);
+
+/* The photon at pp (m its material, as shaded) scatters: a new direction
+ * by the material's own sampling, adjoint by reciprocity, *power times
+ * the sample's weight f |cos| / pdf, then Russian roulette by the
+ * weight's largest channel (Jensen 2001, sec. 5.2); *ray the ray on from
+ * pp. Draws four numbers from g. *delta (when not NULL) says whether the
+ * sample was a delta one. Returns false when the photon ends (no sample,
+ * or roulette). */
+bool photon_bounce(const material_t *m, const PATHPOINT *pp, pcg32_t *g,
+                   RADIANCE *power, ray_t *ray, bool *delta);
+
 /* photon_trace, and then Christensen 1999's precomputation: the
  * irradiance by q (photonmap_irradiance) at the position of every
  * `every`-th stored photon (in the order photon_trace stores them, so

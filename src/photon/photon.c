@@ -124,27 +124,14 @@ static svet_status photon_statement(scenefile_ctx *c)
 
 /* --- emission and tracing (Jensen 2001, ch. 5) -------------------------- */
 
-/* One stored photon before the map is built. */
-typedef struct {
-    VECTOR3 pos, dir;
-    VECTOR3 n;        /* the surface's normal on the side it arrived from */
-    RADIANCE power;
-} record_t;
-
-typedef struct {
-    record_t *r;
-    size_t n, cap;
-    bool failed;
-} records_t;
-
-static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
-                 const VECTOR3 n, RADIANCE power)
+void photon_records_push(photon_records_t *b, const VECTOR3 pos,
+                         const VECTOR3 dir, const VECTOR3 n, RADIANCE power)
 {
     if (b->failed)
         return;
     if (b->n == b->cap) {
         size_t cap = b->cap ? 2 * b->cap : 1024;
-        record_t *r = realloc(b->r, cap * sizeof *r);
+        photon_record_t *r = realloc(b->r, cap * sizeof *r);
         if (!r) {
             b->failed = true;
             return;
@@ -152,11 +139,20 @@ static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
         b->r = r;
         b->cap = cap;
     }
-    record_t *q = &b->r[b->n++];
+    photon_record_t *q = &b->r[b->n++];
     vec_copy(q->pos, pos);
     vec_copy(q->dir, dir);
     vec_copy(q->n, n);
     q->power = power;
+}
+
+void photon_records_free(photon_records_t *lists, uint64_t n)
+{
+    if (!lists)
+        return;
+    for (uint64_t i = 0; i < n; i++)
+        free(lists[i].r);
+    free(lists);
 }
 
 /* The power light l emits photons with (emit()), luminance of it: a
@@ -356,23 +352,54 @@ bool photon_emit(const render_t *r, const photon_emitters_t *em,
     return pmf > 0 && emit(em, l, pmf, count, g, ray, power, from);
 }
 
-/* Trace photon `index`: bounce by the materials' own sampling, store
- * where the kind asks. The material samples wi for a given wo; a photon
- * needs the adjoint, a new direction for the one it came from. By
- * reciprocity f(wi, wo) = f(wo, wi), so sampling with wo = the photon's
- * incoming direction gives the outgoing one with the weight f |cos| / pdf
- * the flux needs. Refraction's radiance scaling (eta^2) is not the flux's:
- * svet transports basic radiance L / n^2 (brdf.c), in which the BTDF is
- * symmetric and rho_t(theta) is the same both ways, so the photon's
- * power is multiplied by rho_t(theta) alone, as flux is conserved across
- * the interface (Veach 1997, sec. 5.2). Russian roulette by the weight's
- * largest channel keeps the powers equal (Jensen 2001, sec. 5.2). */
-static void trace_one(const render_t *r, const photon_emitters_t *em,
-                      uint64_t count, photon_kind_t kind, uint64_t stream,
-                      uint64_t index, records_t *out)
+/* The bounce of photon_bounce (photon.h). The material samples wi for a
+ * given wo; a photon needs the adjoint, a new direction for the one it
+ * came from. By reciprocity f(wi, wo) = f(wo, wi), so sampling with wo =
+ * the photon's incoming direction gives the outgoing one with the weight
+ * f |cos| / pdf the flux needs. Refraction's radiance scaling (eta^2) is
+ * not the flux's: svet transports basic radiance L / n^2 (brdf.c), in
+ * which the BTDF is symmetric and rho_t(theta) is the same both ways, so
+ * the photon's power is multiplied by rho_t(theta) alone, as flux is
+ * conserved across the interface (Veach 1997, sec. 5.2). Russian roulette
+ * by the weight's largest channel keeps the powers equal (Jensen 2001,
+ * sec. 5.2). */
+bool photon_bounce(const material_t *m, const PATHPOINT *pp, pcg32_t *g,
+                   RADIANCE *power, ray_t *ray, bool *delta)
 {
+    VECTOR3 wo, wi;
+    frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
+    real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
+    real urr = pcg32_real(g);
+    brdf_sample_t bs;
+    if (!material_sample(m, wo, u, &bs))
+        return false;
+    if (delta)
+        *delta = bs.delta;
+    real q = real_min(rad_max(bs.weight), REAL_C(1.0));
+    if (!(urr < q))
+        return false;
+    *power = rad_scale(rad_mul(*power, bs.weight), 1 / q);
+    frame_to_world(wi, bs.wi, pp->u, pp->v, pp->n);
+    ray_spawn(ray, pp->cross_point, pp->p_error, pp->ng, wi);
+    return true;
+}
+
+/* what trace_one stores, and the stream it draws from */
+typedef struct {
+    photon_kind_t kind;
+    uint64_t stream;
+} walk_t;
+
+/* Trace photon `index`: bounce by the materials' own sampling
+ * (photon_bounce), store where the kind asks. */
+static void trace_one(const render_t *r, const photon_emitters_t *em,
+                      uint64_t count, uint64_t index, void *ctx,
+                      photon_records_t *out)
+{
+    const walk_t *w = ctx;
+    const photon_kind_t kind = w->kind;
     pcg32_t g;
-    rng_for_sample(&g, r->scene->render.seed ^ PHOTON_SEED_SALT, stream,
+    rng_for_sample(&g, r->scene->render.seed ^ PHOTON_SEED_SALT, w->stream,
                    index);
     ray_t ray;
     RADIANCE power;
@@ -407,37 +434,91 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
             if (store) {
                 VECTOR3 n;
                 vec_scale(n, pp.n, SVECTOR3(pp.n, dir) > 0 ? -1 : 1);
-                push(out, pp.cross_point, dir, n, power);
+                photon_records_push(out, pp.cross_point, dir, n, power);
             }
         }
         if (depth == max_depth)
             return;
-        VECTOR3 wo, wi;
-        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
-        real u[3] = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
-        real urr = pcg32_real(&g);
-        brdf_sample_t bs;
-        if (!material_sample(m, wo, u, &bs))
+        bool delta = true;
+        if (!photon_bounce(m, &pp, &g, &power, &ray, &delta))
             return;
-        if (!bs.delta) {
+        if (!delta) {
             diffuse_seen = true;
             if (kind == PHOTON_CAUSTIC)
                 return; /* it can no longer make a caustic */
         }
-        real q = real_min(rad_max(bs.weight), REAL_C(1.0));
-        if (!(urr < q))
-            return;
-        power = rad_scale(rad_mul(power, bs.weight), 1 / q);
-        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
-        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
         skip[0] = obj;
     }
 }
 
-/* photons per chunk: the unit of work of a thread; the records of the
- * chunks are joined in chunk order, so the map does not depend on which
- * thread traced which */
-#define CHUNK 4096
+svet_status photon_trace_records(const render_t *r, uint64_t count,
+                                 int threads, int nlists, photon_walk_fn walk,
+                                 void *ctx, const char *what,
+                                 photon_records_t **lists, uint64_t *nchunks,
+                                 svet_error *err)
+{
+    *lists = NULL;
+    *nchunks = 0;
+    if (count == 0 || r->lights.n == 0)
+        return SVET_OK;
+    uint64_t nc = (count + PHOTON_CHUNK - 1) / PHOTON_CHUNK;
+    if (nc > SIZE_MAX / ((size_t)nlists * sizeof(photon_records_t)))
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: %llu photons are too "
+                              "many", what, (unsigned long long)count);
+    photon_emitters_t em;
+    svet_status st = photon_emitters_build(&em, r, err);
+    if (st != SVET_OK)
+        return st;
+    photon_records_t *l = calloc((size_t)nc * (size_t)nlists, sizeof *l);
+    if (!l) {
+        photon_emitters_free(&em);
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", what);
+    }
+#ifdef _OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+#else
+    (void)threads;
+#endif
+    for (long long c = 0; c < (long long)nc; c++) {
+        photon_records_t out[PHOTON_MAX_LISTS];
+        memset(out, 0, sizeof out);
+        uint64_t i0 = (uint64_t)c * PHOTON_CHUNK;
+        uint64_t i1 = i0 + PHOTON_CHUNK < count ? i0 + PHOTON_CHUNK : count;
+        for (uint64_t i = i0; i < i1; i++)
+            walk(r, &em, count, i, ctx, out);
+        for (int j = 0; j < nlists; j++)
+            l[(uint64_t)j * nc + (uint64_t)c] = out[j];
+    }
+    photon_emitters_free(&em);
+    *lists = l;
+    *nchunks = nc;
+    return SVET_OK;
+}
+
+svet_status photon_records_store(const photon_records_t *lists, uint64_t n,
+                                 uint8_t flags, const char *what,
+                                 photonmap_t *m, svet_error *err)
+{
+    size_t total = 0;
+    for (uint64_t c = 0; c < n; c++) {
+        if (lists[c].failed)
+            return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory",
+                                  what);
+        total += lists[c].n;
+    }
+    if (total == 0)
+        return SVET_OK;
+    svet_status st = photonmap_init(m, total, err);
+    if (st != SVET_OK)
+        return st;
+    for (uint64_t c = 0; c < n; c++)
+        for (size_t i = 0; i < lists[c].n; i++) {
+            const photon_record_t *rec = &lists[c].r[i];
+            photonmap_store(m, rec->pos, rec->power, rec->dir, flags);
+        }
+    return photonmap_balance(m, err);
+}
 
 /* photon_trace and photon_trace_precomputed: irr, when not NULL, gets the
  * irradiance at every `every`-th stored photon in record order */
@@ -453,50 +534,20 @@ static svet_status trace(const render_t *r, uint64_t count,
         memset(irr, 0, sizeof *irr);
         irr->balanced = true;
     }
-    if (count == 0 || r->lights.n == 0)
-        return SVET_OK;
-    uint64_t nchunks = (count + CHUNK - 1) / CHUNK;
-    if (nchunks > SIZE_MAX / sizeof(records_t))
-        return svet_error_set(err, SVET_ERR_NOMEM, "photon tracing: %llu "
-                              "photons are too many", (unsigned long long)count);
-    photon_emitters_t em;
-    svet_status st = photon_emitters_build(&em, r, err);
-    if (st != SVET_OK)
-        return st;
-    records_t *chunks = calloc((size_t)nchunks, sizeof *chunks);
-    if (!chunks) {
-        photon_emitters_free(&em);
-        return svet_error_set(err, SVET_ERR_NOMEM,
-                              "photon tracing: out of memory");
-    }
-#ifdef _OPENMP
-    int nt = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-#else
-    (void)threads;
-#endif
-    for (long long c = 0; c < (long long)nchunks; c++) {
-        uint64_t i0 = (uint64_t)c * CHUNK;
-        uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;
-        for (uint64_t i = i0; i < i1; i++)
-            trace_one(r, &em, count, kind, stream, i, &chunks[c]);
-    }
-    photon_emitters_free(&em);
-    size_t total = 0;
-    bool failed = false;
-    for (uint64_t c = 0; c < nchunks; c++) {
-        total += chunks[c].n;
-        failed = failed || chunks[c].failed;
-    }
+    walk_t w = { kind, stream };
+    photon_records_t *lists;
+    uint64_t nchunks;
+    svet_status st = photon_trace_records(r, count, threads, 1, trace_one, &w,
+                                          "photon tracing", &lists, &nchunks,
+                                          err);
+    if (st == SVET_OK)
+        st = photon_records_store(lists, nchunks, (uint8_t)kind,
+                                  "photon tracing", m, err);
     /* the precomputation's points: every `every`-th record */
-    size_t npts = irr && every > 0 && total > 0 ? (total - 1) / every + 1 : 0;
+    size_t npts = st == SVET_OK && irr && every > 0 && m->n > 0
+                      ? (m->n - 1) / every + 1 : 0;
     float (*pts)[3] = NULL, (*nrm)[3] = NULL;
-    if (failed)
-        st = svet_error_set(err, SVET_ERR_NOMEM,
-                            "photon tracing: out of memory");
-    else if (total > 0)
-        st = photonmap_init(m, total, err);
-    if (st == SVET_OK && npts > 0) {
+    if (npts > 0) {
         pts = malloc(npts * sizeof *pts);
         nrm = malloc(npts * sizeof *nrm);
         if (!pts || !nrm)
@@ -504,21 +555,14 @@ static svet_status trace(const render_t *r, uint64_t count,
                                 "photon tracing: out of memory");
     }
     size_t at = 0;
-    for (uint64_t c = 0; c < nchunks; c++) {
-        for (size_t i = 0; st == SVET_OK && i < chunks[c].n; i++, at++) {
-            const record_t *rec = &chunks[c].r[i];
-            photonmap_store(m, rec->pos, rec->power, rec->dir, (uint8_t)kind);
-            if (npts > 0 && at % every == 0)
+    for (uint64_t c = 0; st == SVET_OK && npts > 0 && c < nchunks; c++)
+        for (size_t i = 0; i < lists[c].n; i++, at++)
+            if (at % every == 0)
                 for (int a = 0; a < 3; a++) {
-                    pts[at / every][a] = (float)rec->pos[a];
-                    nrm[at / every][a] = (float)rec->n[a];
+                    pts[at / every][a] = (float)lists[c].r[i].pos[a];
+                    nrm[at / every][a] = (float)lists[c].r[i].n[a];
                 }
-        }
-        free(chunks[c].r);
-    }
-    free(chunks);
-    if (st == SVET_OK && total > 0)
-        st = photonmap_balance(m, err);
+    photon_records_free(lists, nchunks);
     if (st == SVET_OK && npts > 0)
         st = photonmap_precompute(m, q, (const float (*)[3])pts,
                                   (const float (*)[3])nrm, npts, threads, irr,
