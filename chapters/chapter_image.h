@@ -1,6 +1,6 @@
 /*
  * chapter_image.h - how the chapter programs that render a scene (ch. 5,
- * 8, 11) write an image: DIR/STEM.pfm, linear as rendered, and beside it
+ * 8, 9, 11) write an image: DIR/STEM.pfm, linear as rendered, and beside it
  * DIR/STEM.ppm, tone-mapped (ch. 6) to 8-bit sRGB codes for any viewer.
  * Header-only like chapter.h, so a program's one cc line needs no extra
  * file (it lists src/io/netpbm.c and src/colour/tonemap.c already).

@@ -23,8 +23,7 @@
 
 #include "../chapter.h"
 #include "../chapter_image.h"
-#include "colour/tonemap.h"
-#include "io/netpbm.h"
+#include "../chapter_scene.h"
 #include "photon/photon.h"
 #include "render/render.h"
 #include "render/scenefile.h"
@@ -32,32 +31,8 @@
 /* the one part this program offers: the photon maps */
 static const scene_part_t *const parts[] = { &photon_part, NULL };
 static const scene_features_t features = { .parts = parts };
-
-static int fail(const char *what, const svet_error *e)
-{
-    fprintf(stderr, "ch08: %s: %s\n", what, e->msg);
-    return CHAPTER_EXIT_FAIL;
-}
-
-/* scenes/caustic.scn at `scale` of its resolution, with extra settings */
-static svet_status load(scene_t *s, double scale, const char *const *set,
-                        svet_error *e)
-{
-    svet_status st = scenefile_read_with(s, "scenes/caustic.scn", &features,
-                                         e);
-    if (st != SVET_OK)
-        return st;
-    char buf[96];
-    snprintf(buf, sizeof buf, "resolution=%dx%d",
-             (int)fmax(8, s->camera.width * scale),
-             (int)fmax(6, s->camera.height * scale));
-    st = scenefile_override(s, buf, e);
-    for (int i = 0; st == SVET_OK && set && set[i]; i++)
-        st = scenefile_override(s, set[i], e);
-    if (st != SVET_OK)
-        scene_free(s);
-    return st;
-}
+static const chapter_scene_t caustic = { "scenes/caustic.scn", NULL, NULL,
+                                         &features, 8, 6 };
 
 /* Render the scene with settings `set` (NULL-terminated) and write it. */
 static svet_status render_to(const char *dir, const char *stem, double scale,
@@ -65,7 +40,7 @@ static svet_status render_to(const char *dir, const char *stem, double scale,
                              svet_error *e)
 {
     scene_t s;
-    svet_status st = load(&s, scale, set, e);
+    svet_status st = chapter_scene_load(&s, &caustic, scale, threads, set, e);
     if (st != SVET_OK)
         return st;
     render_t r;
@@ -73,7 +48,9 @@ static svet_status render_to(const char *dir, const char *stem, double scale,
     if (st == SVET_OK) {
         st = render_pass(&r, spp, threads, NULL, NULL);
         image_t img = { 0 };
-        if (st == SVET_OK)
+        if (st != SVET_OK)
+            *e = r.error;
+        else
             st = render_image(&r, &img, e);
         if (st == SVET_OK)
             st = chapter_write_pair(dir, stem, &img, NULL, NULL, e);
@@ -91,7 +68,7 @@ static svet_status dots(const char *dir, double scale, int threads,
                         svet_error *e)
 {
     scene_t s;
-    svet_status st = load(&s, scale, NULL, e);
+    svet_status st = chapter_scene_load(&s, &caustic, scale, threads, NULL, e);
     if (st != SVET_OK)
         return st;
     render_t r;
@@ -245,7 +222,7 @@ int main(int argc, char **argv)
     long n = (long)spp;
     printf("ch08: photons as dots\n");
     if (dots(dir, scale, nt, &e) != SVET_OK)
-        return fail("dots", &e);
+        return chapter_fail("ch08", "dots", &e);
     printf("ch08: the global map seen directly, at several k\n");
     static const char *const kset[3][4] = {
         { "photonmap.gather=0", "photonmap.k=10", "photonmap.max_radius=0.3",
@@ -259,16 +236,16 @@ int main(int argc, char **argv)
                              "ch08_global_k250" };
     for (int i = 0; i < 3; i++)
         if (render_to(dir, kstem[i], scale, n, nt, kset[i], &e) != SVET_OK)
-            return fail(kstem[i], &e);
+            return chapter_fail("ch08", kstem[i], &e);
     printf("ch08: final gathering, and the path tracer for comparison\n");
     if (render_to(dir, "ch08_gather", scale, n, nt, NULL, &e) != SVET_OK)
-        return fail("gather", &e);
+        return chapter_fail("ch08", "gather", &e);
     static const char *const path_set[] = { "integrator=path", NULL };
     if (render_to(dir, "ch08_path", scale, 16 * n, nt, path_set, &e) !=
         SVET_OK)
-        return fail("path", &e);
+        return chapter_fail("ch08", "path", &e);
     printf("ch08: the estimate's bias and spread (%s/bias.csv)\n", dir);
     if (bias_table(dir, nt, (int)maps, &e) != SVET_OK)
-        return fail("bias table", &e);
+        return chapter_fail("ch08", "bias table", &e);
     return 0;
 }

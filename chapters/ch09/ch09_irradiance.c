@@ -24,8 +24,8 @@
 #include <string.h>
 
 #include "../chapter.h"
-#include "colour/tonemap.h"
-#include "io/netpbm.h"
+#include "../chapter_image.h"
+#include "../chapter_scene.h"
 #include "irradiance/irrpart.h"
 #include "render/render.h"
 #include "render/scenefile.h"
@@ -33,57 +33,8 @@
 /* the one part this program offers: the irradiance cache */
 static const scene_part_t *const parts[] = { &irr_part, NULL };
 static const scene_features_t features = { .parts = parts };
-
-static int fail(const char *what, const svet_error *e)
-{
-    fprintf(stderr, "ch09: %s: %s\n", what, e->msg);
-    return CHAPTER_EXIT_FAIL;
-}
-
-/* scenes/cbox-irradiance.scn at `scale` of its resolution, with `threads`
- * and extra settings (NULL-terminated, may be NULL) */
-static svet_status load(scene_t *s, double scale, int threads,
-                        const char *const *set, svet_error *e)
-{
-    svet_status st = scenefile_read_with(s, "scenes/cbox-irradiance.scn",
-                                         &features, e);
-    if (st != SVET_OK)
-        return st;
-    char buf[96];
-    snprintf(buf, sizeof buf, "resolution=%dx%d",
-             (int)fmax(8, s->camera.width * scale),
-             (int)fmax(8, s->camera.height * scale));
-    st = scenefile_override(s, buf, e);
-    snprintf(buf, sizeof buf, "threads=%d", threads);
-    if (st == SVET_OK)
-        st = scenefile_override(s, buf, e);
-    for (int i = 0; st == SVET_OK && set && set[i]; i++)
-        st = scenefile_override(s, set[i], e);
-    if (st != SVET_OK)
-        scene_free(s);
-    return st;
-}
-
-/* DIR/STEM.pfm and, with a linear exposure and an sRGB curve,
- * DIR/STEM.ppm */
-static svet_status write_pair(const char *dir, const char *stem,
-                              const image_t *img, svet_error *e)
-{
-    char path[1200];
-    snprintf(path, sizeof path, "%s/%s.pfm", dir, stem);
-    svet_status st = netpbm_write_pfm(path, img, e);
-    image_t shown = { 0 };
-    tonemap_params_t tp;
-    tonemap_defaults(&tp, TONEMAP_LINEAR);
-    if (st == SVET_OK)
-        st = tonemap_apply(img, &shown, &tp, NULL, e);
-    if (st == SVET_OK) {
-        snprintf(path, sizeof path, "%s/%s.ppm", dir, stem);
-        st = netpbm_write_ppm(path, &shown, 8, e);
-    }
-    image_free(&shown);
-    return st;
-}
+static const chapter_scene_t cbox = { "scenes/cbox-irradiance.scn", NULL,
+                                      NULL, &features, 8, 8 };
 
 /* A render of the scene with settings `set`: its image, and with
  * `records` its cache's record count (0 for the path tracer). With
@@ -93,7 +44,7 @@ static svet_status render_one(double scale, long spp, int threads,
                               size_t *records, image_t *dots, svet_error *e)
 {
     scene_t s;
-    svet_status st = load(&s, scale, threads, set, e);
+    svet_status st = chapter_scene_load(&s, &cbox, scale, threads, set, e);
     if (st != SVET_OK)
         return st;
     render_t r;
@@ -210,21 +161,24 @@ int main(int argc, char **argv)
     printf("ch09: the path tracer, %ld samples per pixel\n", (long)ref_spp);
     static const char *const path_set[] = { "integrator=path", NULL };
     if (render_one(scale, (long)ref_spp, nt, path_set, &ref, NULL, NULL,
-                   &e) != SVET_OK || write_pair(dir, "ch09_path", &ref, &e))
-        return fail("path tracer", &e);
+                   &e) != SVET_OK ||
+        chapter_write_pair(dir, "ch09_path", &ref, NULL, NULL, &e))
+        return chapter_fail("ch09", "path tracer", &e);
 
     printf("ch09: the cache with gradients, and its records\n");
     if (render_one(scale, n, nt, NULL, &grad, &records, &dots, &e) !=
-            SVET_OK || write_pair(dir, "ch09_irradiance", &grad, &e) ||
-        write_pair(dir, "ch09_records", &dots, &e))
-        return fail("cache", &e);
+            SVET_OK ||
+        chapter_write_pair(dir, "ch09_irradiance", &grad, NULL, NULL, &e) ||
+        chapter_write_pair(dir, "ch09_records", &dots, NULL, NULL, &e))
+        return chapter_fail("ch09", "cache", &e);
     printf("  %zu records\n", records);
     printf("ch09: the cache without gradients\n");
     static const char *const flat_set[] = { "irradiance.gradients=off",
                                             NULL };
     if (render_one(scale, n, nt, flat_set, &flat, NULL, NULL, &e) !=
-            SVET_OK || write_pair(dir, "ch09_no_gradients", &flat, &e))
-        return fail("cache without gradients", &e);
+            SVET_OK ||
+        chapter_write_pair(dir, "ch09_no_gradients", &flat, NULL, NULL, &e))
+        return chapter_fail("ch09", "cache without gradients", &e);
 
     /* the row through the middle of the image: the green channel */
     chapter_file_t cf;
@@ -271,7 +225,7 @@ int main(int argc, char **argv)
             if (render_one(scale, n, nt, set, &img, &rec[g], NULL, &e) !=
                 SVET_OK) {
                 chapter_close(&cf, "ch09_irradiance");
-                return fail("error against a", &e);
+                return chapter_fail("ch09", "error against a", &e);
             }
             err[g] = rel_rmse(&img, &ref);
             image_free(&img);

@@ -25,8 +25,7 @@
 
 #include "../chapter.h"
 #include "../chapter_image.h"
-#include "colour/tonemap.h"
-#include "io/netpbm.h"
+#include "../chapter_scene.h"
 #include "medium/medium.h"
 #include "medium/medpart.h"
 #include "medium/phase.h"
@@ -38,12 +37,6 @@ static const scene_part_t *const parts[] = { &medium_part, NULL };
 static const scene_features_t features = { .parts = parts };
 
 static const double PI = 3.14159265358979323846;
-
-static int fail(const char *what, const svet_error *e)
-{
-    fprintf(stderr, "ch11: %s: %s\n", what, e->msg);
-    return CHAPTER_EXIT_FAIL;
-}
 
 static double now(void)
 {
@@ -169,24 +162,8 @@ static const char scene_text[] =
     "sphere centre 0 0.8 0 radius 0.7 material black medium smoke "
     "invisible\n";
 
-static svet_status load(scene_t *s, double scale, const char *integrator,
-                        svet_error *e)
-{
-    svet_status st = scenefile_parse_with(s, scene_text, strlen(scene_text),
-                                          "ch11_media.c", NULL, &features, e);
-    if (st != SVET_OK)
-        return st;
-    char buf[96];
-    snprintf(buf, sizeof buf, "resolution=%dx%d",
-             (int)fmax(8, 160 * scale), (int)fmax(6, 120 * scale));
-    st = scenefile_override(s, buf, e);
-    snprintf(buf, sizeof buf, "integrator=%s", integrator);
-    if (st == SVET_OK)
-        st = scenefile_override(s, buf, e);
-    if (st != SVET_OK)
-        scene_free(s);
-    return st;
-}
+static const chapter_scene_t smoke = { NULL, scene_text, "ch11_media.c",
+                                       &features, 8, 6 };
 
 /* Render with `integrator`: spp samples when spp > 0, else one sample
  * per pixel at a time until `seconds` have passed; *spp_done and
@@ -195,8 +172,11 @@ static svet_status render_for(const char *integrator, double scale, long spp,
                               double seconds, int threads, image_t *img,
                               long *spp_done, double *secs, svet_error *e)
 {
+    char buf[64];
+    snprintf(buf, sizeof buf, "integrator=%s", integrator);
+    const char *const set[] = { buf, NULL };
     scene_t s;
-    svet_status st = load(&s, scale, integrator, e);
+    svet_status st = chapter_scene_load(&s, &smoke, scale, threads, set, e);
     if (st != SVET_OK)
         return st;
     render_t r;
@@ -247,7 +227,7 @@ static int equal_time(const char *dir, double scale, double seconds,
                    &e) != SVET_OK ||
         chapter_write_pair(dir, "ch11_reference", &ref, NULL, NULL, &e) !=
             SVET_OK)
-        return fail("reference", &e);
+        return chapter_fail("ch11", "reference", &e);
     chapter_file_t cf;
     FILE *f = chapter_open(&cf, "ch11_media", dir, "equal_time.csv");
     if (!f) {
@@ -265,7 +245,7 @@ static int equal_time(const char *dir, double scale, double seconds,
         if (render_for(methods[i], scale, 0, seconds, threads, &img, &n,
                        &secs, &e) != SVET_OK ||
             chapter_write_pair(dir, stem, &img, NULL, NULL, &e) != SVET_OK) {
-            rc = fail(methods[i], &e);
+            rc = chapter_fail("ch11", methods[i], &e);
             break;
         }
         double err = rmse(&img, &ref);
