@@ -709,8 +709,7 @@ static int opt_clock(void *args, const char *cmd, const char *opt,
     else if (!strcmp(v, "cpu"))
         o->clock = CONVERGE_CPU;
     else
-        return cmd_error(cmd, SVET_EXIT_USAGE, "bad value '%s' for %s: "
-                         "expected wall or cpu", v, opt);
+        return cmd_bad_value(cmd, opt, v);
     return SVET_EXIT_OK;
 }
 

@@ -512,8 +512,8 @@ START_TEST(the_converge_csv_names_the_scenes_integrator)
 }
 END_TEST
 
-/* svet converge --clock: wall or cpu, anything else refused with what it
- * takes; the CSV's seconds column names the clock, and --report refuses
+/* svet converge --clock: wall or cpu, anything else refused as any bad
+ * value is; the CSV's seconds column names the clock, and --report refuses
  * to put series of two clocks on one time axis. */
 START_TEST(converge_clock_is_named_in_the_csv_and_refused_when_mixed)
 {
@@ -524,7 +524,7 @@ START_TEST(converge_clock_is_named_in_the_csv_and_refused_when_mixed)
         "material grey lambert rho 0.5\n"
         "environment radiance 1\n"
         "sphere centre 0 0 0 radius 1 material grey\n", scn, ref, dir);
-    expect(1, "bad value 'gpu' for --clock: expected wall or cpu",
+    expect(1, "svet converge: bad value 'gpu' for --clock\n",
            "converge '%s' --ref '%s' --clock gpu", scn, ref);
     expect(1, NULL, "converge '%s' --ref '%s' --clock", scn, ref);
     const char *clock[2] = { "wall", "cpu" };
