@@ -232,16 +232,18 @@ CHAPTERS :=
 -include $(sort $(wildcard chapters/*/*.mk))
 CHAPTERS := $(sort $(CHAPTERS))
 CHAPTER_PROGS := $(sort $(foreach c,$(CHAPTERS),$($(c)_PROGS)))
+CHAPTER_HDRS := $(wildcard chapters/*.h)
 
 # the speed layers of modules M..., src/*/fast/M_WHAT.c, when SIMD=on
 # (M_WHAT's module is its name without the last _WHAT)
 fast_owner = $(patsubst %_$(lastword $(subst _, ,$(1))),%,$(1))
 fast_of = $(if $(SIMDDEF),$(foreach f,$(notdir $(FAST_SRCS:.c=)),\
     $(if $(filter $(call fast_owner,$(f)),$(1)),$(f))))
+# (the headers the programs share, chapters/*.h, rebuild them when changed)
 define program_rule
-$(BUILD)/$(1): $$($(1)_SRC) $$(addprefix $(BUILD)/obj/,$$(addsuffix .o,$$($(1)_MODULES) $$(call fast_of,$$($(1)_MODULES))))
+$(BUILD)/$(1): $$($(1)_SRC) $(CHAPTER_HDRS) $$(addprefix $(BUILD)/obj/,$$(addsuffix .o,$$($(1)_MODULES) $$(call fast_of,$$($(1)_MODULES))))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) $$^ -o $$@ -Wl,--as-needed $$($(1)_LIBS) -fopenmp
+	$$(CC) $$(ALL_CFLAGS) $$(PKG_CFLAGS) $$(filter-out %.h,$$^) -o $$@ -Wl,--as-needed $$($(1)_LIBS) -fopenmp
 endef
 $(foreach p,$(CHAPTER_PROGS),$(eval $(call program_rule,$(p))))
 
