@@ -1,10 +1,13 @@
 #!/bin/sh
 # bootstrap.sh - the README's first command: install the Debian packages svet
 # needs when they are missing, build everything, and render the default
-# scene (scenes/cbox.scn) to out/cbox.exr and out/cbox.png.
+# scene (scenes/cbox.scn) to out/cbox.exr and out/cbox.png. The package
+# list is .ci/run's: `parallel` is there because `make test` runs the split
+# render under GNU parallel (tests/cmd/test_render_parallel.sh skips it
+# when parallel is missing).
 set -eu
 cd "$(dirname "$0")/.."
-pkgs="build-essential pkg-config check libpng-dev libopenexr-dev"
+pkgs="build-essential pkg-config check libpng-dev libopenexr-dev parallel"
 missing=""
 for p in $pkgs; do
     dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
