@@ -115,6 +115,7 @@ START_TEST(a_scene_without_animation_has_no_frames)
     ck_assert_int_eq(animation_set_frame(&s, 0, &e), SVET_ERR_RANGE);
     ck_assert(strstr(e.msg, "no animation") != NULL);
     ck_assert(s.render.seed == seed);
+    scene_free(&s);
     /* frames without keys: the camera statement's camera in every one */
     scenecheck_parse_ok(&s, "animation frames 3\n" BALL);
     ck_assert_int_eq(animation_set_frame(&s, 2, &e), SVET_OK);
