@@ -214,6 +214,23 @@ static bool record_finite(const irr_record_t *r)
     return true;
 }
 
+/* Ward's rule for the translational gradient where R was raised (Radiance,
+ * ambcomp.c, doambient(): "cap gradient" when R is clamped to the minimum
+ * radius): each channel's gradient is scaled so that |grad_t| R <= E.
+ * A record is used within a R of its point, so its extrapolation then
+ * stays within E (1 -/+ a); a gradient measured over a nearer R, applied
+ * across the larger one, would otherwise overshoot E by up to
+ * a |grad_t| R, isolated spikes where R was raised. */
+static void limit_gradient(irr_record_t *r)
+{
+    const real e[3] = { r->e.r, r->e.g, r->e.b };
+    for (int k = 0; k < 3; k++) {
+        real g = vec_length(r->grad_t[k]) * r->r;
+        if (g > e[k])
+            vec_scale(r->grad_t[k], r->grad_t[k], real_max(e[k], 0) / g);
+    }
+}
+
 svet_status irrcache_add(irrcache_t *c, const irr_record_t *r,
                          svet_error *err)
 {
@@ -239,6 +256,9 @@ svet_status irrcache_add(irrcache_t *c, const irr_record_t *r,
         clamp_t k = { c, nr, i };
         visit(c->root, nr->p, c->r_max, clamp_pair, &k);
     }
+    /* after every clamp of this record's R; a neighbour's R only falls
+     * here, which keeps its gradient within the limit */
+    limit_gradient(nr);
     if (!grow_root(c, nr->p) || !insert(c->root, i, nr->p, c->a * c->r_max))
         return svet_error_set(err, SVET_ERR_NOMEM,
                               "irradiance cache: out of memory");
