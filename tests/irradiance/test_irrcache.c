@@ -96,6 +96,9 @@ START_TEST(a_raised_radius_limits_the_gradient)
                      SVET_OK);
     ck_assert_int_eq(irrcache_add(&c, &r, NULL), SVET_OK);
     ck_assert(c.rec[0].r == 1);
+    /* the record keeps its gather's gradient; the limit is the lookup's */
+    ck_assert(c.rec[0].grad_t[0][X] == 5 &&
+              c.rec[0].grad_t[1][X] == REAL_C(0.5));
     VECTOR3 ahead = { REAL_C(0.4), 0, 0 }, behind = { REAL_C(-0.4), 0, 0 };
     RADIANCE e;
     ck_assert_int_eq(irrcache_lookup(&c, ahead, n, &e), 1);

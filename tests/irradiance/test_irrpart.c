@@ -506,8 +506,10 @@ static void model_gradients(const model_t *m, const double *p,
  * as the change from step delta to 2 delta (Richardson: the central
  * difference's error is a third of it, and the rule's error enters both).
  * The difference must be large beside that tolerance, so that a gradient
- * of the wrong sign or of zero is seen. Returns how many checks were
- * made. */
+ * of the wrong sign or of zero is seen. The record keeps the gradient
+ * its gather measured (the cache limits the translational one only as it
+ * reads it, test_irrcache.c), so records the clamp raised are compared
+ * too. Returns how many checks were made. */
 static int check_gradients(const char *text, const model_t *m, int want)
 {
     setup_t u;
