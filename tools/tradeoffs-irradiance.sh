@@ -20,7 +20,8 @@
 #        (build/float/svet), CLOCK (cpu, or wall), TIMES (2,4,8,16 CPU-s;
 #        1,2,4,8 s of wall), REPORT_TIME (10 CPU-s; 5 s), THREADS (2),
 #        REF_SPP (4096), RES (80x80), COUNT_SPP (16), SUB_SPP (16 64 256),
-#        NICE (10), OUT, DOC)
+#        EFF_RES (256x256), EFF_REF_SPP (1024), EFF_TIMES (5,10,20 CPU-s;
+#        2.5,5,10 s), NICE (10), OUT, DOC)
 set -eu
 svet=${SVET:-build/float/svet}
 clock=${CLOCK:-cpu}
@@ -96,7 +97,7 @@ feffx=${ratio#* }
 # each setting's own log at COUNT_SPP: records, lookups, records per lookup
 count_row() { # LABEL SETTINGS...
     label=$1; shift
-    sv render "$scene" "$@" --set resolution=$res --spp "$count_spp" \
+    sv render "$scene" "$@" --set resolution=${cres:-$res} --spp "$count_spp" \
         --seed 1 --threads "$threads" -o "$out/count.exr" 2> "$out/count.txt"
     sed -n 's/^svet render: irradiance cache: \([0-9]*\) records .*; \([0-9]*\) lookups, \([0-9]*\) of them.*records per lookup \(.*\) %$/\1 \2 \3 \4/p' \
         "$out/count.txt" |
@@ -131,6 +132,46 @@ sub_row() { # LABEL SPP SETTINGS...
         printf "| %s | %d | %.2f | %s | %.3g | %.3g |\n", l, n, t, p, e,
                1 / (e * t) }'
 }
+# the aim's point: the whole cbox.scn image, where the path tracer's
+# REPORT_TIME (5 s of wall at 2 threads) is about 100 spp; the path
+# tracer, the defaults and the cheap setting, read at REPORT_TIME
+effres=${EFF_RES:-256x256}
+effrefspp=${EFF_REF_SPP:-1024}
+case $clock in
+cpu) efftimes=${EFF_TIMES:-5,10,20} ;;
+*) efftimes=${EFF_TIMES:-2.5,5,10} ;;
+esac
+eff="$out/eff"
+mkdir -p "$eff"
+if [ ! -f "$eff/ref.exr" ]; then
+    echo "tradeoffs-irradiance: the reference, $effrefspp spp at $effres" >&2
+    sv render "$scene" --set integrator=path --set resolution=$effres \
+        --spp "$effrefspp" --seed 7 --threads "$threads" -q \
+        -o "$eff/ref.exr" --variance "$eff/ref-var.exr"
+fi
+effseries() { # LABEL SETTINGS...
+    label=$1; shift
+    echo "tradeoffs-irradiance: $label at $effres" >&2
+    sv converge "$scene" --ref "$eff/ref.exr" --seed 1 \
+        --time-list "$efftimes" --clock "$clock" --threads "$threads" \
+        --out "$eff" --label "$label" --no-plot -q \
+        --set resolution=$effres "$@" >/dev/null
+}
+effseries path --set integrator=path
+effseries a=0.3+min_r=10 $fast
+effseries irradiance $irr
+effreport=$(cd "$eff" && "$OLDPWD/$svet" converge --report --time "$rtime" \
+    path.csv a=0.3+min_r=10.csv irradiance.csv)
+report_full=$report
+report=$effreport
+ratio=$(row_of a=0.3+min_r=10)
+espeedup=${ratio% *}
+eeffx=${ratio#* }
+ratio=$(row_of irradiance)
+edspeedup=${ratio% *}
+report=$report_full
+echo "tradeoffs-irradiance: record counts at $effres" >&2
+effcounts=$(cres=$effres; count_row a=0.3+min_r=10 $fast)
 echo "tradeoffs-irradiance: subsampling" >&2
 subtable=$(
     for spp in $sub_spp; do
@@ -155,9 +196,17 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -
 # the 10-times question: the fast setting's speed-up and its records per
 # lookup, as numbers
 num() { printf '%s\n' "$1" | sed 's/[^0-9.e+-]//g'; }
+fast_or_never() { # a speed-up column's value, in words
+    case ${1:--} in
+    -) echo "never reach it (the error floor lies above)" ;;
+    *) echo "$1 times as fast" ;;
+    esac
+}
 fpl=$(printf '%s\n' "$counttable" |
       awk -F'|' '$2 == " a=0.3+min_r=10 " { gsub(/[ %]/, "", $6); print $6 }')
-verdict=$(awk -v s="$(num "${fspeedup:-0}")" -v p="${fpl:-100}" 'BEGIN {
+efpl=$(printf '%s\n' "$effcounts" |
+       awk -F'|' '$2 == " a=0.3+min_r=10 " { gsub(/[ %]/, "", $6); print $6 }')
+verdict=$(awk -v s="$(num "${espeedup:-0}")" -v p="${efpl:-100}" 'BEGIN {
     if (s + 0 >= 10 && p + 0 <= 1) print "holds";
     else if (s + 0 >= 10) print "is reached in speed, but with more than 1 % of the lookups as records";
     else print "does not hold" }')
@@ -200,16 +249,40 @@ and its ratio to the baseline's, and "biased" where the squared bias
 exceeds the noise at the last point (the cache's interpolation error:
 the error stops falling, the floor a smaller a lowers).
 
-**Measured:** at the path tracer's error at $rtime $unit (what it reaches
-in about $(awk -v t="$rtime" -v n="$threads" 'BEGIN { print t / n }') s of wall-clock time at $threads threads),
-the irradiance cache with the defaults is ${speedup:-?} times as fast
-(speed-up column; efficiency ratio ${effx:-?}), and with a 0.3 and
-min_r 10 ${fspeedup:-?} times as fast (efficiency ratio ${feffx:-?}),
-with ${fpl:-?} % of the lookups as records. For a biased method the
-efficiency 1 / (variance x time) leaves the bias out, so the speed-up is
-the number to quote. The aim of 10 times the path tracer's efficiency
-with records at most 1 % of lookups **$verdict** on this whole-image
-measure at $res.
+At $res the path tracer's $rtime $unit are far more than 100 samples per
+pixel, and its error there lies below the cache's floor wherever a
+"never (bias)" stands: the defaults are $(fast_or_never "$speedup")
+(efficiency ratio ${effx:-?}), a 0.3 with min_r 10 $(fast_or_never "$fspeedup")
+(efficiency ratio ${feffx:-?}; ${fpl:-?} % of the lookups as records).
+The next section measures at the point the aim names.
+
+## At about 100 samples per pixel: the whole image
+
+\`scenes/cbox.scn\` at $effres, the same clock and threads, budgets of
+$efftimes $unit, against a path-traced reference of $effrefspp samples per
+pixel (seed 7, its noise taken out): at $rtime $unit (about
+$(awk -v t="$rtime" -v n="$threads" 'BEGIN { print t / n }') s of wall-clock time at $threads threads) the spp column gives the
+path tracer's samples per pixel (the aim names about 100).
+
+$effreport
+
+Records at $effres ($count_spp spp, seed 1; fewer samples than the series
+take at $rtime $unit, so the share of lookups is if anything larger here):
+
+| setting | records | lookups | gathered afresh | records per lookup |
+|---|---:|---:|---:|---:|
+$effcounts
+
+**Measured:** at the error the path tracer reaches in $rtime $unit on the
+whole image, the cache with a 0.3 and min_r 10 is ${espeedup:-?} times
+as fast (the speed-up column: the efficiency ratio at equal error; its
+efficiency 1 / (variance x time) is ${eeffx:-?} times the path
+tracer's, a figure that leaves its bias out), with ${efpl:-?} % of the
+lookups as records; the defaults (a 0.15, min_r 1) are ${edspeedup:-?}
+times as fast. The aim of 10 times the path tracer's efficiency with
+records at most 1 % of lookups **$verdict** here. The error is over the
+whole image, direct light included, which both compute alike; the
+indirect diffuse light alone is not separated.
 
 ## Records created and records per lookup
 
