@@ -244,7 +244,8 @@ int main(int argc, char **argv)
     printf("ch09: the path tracer, %ld samples per pixel\n", (long)ref_spp);
     static const char *const path_set[] = { "integrator=path", NULL };
     if (render_one(scale, (long)ref_spp, nt, path_set, &ref, NULL, NULL,
-                   NULL, NULL, &e) != SVET_OK || write_pair(dir, "ch09_path", &ref, &e))
+                   NULL, NULL, &e) != SVET_OK ||
+        write_pair(dir, "ch09_path", &ref, &e))
         return fail("path tracer", &e);
 
     printf("ch09: the cache with gradients, and its records\n");

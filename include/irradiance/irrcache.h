@@ -59,9 +59,9 @@ real irrcache_weight(const irr_record_t *r, const VECTOR3 x, const VECTOR3 n);
 /* Add a record: R is clamped to [r_min, r_max], then, with
  * clamp_neighbours, to each existing record's R_j + |x - x_j| (and each
  * neighbour's R_j to R + |x - x_j|, for the records whose spheres of
- * influence it overlaps). The gradients are kept as given. Records are kept in the order added, so a cache
- * filled in a fixed order is the same whatever the thread count of the
- * pass that computed them. Fails with SVET_ERR_NOMEM; SVET_ERR_RANGE for a
+ * influence it overlaps). The gradients are kept as given. Records are
+ * kept in the order added, so a cache filled in a fixed order is the same
+ * whatever the thread count of the pass that computed them. Fails with SVET_ERR_NOMEM; SVET_ERR_RANGE for a
  * record that is not finite. */
 svet_status irrcache_add(irrcache_t *c, const irr_record_t *r,
                          svet_error *err);
