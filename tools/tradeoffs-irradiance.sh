@@ -132,7 +132,7 @@ sub_row() { # LABEL SPP SETTINGS...
         printf "| %s | %d | %.2f | %s | %.3g | %.3g |\n", l, n, t, p, e,
                1 / (e * t) }'
 }
-# the aim's point: the whole cbox.scn image, where the path tracer's
+# the whole cbox.scn image at about 100 spp, where the path tracer's
 # REPORT_TIME (5 s of wall at 2 threads) is about 100 spp; the path
 # tracer, the defaults and the cheap setting, read at REPORT_TIME
 effres=${EFF_RES:-256x256}
@@ -254,7 +254,7 @@ pixel, and its error there lies below the cache's floor wherever a
 "never (bias)" stands: the defaults are $(fast_or_never "$speedup")
 (efficiency ratio ${effx:-?}), a 0.3 with min_r 10 $(fast_or_never "$fspeedup")
 (efficiency ratio ${feffx:-?}; ${fpl:-?} % of the lookups as records).
-The next section measures at the point the aim names.
+The next section measures the whole image at about 100 samples per pixel.
 
 ## At about 100 samples per pixel: the whole image
 
@@ -262,7 +262,7 @@ The next section measures at the point the aim names.
 $efftimes $unit, against a path-traced reference of $effrefspp samples per
 pixel (seed 7, its noise taken out): at $rtime $unit (about
 $(awk -v t="$rtime" -v n="$threads" 'BEGIN { print t / n }') s of wall-clock time at $threads threads) the spp column gives the
-path tracer's samples per pixel (the aim names about 100).
+path tracer's samples per pixel there.
 
 $effreport
 
@@ -279,7 +279,7 @@ as fast (the speed-up column: the efficiency ratio at equal error; its
 efficiency 1 / (variance x time) is ${eeffx:-?} times the path
 tracer's, a figure that leaves its bias out), with ${efpl:-?} % of the
 lookups as records; the defaults (a 0.15, min_r 1) are ${edspeedup:-?}
-times as fast. The aim of 10 times the path tracer's efficiency with
+times as fast. Ten times the path tracer's efficiency with
 records at most 1 % of lookups **$verdict** here. The error is over the
 whole image, direct light included, which both compute alike; the
 indirect diffuse light alone is not separated.
