@@ -19,7 +19,9 @@
 # usage: sh tools/tradeoffs-irradiance.sh   (environment: SVET
 #        (build/float/svet), CLOCK (cpu, or wall), TIMES (2,4,8,16 CPU-s;
 #        1,2,4,8 s of wall), REPORT_TIME (10 CPU-s; 5 s), THREADS (2),
-#        REF_SPP (4096), RES (80x80), OUT, DOC; runs under nice)
+#        REF_SPP (4096), RES (80x80), COUNT_SPP (16), SUB_SPP (16 64 256),
+#        EFF_RES (256x256), EFF_REF_SPP (1024), EFF_TIMES (5,10,20 CPU-s;
+#        2.5,5,10 s), NICE (10), OUT, DOC)
 set -eu
 svet=${SVET:-build/float/svet}
 clock=${CLOCK:-cpu}
@@ -42,7 +44,10 @@ scene=scenes/cbox.scn
 mkdir -p "$out"
 t0=$(date +%s)
 load0=$(cut -d' ' -f1-3 /proc/loadavg)
-sv() { nice -n 10 "$svet" "$@"; }
+niceness=${NICE:-10}
+count_spp=${COUNT_SPP:-16}
+sub_spp=${SUB_SPP:-16 64 256}
+sv() { nice -n "$niceness" "$svet" "$@"; }
 if [ ! -f "$out/ref.exr" ]; then
     echo "tradeoffs-irradiance: the reference, $refspp spp at $res" >&2
     sv render "$scene" --set integrator=path --set resolution=$res \
@@ -57,30 +62,58 @@ series() { # LABEL SETTINGS...
         --out "$out" \
         --label "$label" --no-plot -q "$@" >/dev/null
 }
-irr="--set integrator=irradiance"
+# the path tracer follows up to 7 bounces (cbox.scn's maxdepth), so the
+# cache's gathers follow 6 after the record's own vertex
+irr="--set integrator=irradiance --set irradiance.bounces=6"
+# a larger a and min_r: far fewer records, under 1 % of the lookups
+fast="$irr --set irradiance.a=0.3 --set irradiance.min_r=10"
 series path --set integrator=path
 series irradiance $irr
 series a=0.3 $irr --set irradiance.a=0.3
 series a=0.08 $irr --set irradiance.a=0.08
+series a=0.3+min_r=10 $fast
+series a=0.3+min_r=10+gradients=off $fast --set irradiance.gradients=off
 series MxN=4x16 $irr --set irradiance.m=4 --set irradiance.n=16
 series MxN=16x64 $irr --set irradiance.m=16 --set irradiance.n=64
 series gradients=off $irr --set irradiance.gradients=off
 series clamp=off $irr --set irradiance.clamp=off
-series bounces=2 $irr --set irradiance.bounces=2
-files="path irradiance a=0.3 a=0.08 MxN=4x16 MxN=16x64 gradients=off clamp=off bounces=2"
+series bounces=1 $irr --set irradiance.bounces=1
+files="path irradiance a=0.3 a=0.08 a=0.3+min_r=10 a=0.3+min_r=10+gradients=off MxN=4x16 MxN=16x64 gradients=off clamp=off bounces=1"
 report=$(cd "$out" && "$OLDPWD/$svet" converge --report --time "$rtime" \
     $(for f in $files; do printf '%s.csv ' "$f"; done))
 # the irradiance row against the baseline: speed-up (time ratio at the
 # path tracer's error at REPORT_TIME) and efficiency ratio
-ratio=$(printf '%s\n' "$report" |
-        awk -F'|' '$2 ~ /^ irradiance $/ { gsub(/ /, "", $6); gsub(/ /, "", $8);
-                   print $6 " " $8 }')
+row_of() { # LABEL: "speed-up efficiency-ratio" of that row
+    printf '%s\n' "$report" |
+    awk -F'|' -v l=" $1 " '$2 == l { gsub(/ /, "", $6); gsub(/ /, "", $8);
+                                    print $6 " " $8 }'
+}
+ratio=$(row_of irradiance)
 speedup=${ratio% *}
 effx=${ratio#* }
-# the irradiance run's own log: records per level and lookups
-sv render "$scene" $irr --set resolution=$res --spp 16 --seed 1 \
-    --threads "$threads" -o "$out/log.exr" 2> "$out/log.txt"
-cachelog=$(sed -n 's/^svet render: irradiance cache: //p' "$out/log.txt")
+ratio=$(row_of a=0.3+min_r=10)
+fspeedup=${ratio% *}
+feffx=${ratio#* }
+# each setting's own log at COUNT_SPP: records, lookups, records per lookup
+count_row() { # LABEL SETTINGS...
+    label=$1; shift
+    sv render "$scene" "$@" --set resolution=${cres:-$res} --spp "$count_spp" \
+        --seed 1 --threads "$threads" -o "$out/count.exr" 2> "$out/count.txt"
+    sed -n 's/^svet render: irradiance cache: \([0-9]*\) records .*; \([0-9]*\) lookups, \([0-9]*\) of them.*records per lookup \(.*\) %$/\1 \2 \3 \4/p' \
+        "$out/count.txt" |
+    awk -v l="$label" '{ printf "| %s | %d | %d | %d | %s %% |\n", l, $1, $2,
+                         $3, $4 }'
+}
+echo "tradeoffs-irradiance: record counts" >&2
+counttable=$(
+    count_row irradiance $irr
+    count_row a=0.3 $irr --set irradiance.a=0.3
+    count_row a=0.08 $irr --set irradiance.a=0.08
+    count_row a=0.3+min_r=10 $fast
+    count_row MxN=4x16 $irr --set irradiance.m=4 --set irradiance.n=16
+    count_row MxN=16x64 $irr --set irradiance.m=16 --set irradiance.n=64
+    count_row clamp=off $irr --set irradiance.clamp=off
+    count_row bounces=1 $irr --set irradiance.bounces=1)
 # app. F: single renders with and without subsampling, wall-clock timed
 now() { date +%s.%N; }
 sub_row() { # LABEL SPP SETTINGS...
@@ -99,9 +132,49 @@ sub_row() { # LABEL SPP SETTINGS...
         printf "| %s | %d | %.2f | %s | %.3g | %.3g |\n", l, n, t, p, e,
                1 / (e * t) }'
 }
+# the whole cbox.scn image at about 100 spp, where the path tracer's
+# REPORT_TIME (5 s of wall at 2 threads) is about 100 spp; the path
+# tracer, the defaults and the cheap setting, read at REPORT_TIME
+effres=${EFF_RES:-256x256}
+effrefspp=${EFF_REF_SPP:-1024}
+case $clock in
+cpu) efftimes=${EFF_TIMES:-5,10,20} ;;
+*) efftimes=${EFF_TIMES:-2.5,5,10} ;;
+esac
+eff="$out/eff"
+mkdir -p "$eff"
+if [ ! -f "$eff/ref.exr" ]; then
+    echo "tradeoffs-irradiance: the reference, $effrefspp spp at $effres" >&2
+    sv render "$scene" --set integrator=path --set resolution=$effres \
+        --spp "$effrefspp" --seed 7 --threads "$threads" -q \
+        -o "$eff/ref.exr" --variance "$eff/ref-var.exr"
+fi
+effseries() { # LABEL SETTINGS...
+    label=$1; shift
+    echo "tradeoffs-irradiance: $label at $effres" >&2
+    sv converge "$scene" --ref "$eff/ref.exr" --seed 1 \
+        --time-list "$efftimes" --clock "$clock" --threads "$threads" \
+        --out "$eff" --label "$label" --no-plot -q \
+        --set resolution=$effres "$@" >/dev/null
+}
+effseries path --set integrator=path
+effseries a=0.3+min_r=10 $fast
+effseries irradiance $irr
+effreport=$(cd "$eff" && "$OLDPWD/$svet" converge --report --time "$rtime" \
+    path.csv a=0.3+min_r=10.csv irradiance.csv)
+report_full=$report
+report=$effreport
+ratio=$(row_of a=0.3+min_r=10)
+espeedup=${ratio% *}
+eeffx=${ratio#* }
+ratio=$(row_of irradiance)
+edspeedup=${ratio% *}
+report=$report_full
+echo "tradeoffs-irradiance: record counts at $effres" >&2
+effcounts=$(cres=$effres; count_row a=0.3+min_r=10 $fast)
 echo "tradeoffs-irradiance: subsampling" >&2
 subtable=$(
-    for spp in 16 64 256; do
+    for spp in $sub_spp; do
         sub_row "path" $spp --set integrator=path
         sub_row "path, step 4, threshold 0.1" $spp --set integrator=path \
             --set subsample.step=4 --set subsample.threshold=0.1
@@ -110,16 +183,33 @@ subtable=$(
         sub_row "path, step 8, threshold 0.5" $spp --set integrator=path \
             --set subsample.step=8 --set subsample.threshold=0.5
     done
-    for spp in 4 16 64; do
-        sub_row "irradiance" $spp $irr
-        sub_row "irradiance, step 4, threshold 0.05" $spp $irr \
-            --set subsample.step=4 --set subsample.threshold=0.05
-        sub_row "irradiance, step 8, threshold 0.1" $spp $irr \
-            --set subsample.step=8 --set subsample.threshold=0.1
+    for spp in $sub_spp; do
+        sub_row "irradiance a 0.3, min_r 10" $spp $fast
+        sub_row "irradiance a 0.3, min_r 10, step 4, threshold 0.05" $spp \
+            $fast --set subsample.step=4 --set subsample.threshold=0.05
+        sub_row "irradiance a 0.3, min_r 10, step 8, threshold 0.1" $spp \
+            $fast --set subsample.step=8 --set subsample.threshold=0.1
     done)
 t1=$(date +%s)
 load1=$(cut -d' ' -f1-3 /proc/loadavg)
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)
+# the 10-times question: the fast setting's speed-up and its records per
+# lookup, as numbers
+num() { printf '%s\n' "$1" | sed 's/[^0-9.e+-]//g'; }
+fast_or_never() { # a speed-up column's value, in words
+    case ${1:--} in
+    -) echo "never reach it (the error floor lies above)" ;;
+    *) echo "$1 times as fast" ;;
+    esac
+}
+fpl=$(printf '%s\n' "$counttable" |
+      awk -F'|' '$2 == " a=0.3+min_r=10 " { gsub(/[ %]/, "", $6); print $6 }')
+efpl=$(printf '%s\n' "$effcounts" |
+       awk -F'|' '$2 == " a=0.3+min_r=10 " { gsub(/[ %]/, "", $6); print $6 }')
+verdict=$(awk -v s="$(num "${espeedup:-0}")" -v p="${efpl:-100}" 'BEGIN {
+    if (s + 0 >= 10 && p + 0 <= 1) print "holds";
+    else if (s + 0 >= 10) print "is reached in speed, but with more than 1 % of the lookups as records";
+    else print "does not hold" }')
 cat > "$doc" <<END
 # The irradiance cache and subsampling on the Cornell box: cost and gain
 
@@ -129,18 +219,25 @@ than editing it. Every series renders \`scenes/cbox.scn\` at $res with
 $threads threads, seed 1, measured after $times $units (the cache's
 pre-pass included) against the path tracer's image of $refspp samples
 per pixel (seed 7; its own noise is taken out of the errors). The
-baseline is the path tracer; \`irradiance\` is \`render integrator
-irradiance\` with the defaults of scenes/README.md (a 0.15, M x N 8 x 32,
-R in [1, 20] pixels, 1 bounce, gradients and neighbour clamping on),
-each other row changes one setting of it. The error is over the whole
-image: direct light is computed the same way by both, so the cache's
-gain on the indirect diffuse light alone is larger than the table shows.
+baseline is the path tracer (up to 7 bounces); \`irradiance\` is
+\`render integrator irradiance\` with the defaults of scenes/README.md
+(a 0.15, M x N 8 x 32, R in [1, 20] pixels, gradients and neighbour
+clamping on) but 6 bounces (\`irradiance.bounces=6\`, so that its gathers
+follow as many bounces as the path tracer); each other row changes one
+setting of it. \`a=0.3+min_r=10\` is the cheap setting whose records stay
+under 1 % of the lookups. The error is over the whole image: direct
+light is computed the same way by both (chapter 5's light sampling at
+every pixel sample), so its noise is in both rows, and the cache's gain
+on the indirect diffuse light alone is larger than the table shows.
 
 Machine: $cpu, $(nproc) cores; $(${CC:-cc} --version | head -n 1). Command:
-\`make tradeoffs-irradiance\`, run under \`nice -n 10\`. Measured
-$(date -u '+%Y-%m-%d %H:%M UTC') in $(( (t1 - t0) / 60 )) min $(( (t1 - t0) % 60 )) s, load average $load0 at the start
-and $load1 at the end: **the machine was shared with other jobs**, so the
-wall-clock times are noisy and longer than on a quiet machine.
+\`NICE=$niceness make tradeoffs-irradiance\` (the renders run under \`nice -n
+$niceness\`; TIMES=$times, REPORT_TIME=$rtime, COUNT_SPP=$count_spp,
+SUB_SPP="$sub_spp"). Measured $(date -u '+%Y-%m-%d %H:%M UTC') in
+$(( (t1 - t0) / 60 )) min $(( (t1 - t0) % 60 )) s, load average $load0 at
+the start and $load1 at the end: **the machine was shared with other
+jobs**, so the wall-clock times (the subsampling table) are noisy and
+longer than on a quiet machine; the CPU-seconds are less affected.
 
 $report
 
@@ -152,18 +249,53 @@ and its ratio to the baseline's, and "biased" where the squared bias
 exceeds the noise at the last point (the cache's interpolation error:
 the error stops falling, the floor a smaller a lowers).
 
-**Measured:** at the path tracer's error at $rtime $unit, the irradiance cache
-as shipped is ${speedup:-?} times as fast (speed-up column), and its
-efficiency 1 / (variance x time) is ${effx:-?} times the path tracer's
-("x baseline": for a biased method the variance leaves the bias out, so
-the speed-up is the number to quote). The issue's target of 10 times
-the path tracer's efficiency is for the indirect diffuse light alone at
-about 100 samples per pixel; this table measures the whole image at $res.
+At $res the path tracer's $rtime $unit are far more than 100 samples per
+pixel, and its error there lies below the cache's floor wherever a
+"never (bias)" stands: the defaults are $(fast_or_never "$speedup")
+(efficiency ratio ${effx:-?}), a 0.3 with min_r 10 $(fast_or_never "$fspeedup")
+(efficiency ratio ${feffx:-?}; ${fpl:-?} % of the lookups as records).
+The next section measures the whole image at about 100 samples per pixel.
 
-The cache's own counts (svet render's log, 16 spp at $res):
-$cachelog.
+## At about 100 samples per pixel: the whole image
 
-## App. F: subsampling
+\`scenes/cbox.scn\` at $effres, the same clock and threads, budgets of
+$efftimes $unit, against a path-traced reference of $effrefspp samples per
+pixel (seed 7, its noise taken out): at $rtime $unit (about
+$(awk -v t="$rtime" -v n="$threads" 'BEGIN { print t / n }') s of wall-clock time at $threads threads) the spp column gives the
+path tracer's samples per pixel there.
+
+$effreport
+
+Records at $effres ($count_spp spp, seed 1; fewer samples than the series
+take at $rtime $unit, so the share of lookups is if anything larger here):
+
+| setting | records | lookups | gathered afresh | records per lookup |
+|---|---:|---:|---:|---:|
+$effcounts
+
+**Measured:** at the error the path tracer reaches in $rtime $unit on the
+whole image, the cache with a 0.3 and min_r 10 is ${espeedup:-?} times
+as fast (the speed-up column: the efficiency ratio at equal error; its
+efficiency 1 / (variance x time) is ${eeffx:-?} times the path
+tracer's, a figure that leaves its bias out), with ${efpl:-?} % of the
+lookups as records; the defaults (a 0.15, min_r 1) are ${edspeedup:-?}
+times as fast. Ten times the path tracer's efficiency with
+records at most 1 % of lookups **$verdict** here. The error is over the
+whole image, direct light included, which both compute alike; the
+indirect diffuse light alone is not separated.
+
+## Records created and records per lookup
+
+Each setting's own log (\`svet render\`, $count_spp spp at $res, seed 1):
+the records the pre-pass created, the lookups of the final pass, the
+lookups no record covered (each gathers afresh and is not stored: the
+final pass only reads the cache), and records as a share of lookups.
+
+| setting | records | lookups | gathered afresh | records per lookup |
+|---|---:|---:|---:|---:|
+$counttable
+
+## App. F: subsampling, and the cache's error floor
 
 Single renders at a few sample counts, the wall-clock seconds of the
 whole \`svet render\` (reading, pre-pass, writing included), the pixels
@@ -176,6 +308,9 @@ and sample count):
 |---|---:|---:|---|---:|---:|
 $subtable
 
+The path tracer's relMSE falls as 1 / spp; the cache's stops falling
+where its interpolation error (the bias of a and of the clamp of R)
+dominates: its relMSE at the largest sample count is its error floor.
 Where the path tracer's pixels are noisy, neighbours differ by more than
 a small threshold almost everywhere and nearly every pixel is computed;
 a larger threshold interpolates more and blurs edges and noise alike.

@@ -1,14 +1,16 @@
-/* cc -std=c11 -O2 -fopenmp -Iinclude chapters/ch09/ch09_irradiance.c src/irradiance/irrpart.c src/irradiance/irrcache.c src/irradiance/gradients.c src/render/render.c src/render/tracer.c src/render/integrator.c src/render/light.c src/render/camera.c src/render/scene.c src/render/scenefile.c src/materials/material.c src/materials/brdf.c src/core/sample.c src/core/rng.c src/materials/cobject.c src/geometry/shape.c src/geometry/sphere.c src/geometry/plane.c src/geometry/disk.c src/geometry/parallelogram.c src/geometry/triangle.c src/geometry/box.c src/geometry/cylinder.c src/geometry/cone.c src/geometry/quadric.c src/geometry/xform.c src/core/bbox.c src/core/ray.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/colour/tonemap.c src/io/fileio.c src/core/error.c -lm -o ch09 */
+/* cc -std=c11 -O2 -fopenmp -Iinclude chapters/ch09/ch09_irradiance.c src/irradiance/irrpart.c src/irradiance/irrcache.c src/irradiance/gradients.c src/render/render.c src/render/subsample.c src/render/tracer.c src/render/integrator.c src/render/light.c src/render/camera.c src/render/scene.c src/render/scenefile.c src/materials/material.c src/materials/brdf.c src/core/sample.c src/core/rng.c src/materials/cobject.c src/geometry/shape.c src/geometry/sphere.c src/geometry/plane.c src/geometry/disk.c src/geometry/parallelogram.c src/geometry/triangle.c src/geometry/box.c src/geometry/cylinder.c src/geometry/cone.c src/geometry/quadric.c src/geometry/xform.c src/core/bbox.c src/core/ray.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/colour/tonemap.c src/io/fileio.c src/core/error.c -lm -o ch09 */
 /*
  * ch09_irradiance.c - chapter 9, the irradiance gradient method (Ward,
  * Rubinstein, Clear 1988; Ward & Heckbert 1992): the Cornell box of
  * scenes/cbox-irradiance.scn by the cache, with and without app. E's
  * gradients, beside the path tracer; the cache's records drawn over the
  * image (a dot at each, a circle of its radius R); a row of the images
- * side by side; and the error against a converged path-traced render as
- * Ward's accuracy a falls, with and without gradients, with the records
- * it took. Writes PFM and PPM images, row.csv and error.csv (drawn by
- * row.gp and error.gp beside this file: `make figures`).
+ * side by side; the cache's image subsampled by app. F and its mask of
+ * computed and interpolated pixels; and the error against a converged
+ * path-traced render as Ward's accuracy a falls, with and without
+ * gradients, with the records it took. Writes PFM and PPM images, row.csv
+ * and error.csv (drawn by row.gp and error.gp beside this file: `make
+ * figures`).
  * The method: src/irradiance/irrpart.c, irrcache.c, gradients.c (tests:
  * tests/irradiance/).
  *
@@ -29,19 +31,49 @@
 #include "irradiance/irrpart.h"
 #include "render/render.h"
 #include "render/scenefile.h"
+#include "render/subsample.h"
 
-/* the one part this program offers: the irradiance cache */
+/* the one part this program offers: the irradiance cache; and app. F's
+ * subsampling */
 static const scene_part_t *const parts[] = { &irr_part, NULL };
-static const scene_features_t features = { .parts = parts };
+static const scene_features_t features = { .parts = parts,
+                                           .subsample = &subsample_ops };
 static const chapter_scene_t cbox = { "scenes/cbox-irradiance.scn", NULL,
                                       NULL, &features, 8, 8 };
 
+/* App. F's mask of a subsampled render r: white where the pixel was
+ * computed, the image dimmed to a quarter where it was interpolated, so
+ * that the refined edges stand out against the smooth walls; the count of
+ * computed pixels in *computed. */
+static svet_status draw_mask(const render_t *r, const image_t *img,
+                             image_t *mask, long *computed, svet_error *e)
+{
+    svet_status st = image_alloc(mask, img->width, img->height, 3, e);
+    if (st != SVET_OK)
+        return st;
+    *computed = 0;
+    for (int y = 0; y < img->height; y++)
+        for (int x = 0; x < img->width; x++) {
+            size_t i = (size_t)y * (size_t)img->width + (size_t)x;
+            float *p = image_at(mask, x, y);
+            const float *q = image_at(img, x, y);
+            bool on = r->sub_mask && r->sub_mask[i];
+            for (int c = 0; c < 3; c++)
+                p[c] = on ? 1 : 0.25f * fminf(q[c], 1);
+            *computed += on;
+        }
+    return SVET_OK;
+}
+
 /* A render of the scene with settings `set`: its image, and with
  * `records` its cache's record count (0 for the path tracer). With
- * `dots`, the records drawn over a copy of the image into *dots. */
+ * `dots`, the records drawn over a copy of the image into *dots; with
+ * `mask` (the scene subsampled), app. F's mask into *mask and the pixels
+ * computed into *computed. */
 static svet_status render_one(double scale, long spp, int threads,
                               const char *const *set, image_t *img,
-                              size_t *records, image_t *dots, svet_error *e)
+                              size_t *records, image_t *dots, image_t *mask,
+                              long *computed, svet_error *e)
 {
     scene_t s;
     svet_status st = chapter_scene_load(&s, &cbox, scale, threads, set, e);
@@ -62,6 +94,8 @@ static svet_status render_one(double scale, long spp, int threads,
                               ? irr_state_cache(r.method_state) : NULL;
     if (records)
         *records = c ? c->n : 0;
+    if (st == SVET_OK && mask)
+        st = draw_mask(&r, img, mask, computed, e);
     if (st == SVET_OK && dots && c) {
         st = image_alloc(dots, img->width, img->height, 3, e);
         if (st == SVET_OK) {
@@ -161,13 +195,13 @@ int main(int argc, char **argv)
     printf("ch09: the path tracer, %ld samples per pixel\n", (long)ref_spp);
     static const char *const path_set[] = { "integrator=path", NULL };
     if (render_one(scale, (long)ref_spp, nt, path_set, &ref, NULL, NULL,
-                   &e) != SVET_OK ||
+                   NULL, NULL, &e) != SVET_OK ||
         chapter_write_pair(dir, "ch09_path", &ref, NULL, NULL, &e))
         return chapter_fail("ch09", "path tracer", &e);
 
     printf("ch09: the cache with gradients, and its records\n");
-    if (render_one(scale, n, nt, NULL, &grad, &records, &dots, &e) !=
-            SVET_OK ||
+    if (render_one(scale, n, nt, NULL, &grad, &records, &dots, NULL, NULL,
+                   &e) != SVET_OK ||
         chapter_write_pair(dir, "ch09_irradiance", &grad, NULL, NULL, &e) ||
         chapter_write_pair(dir, "ch09_records", &dots, NULL, NULL, &e))
         return chapter_fail("ch09", "cache", &e);
@@ -175,10 +209,26 @@ int main(int argc, char **argv)
     printf("ch09: the cache without gradients\n");
     static const char *const flat_set[] = { "irradiance.gradients=off",
                                             NULL };
-    if (render_one(scale, n, nt, flat_set, &flat, NULL, NULL, &e) !=
-            SVET_OK ||
+    if (render_one(scale, n, nt, flat_set, &flat, NULL, NULL, NULL, NULL,
+                   &e) != SVET_OK ||
         chapter_write_pair(dir, "ch09_no_gradients", &flat, NULL, NULL, &e))
         return chapter_fail("ch09", "cache without gradients", &e);
+
+    printf("ch09: the cache subsampled (app. F), and its mask\n");
+    static const char *const sub_set[] = { "subsample.step=4",
+                                           "subsample.threshold=0.2",
+                                           NULL };
+    image_t sub = { 0 }, mask = { 0 };
+    long computed = 0;
+    if (render_one(scale, n, nt, sub_set, &sub, NULL, NULL, &mask,
+                   &computed, &e) != SVET_OK ||
+        chapter_write_pair(dir, "ch09_subsampled", &sub, NULL, NULL, &e) ||
+        chapter_write_pair(dir, "ch09_sub_mask", &mask, NULL, NULL, &e))
+        return chapter_fail("ch09", "subsampling", &e);
+    printf("  step 4, threshold 0.2: %ld of %ld pixels computed\n",
+           computed, (long)sub.width * sub.height);
+    image_free(&sub);
+    image_free(&mask);
 
     /* the row through the middle of the image: the green channel */
     chapter_file_t cf;
@@ -222,8 +272,8 @@ int main(int argc, char **argv)
                                              : "irradiance.gradients=on",
                                         NULL };
             image_t img = { 0 };
-            if (render_one(scale, n, nt, set, &img, &rec[g], NULL, &e) !=
-                SVET_OK) {
+            if (render_one(scale, n, nt, set, &img, &rec[g], NULL, NULL,
+                           NULL, &e) != SVET_OK) {
                 chapter_close(&cf, "ch09_irradiance");
                 return chapter_fail("ch09", "error against a", &e);
             }

@@ -59,9 +59,9 @@ real irrcache_weight(const irr_record_t *r, const VECTOR3 x, const VECTOR3 n);
 /* Add a record: R is clamped to [r_min, r_max], then, with
  * clamp_neighbours, to each existing record's R_j + |x - x_j| (and each
  * neighbour's R_j to R + |x - x_j|, for the records whose spheres of
- * influence it overlaps). Records are kept in the order added, so a cache
- * filled in a fixed order is the same whatever the thread count of the
- * pass that computed them. Fails with SVET_ERR_NOMEM; SVET_ERR_RANGE for a
+ * influence it overlaps). The gradients are kept as given. Records are
+ * kept in the order added, so a cache filled in a fixed order is the same
+ * whatever the thread count of the pass that computed them. Fails with SVET_ERR_NOMEM; SVET_ERR_RANGE for a
  * record that is not finite. */
 svet_status irrcache_add(irrcache_t *c, const irr_record_t *r,
                          svet_error *err);
@@ -70,8 +70,11 @@ svet_status irrcache_add(irrcache_t *c, const irr_record_t *r,
  * grad_r + (x - x_i) . grad_t) / sum w_i over the records with
  * w_i > 1 / a that do not lie in front of x (Ward 1988: d_i =
  * (x - x_i) . (n + n_i) / 2 >= -0.05 R_i), the gradient terms only with
- * `gradients`. Returns the number of records used (0: no valid record;
- * *e is then black), summed in the order they were added. Can't fail. */
+ * `gradients`; each channel's grad_t scaled down where |grad_t| R_i > E_i
+ * (Ward's Radiance, ambcomp.c: a gradient measured over a short R must not
+ * extrapolate past E across a clamped, longer one). Returns the number
+ * of records used (0: no valid record; *e is then black), summed in the
+ * order they were added. Can't fail. */
 int irrcache_lookup(const irrcache_t *c, const VECTOR3 x, const VECTOR3 n,
                     RADIANCE *e);
 

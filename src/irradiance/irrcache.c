@@ -214,6 +214,21 @@ static bool record_finite(const irr_record_t *r)
     return true;
 }
 
+/* Ward's rule for the translational gradient where R was raised (Radiance,
+ * ambcomp.c, doambient(): "cap gradient" when R is clamped to the minimum
+ * radius): the factor that scales channel k's gradient so that
+ * |grad_t| R <= E. A record is used within a R of its point, so its
+ * extrapolation then stays within E (1 -/+ a); a gradient measured over a
+ * nearer R, applied across the larger one, would otherwise overshoot E by
+ * up to a |grad_t| R, isolated spikes where R was raised. Applied as the
+ * record is read, with its R of that moment (neighbour clamping may lower
+ * it later), so the record keeps the gradient its gather measured. */
+static real gradient_limit(const irr_record_t *r, int k, real e)
+{
+    real g = vec_length(r->grad_t[k]) * r->r;
+    return g > e ? real_max(e, 0) / g : 1;
+}
+
 svet_status irrcache_add(irrcache_t *c, const irr_record_t *r,
                          svet_error *err)
 {
@@ -312,9 +327,12 @@ int irrcache_lookup(const irrcache_t *c, const VECTOR3 x, const VECTOR3 n,
         if (c->gradients) {
             VECTOR3 cr;
             VVECTOR3(cr, r->n, n);
+            const real ek[3] = { r->e.r, r->e.g, r->e.b };
             real add[3];
             for (int k = 0; k < 3; k++)
-                add[k] = SVECTOR3(cr, r->grad_r[k]) + SVECTOR3(d, r->grad_t[k]);
+                add[k] = SVECTOR3(cr, r->grad_r[k]) +
+                         gradient_limit(r, k, ek[k]) *
+                             SVECTOR3(d, r->grad_t[k]);
             v = rad_add(v, rad_make(add[0], add[1], add[2]));
         }
         wsum += (double)w;

@@ -1,9 +1,10 @@
 /*
  * test_irrcache.c - the irradiance cache of ch. 9: Ward's weight; a record
- * read back at its own point; one record's gradients applied exactly; the
- * octree's lookups and the neighbour clamping bit for bit equal to brute
- * force over every record, with records outside the first bounds (the
- * tree grows); records in front of x left out; bad parameters.
+ * read back at its own point; one record's gradients applied exactly; a
+ * translational gradient limited where the clamp raised R; the octree's
+ * lookups and the neighbour clamping bit for bit equal to brute force
+ * over every record, with records outside the first bounds (the tree
+ * grows); records in front of x left out; bad parameters.
  */
 #include "testutil.h"
 #include "core/rng.h"
@@ -52,7 +53,7 @@ END_TEST
 START_TEST(one_record_applies_its_gradients_exactly)
 {
     VECTOR3 p = { 0, 0, 0 }, n = { 0, 0, 1 };
-    irr_record_t r = record_at(p, n, 1, 10);
+    irr_record_t r = record_at(p, n, 10, 10);
     vec_set(r.grad_t[0], REAL_C(0.5), REAL_C(-0.25), 0);
     vec_set(r.grad_r[1], REAL_C(0.3), REAL_C(0.7), 0);
     irrcache_t c;
@@ -68,12 +69,45 @@ START_TEST(one_record_applies_its_gradients_exactly)
     /* E + (n_i x n) . grad_r + (x - x_i) . grad_t, channel by channel */
     VECTOR3 cr;
     VVECTOR3(cr, n, m);
-    ck_assert_near(e.r, 1 + 0.5 * 0.2 - 0.25 * 0.4, 1e-6);
-    ck_assert_near(e.g, 1 + (double)SVECTOR3(cr, r.grad_r[1]), 1e-6);
-    ck_assert_near(e.b, 1, 1e-6);
+    ck_assert_near(e.r, 10 + 0.5 * 0.2 - 0.25 * 0.4, 1e-5);
+    ck_assert_near(e.g, 10 + (double)SVECTOR3(cr, r.grad_r[1]), 1e-5);
+    ck_assert_near(e.b, 10, 1e-5);
     c.gradients = false;
     ck_assert_int_eq(irrcache_lookup(&c, x, m, &e), 1);
-    ck_assert(e.r == 1 && e.g == 1);
+    ck_assert(e.r == 10 && e.g == 10);
+    irrcache_free(&c);
+}
+END_TEST
+
+/* A record whose R the clamp raised from 0.1 to 1 keeps a translational
+ * gradient measured over 0.1: 5 E per unit, 0.5 E across its own R. Used
+ * 0.4 away (a = 0.5) it would predict 1 + 5 * 0.4 = 3 times E; scaled so
+ * that |grad_t| R <= E, it predicts E (1 +/- 0.4), and never less than 0
+ * (the channel whose gradient was within the limit keeps it). */
+START_TEST(a_raised_radius_limits_the_gradient)
+{
+    VECTOR3 p = { 0, 0, 0 }, n = { 0, 0, 1 };
+    irr_record_t r = record_at(p, n, 1, REAL_C(0.1));
+    vec_set(r.grad_t[0], 5, 0, 0);
+    vec_set(r.grad_t[1], REAL_C(0.5), 0, 0);
+    irrcache_t c;
+    VECTOR3 lo = { -1, -1, -1 }, hi = { 1, 1, 1 };
+    ck_assert_int_eq(irrcache_init(&c, REAL_C(0.5), 1, 10, lo, hi, NULL),
+                     SVET_OK);
+    ck_assert_int_eq(irrcache_add(&c, &r, NULL), SVET_OK);
+    ck_assert(c.rec[0].r == 1);
+    /* the record keeps its gather's gradient; the limit is the lookup's */
+    ck_assert(c.rec[0].grad_t[0][X] == 5 &&
+              c.rec[0].grad_t[1][X] == REAL_C(0.5));
+    VECTOR3 ahead = { REAL_C(0.4), 0, 0 }, behind = { REAL_C(-0.4), 0, 0 };
+    RADIANCE e;
+    ck_assert_int_eq(irrcache_lookup(&c, ahead, n, &e), 1);
+    ck_assert_near(e.r, 1.4, 1e-6);
+    ck_assert_near(e.g, 1.2, 1e-6);
+    ck_assert_int_eq(irrcache_lookup(&c, behind, n, &e), 1);
+    ck_assert_near(e.r, 0.6, 1e-6);
+    ck_assert_near(e.g, 0.8, 1e-6);
+    ck_assert_near(e.b, 1, 1e-6);
     irrcache_free(&c);
 }
 END_TEST
@@ -246,6 +280,7 @@ Suite *test_suite(void)
     TCase *tc = tcase_create("core");
     tcase_add_test(tc, ward_weight_and_a_record_read_at_its_own_point);
     tcase_add_test(tc, one_record_applies_its_gradients_exactly);
+    tcase_add_test(tc, a_raised_radius_limits_the_gradient);
     tcase_add_test(tc, octree_and_clamping_equal_brute_force);
     tcase_add_test(tc, a_record_in_front_is_left_out);
     tcase_add_test(tc, bad_parameters_and_records);

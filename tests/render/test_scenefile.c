@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "irradiance/irrpart.h"
 #include "render/allparts.h"
 #include "colour/colour.h"
 #include "materials/material.h"
@@ -1374,6 +1375,49 @@ START_TEST(overrides_set_one_value_each)
 }
 END_TEST
 
+/* The spellings scenes/README.md gives for `--set` of the irradiance
+ * cache (ch. 9) and of app. F's subsampling: each is taken and lands in
+ * its key; a near miss is refused. */
+START_TEST(overrides_of_the_irradiance_cache_and_subsampling)
+{
+    scene_t s;
+    svet_error err;
+    parse_ok(&s, M "sphere centre 0 0 -3 radius 1 material m\n");
+    static const char *const ok[] = {
+        "integrator=irradiance", "irradiance.a=0.3", "irradiance.m=4",
+        "irradiance.n=16", "irradiance.min_r=2", "irradiance.max_r=30",
+        "irradiance.bounces=6", "irradiance.gradients=off",
+        "irradiance.clamp=off", "subsample.step=8",
+        "subsample.threshold=0.2",
+    };
+    for (size_t i = 0; i < sizeof ok / sizeof *ok; i++)
+        ck_assert_msg(scenefile_override(&s, ok[i], &err) == SVET_OK,
+                      "%s: %s", ok[i], err.msg);
+    irr_settings_t set;
+    irr_settings_of(&s, &set);
+    ck_assert_near(set.a, 0.3, 1e-6);
+    ck_assert_int_eq(set.m, 4);
+    ck_assert_int_eq(set.n, 16);
+    ck_assert_near(set.min_r, 2, 0);
+    ck_assert_near(set.max_r, 30, 0);
+    ck_assert_int_eq(set.bounces, 6);
+    ck_assert(!set.gradients && !set.clamp);
+    ck_assert_int_eq(s.render.subsample_step, 8);
+    ck_assert_near(s.render.subsample_threshold, 0.2, 1e-6);
+    static const char *const bad[] = {
+        "irradiance.minr=2", "irradiance.M=4", "irradiance.gradient=on",
+        "subsample.steps=4", "subsample.threshold=1", "irradiance.a=0",
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
+        ck_assert_msg(scenefile_override(&s, bad[i], &err) != SVET_OK,
+                      "%s taken", bad[i]);
+    irr_settings_of(&s, &set);
+    ck_assert_int_eq(set.m, 4);
+    ck_assert_int_eq(s.render.subsample_step, 8);
+    scene_free(&s);
+}
+END_TEST
+
 START_TEST(bad_overrides_are_refused_and_change_nothing)
 {
     static const struct {
@@ -1578,6 +1622,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, every_shipped_scene_parses);
     tcase_add_test(tc, fuzzer_findings_are_handled);
     tcase_add_test(tc, overrides_set_one_value_each);
+    tcase_add_test(tc, overrides_of_the_irradiance_cache_and_subsampling);
     tcase_add_test(tc, bad_overrides_are_refused_and_change_nothing);
     tcase_add_test(tc, without_the_optional_parts_mesh_and_grids_are_refused);
     tcase_add_test(tc, fresnel_key_chooses_schlick_or_exact);
