@@ -72,10 +72,6 @@ static svet_status irr_statement(scenefile_ctx *c)
         return scenefile_fail(c, v[I_A].col, SVET_ERR_RANGE,
                               "'a' = %g: must lie in (0, 1]",
                               (double)v[I_A].v[0]);
-    if ((long)v[I_M].i * v[I_N].i > 65536 && v[I_M].set && v[I_N].set)
-        return scenefile_fail(c, v[I_N].col, SVET_ERR_RANGE,
-                              "'m' x 'n' = %ld: at most 65536 gather rays",
-                              v[I_M].i * v[I_N].i);
     scene_t *s = scenefile_scene(c);
     bool fresh;
     irr_settings_t *p = scene_part_data_new(s, "irradiance", sizeof *p, free, &fresh);
@@ -85,7 +81,15 @@ static svet_status irr_statement(scenefile_ctx *c)
     if (fresh)
         irr_settings_default(p);
     /* the line updates the settings: `--set irradiance.a=0.1` reruns it;
-     * the range of R is checked against what the line leaves */
+     * the gather's size and the range of R are checked against what the
+     * line leaves */
+    long m = v[I_M].set ? v[I_M].i : p->m, n = v[I_N].set ? v[I_N].i : p->n;
+    if (m * n > 65536) {
+        int col = v[I_N].set ? v[I_N].col : v[I_M].col;
+        return scenefile_fail(c, col, SVET_ERR_RANGE,
+                              "'m' x 'n' = %ld: at most 65536 gather rays",
+                              m * n);
+    }
     real min_r = v[I_MINR].set ? v[I_MINR].v[0] : p->min_r;
     real max_r = v[I_MAXR].set ? v[I_MAXR].v[0] : p->max_r;
     if (!(min_r <= max_r)) {

@@ -60,6 +60,9 @@ START_TEST(irradiance_statement_messages)
     refused("irradiance gradients maybe", "t.scn:4:22:", "gradients");
     refused("irradiance clamp", "t.scn:4:17:", "clamp");
     refused("irradiance m 1024 n 4096", "t.scn:4:19:", "65536");
+    /* the gather's size over two lines, and over the default n = 32 */
+    refused("irradiance m 1024\nirradiance n 4096", "t.scn:5:12:", "65536");
+    refused("irradiance m 1024 n 65", "t.scn:4:19:", "65536");
     refused("irradiance acc 0.1", "t.scn:4:12:", "unknown");
     scene_t s;
     svet_error e;
@@ -72,6 +75,12 @@ START_TEST(irradiance_statement_messages)
     ck_assert(fabs((double)set.a - 0.3) < 1e-6);
     ck_assert(!set.gradients);
     ck_assert_int_eq(set.m, 8);
+    /* --set is checked against the settings the scene already has */
+    ck_assert_int_eq(scenefile_override(&s, "irradiance.n=4096", &e),
+                     SVET_OK);
+    ck_assert_int_ne(scenefile_override(&s, "irradiance.m=17", &e), SVET_OK);
+    ck_assert_msg(strstr(e.msg, "65536"), "%s", e.msg);
+    ck_assert_int_eq(scenefile_override(&s, "irradiance.n=32", &e), SVET_OK);
     ck_assert_int_ne(scenefile_override(&s, "irradiance.max_r=0.5", &e),
                      SVET_OK);
     ck_assert_int_eq(scenefile_override(&s, "integrator=irradiance", &e),
