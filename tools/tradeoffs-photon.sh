@@ -61,6 +61,7 @@ series max_radius=0.08 --set photonmap.max_radius=0.08
 series k=20 --set photonmap.k=20
 series k=100 --set photonmap.k=100
 series gather=1 --set photonmap.gather=1
+series gather=2 --set photonmap.gather=2
 series gather=16 --set photonmap.gather=16
 series precompute=0 --set photonmap.precompute=0
 series precompute=4 --set photonmap.precompute=4
