@@ -415,7 +415,7 @@ reference:
 # `make tradeoffs-photon`: the photon maps' settings against the path
 # tracer on scenes/caustic.scn, and exact Fresnel against Schlick's
 # (tools/tradeoffs-photon.sh; writes docs/tradeoffs-photon.md). Budgets
-# in CPU-seconds (CLOCK=cpu, TIMES 8,...,120: about 20 minutes on 2 idle
+# in CPU-seconds (CLOCK=cpu, TIMES 8,...,120: about 25 minutes on 2 idle
 # cores, longer on a loaded machine); ROWS=path,photon runs a subset.
 tradeoffs-photon: build/float/svet
 	sh tools/tradeoffs-photon.sh

@@ -2,7 +2,10 @@
 # tradeoffs-photon.sh - `make tradeoffs-photon`: what the photon maps'
 # settings cost and buy on scenes/caustic.scn (ch. 8), measured. A path
 # traced reference (REF_SPP samples at half the scene's resolution, its own
-# seed) is rendered once into out/tradeoffs-photon/; `svet converge` then
+# seed; by default twice the samples the path tracer reaches in 120 CPU-s,
+# so that the reference's noise, which the table subtracts, does not
+# swamp the error measured there) is rendered once into
+# out/tradeoffs-photon/; `svet converge` then
 # renders the path tracer (the baseline) and the photon and ppm methods,
 # one setting changed at a time, for the same series of time budgets, and
 # `svet converge --report` turns the series into a table. The budgets are
@@ -16,15 +19,16 @@
 # usage: sh tools/tradeoffs-photon.sh   (environment: SVET (build/float/svet),
 #        CLOCK (cpu, or wall), TIMES (8,16,32,64,120; seconds on CLOCK),
 #        ROWS (every row; or labels separated by commas, e.g. path,photon:
-#        path, the baseline, is always run), THREADS (0), REF_SPP (4096),
-#        OUT, DOC)
+#        path, the baseline, is always run), THREADS (0), REF_SPP (65536),
+#        REUSE (1: keep a row whose OUT/LABEL.csv exists), OUT, DOC)
 set -eu
 svet=${SVET:-build/float/svet}
 clock=${CLOCK:-cpu}
 times=${TIMES:-8,16,32,64,120}
 rows=${ROWS:-}
 threads=${THREADS:-0}
-refspp=${REF_SPP:-4096}
+refspp=${REF_SPP:-65536}
+reuse=${REUSE:-0}
 out=${OUT:-out/tradeoffs-photon}
 doc=${DOC:-docs/tradeoffs-photon.md}
 scene=scenes/caustic.scn
@@ -48,6 +52,9 @@ series() { # LABEL SETTINGS...: one row, unless ROWS leaves it out
     case ",$rows," in ,, | *",$label,"* ) ;; *)
         [ "$label" = path ] || return 0 ;;
     esac
+    if [ "$reuse" = 1 ] && [ -f "$out/$label.csv" ]; then
+        files="$files $label"; return 0
+    fi
     echo "tradeoffs-photon: $label ($(date -u +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))" >&2
     "$svet" converge "$scene" --ref "$out/ref.exr" --seed 1 \
         --time-list "$times" --clock "$clock" --threads "$threads" \
@@ -60,7 +67,8 @@ series max_radius=0.02 --set photonmap.max_radius=0.02
 series max_radius=0.08 --set photonmap.max_radius=0.08
 series k=20 --set photonmap.k=20
 series k=100 --set photonmap.k=100
-series gather=1 --set photonmap.gather=1
+series gather=2 --set photonmap.gather=2
+series gather=4 --set photonmap.gather=4
 series gather=16 --set photonmap.gather=16
 series precompute=0 --set photonmap.precompute=0
 series precompute=4 --set photonmap.precompute=4

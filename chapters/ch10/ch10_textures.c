@@ -1,10 +1,12 @@
-/* cc -std=c11 -O2 -Iinclude chapters/ch10/ch10_textures.c src/texture/texture.c src/texture/solid.c src/texture/noise.c src/texture/bumpgen.c src/texture/mipmap.c src/texture/interp.c src/geometry/shape.c src/materials/cobject.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/core/error.c -lm -o ch10 */
+/* cc -std=c11 -O2 -Iinclude chapters/ch10/ch10_textures.c src/texture/texture.c src/texture/solid.c src/texture/noise.c src/texture/bumpgen.c src/texture/mipmap.c src/texture/interp.c src/texture/raydiff.c src/render/camera.c src/geometry/shape.c src/materials/cobject.c src/core/frame.c src/core/vec.c src/colour/colour.c src/io/image.c src/io/netpbm.c src/io/fileio.c src/core/error.c -lm -o ch10 */
 /*
  * ch10_textures.c - chapter 10, textures: spheres of noise, turbulence,
  * marble, wood and granite (Perlin 1985), a bump-mapped sphere beside the
  * smooth one (Blinn 1978; app. G's dents and bricks), the levels of a mip
  * map (Williams 1983), and a checkerboard plane toward the horizon looked
- * up with each filter against a supersampled reference.
+ * up with each filter against a supersampled reference; and a floor seen
+ * directly and in a flat and a spherical mirror, coloured by the mip level
+ * its lookups read through the ray differentials (Igehy 1999).
  *
  *   ch10_solids.ppm     noise, turbulence, marble, wood, granite spheres
  *   ch10_bump.ppm       smooth, dents, bricks: one sphere, bumped or not
@@ -15,6 +17,8 @@
  *                       image row (the distance grows upward)
  *   ch10_noise.csv      noise along a line, its analytic derivative and a
  *                       central difference
+ *   ch10_mirror_levels.ppm  the mip level of each pixel's lookup, in false
+ *                       colour (the key below the picture), through mirrors
  *
  * The CSV files are drawn by grazing.gp and noise.gp beside this file
  * (`make figures`). Spheres and plane are shaded here directly (a
@@ -27,6 +31,8 @@
 #include "colour/colour.h"
 #include "io/image.h"
 #include "io/netpbm.h"
+#include "render/camera.h"
+#include "texture/raydiff.h"
 #include "texture/texture.h"
 
 #include <math.h>
@@ -316,6 +322,166 @@ static int noise_csv(const char *dir)
     return chapter_close(&cf, "ch10");
 }
 
+/* --- mip levels through mirrors ------------------------------------------- */
+
+/* Level l's flat colour: a hue from red (level 0, the finest) through
+ * yellow, green, cyan and blue to magenta (level 8), so that a trilinear
+ * lookup's blend of two levels shows as the hue between them. */
+static void level_colour(int l, float c[3])
+{
+    static const float hue[9][3] = {
+        { 1, 0, 0 },       { 1, 0.5f, 0 }, { 1, 1, 0 },
+        { 0, 1, 0 },       { 0, 1, 1 },    { 0, 0.5f, 1 },
+        { 0, 0, 1 },       { 0.6f, 0, 1 }, { 1, 0, 1 } };
+    const float *h = hue[l < 8 ? l : 8];
+    c[0] = h[0], c[1] = h[1], c[2] = h[2];
+}
+
+/* A 256 x 256 mip map whose every level is one flat colour, level_colour:
+ * a lookup then shows which levels it read, not the image. */
+static int false_colour_mip(mipmap_t *m)
+{
+    enum { N = 256 };
+    static float px[N * N * 3];
+    svet_error err;
+    if (mipmap_build(m, px, N, N, 3, MIPMAP_REPEAT, &err) != SVET_OK) {
+        fprintf(stderr, "ch10: %s\n", err.msg);
+        return 1;
+    }
+    for (int l = 0; l < m->levels; l++) {
+        float c[3];
+        level_colour(l, c);
+        size_t n = (size_t)m->level[l].width * (size_t)m->level[l].height;
+        for (size_t i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++)
+                m->level[l].px[3 * i + (size_t)k] = c[k];
+    }
+    return 0;
+}
+
+/* The scene of the mirror figure: the floor y = 0 carrying the texture
+ * at (s, t) = (x, z) / 2 (256 texels per 2 units), a flat mirror in the
+ * plane z = -2 for x in [-3, 0.3], y in [0, 1.8], facing +z, and a mirror
+ * sphere of radius 0.6 at (1.1, 0.6, -0.4). The nearest hit of ray (o, d)
+ * beyond t_min: 0 none, 1 the floor, 2 the flat mirror, 3 the sphere,
+ * 4 the mirror's black frame (0.05 wide at its top and right, where it
+ * stands out of the floor); *t its distance, n the unit normal there. */
+static const VECTOR3 ball = { REAL_C(1.1), REAL_C(0.6), REAL_C(-0.4) };
+static const real ball_r = REAL_C(0.6);
+
+static int mirror_hit(const VECTOR3 o, const VECTOR3 d, real *t, VECTOR3 n)
+{
+    const real t_min = REAL_C(1e-4);
+    int what = 0;
+    real best = 1e30;
+    if (d[Y] < 0) {
+        real tf = -o[Y] / d[Y];
+        if (tf > t_min && tf < best)
+            best = tf, what = 1, vec_set(n, 0, 1, 0);
+    }
+    if (d[Z] < 0) {
+        real tm = (-2 - o[Z]) / d[Z];
+        real x = o[X] + tm * d[X], y = o[Y] + tm * d[Y];
+        if (tm > t_min && tm < best && x >= -3 && x <= REAL_C(0.3) &&
+            y >= 0 && y <= REAL_C(1.8))
+            best = tm, what = x < REAL_C(0.25) && y < REAL_C(1.75) ? 2 : 4,
+            vec_set(n, 0, 0, 1);
+    }
+    VECTOR3 oc;
+    vec_sub(oc, o, ball);
+    real b = SVECTOR3(oc, d), c = SVECTOR3(oc, oc) - ball_r * ball_r;
+    real disc = b * b - c;
+    if (disc > 0) {
+        real ts = -b - sqrt(disc);
+        if (ts > t_min && ts < best) {
+            best = ts, what = 3;
+            VECTOR3 p;
+            vec_add_scaled(p, o, ts, d);
+            vec_sub(n, p, ball);
+            vec_scale(n, n, 1 / ball_r);
+        }
+    }
+    *t = best;
+    return what;
+}
+
+/* One pixel's colour: the camera ray with its differentials, reflected
+ * off the mirrors (at most 4 times; the sphere's normal turns by
+ * dN = dP / r, the flat mirror's not at all) to the floor, where the
+ * footprint in (s, t) picks the levels of a trilinear lookup, as the
+ * renderer's texture part does (texpart.c, raydiff.c). The sky is grey. */
+static void mirror_pixel(const camera_t *cam, const mipmap_t *m, int i, int j,
+                         real c[3])
+{
+    ray_t r;
+    camera_ray(cam, (real)i + REAL_C(0.5), (real)j + REAL_C(0.5), &r);
+    raydiff_t rd;
+    raydiff_camera(&rd, cam, r.d);
+    c[0] = c[1] = c[2] = REAL_C(0.5);
+    for (int bounce = 0; bounce <= 4; bounce++) {
+        real t;
+        VECTOR3 n, p;
+        int what = mirror_hit(r.o, r.d, &t, n);
+        if (what == 4)
+            c[0] = c[1] = c[2] = 0;
+        if (!what || what == 4 || !raydiff_transfer(&rd, r.d, t, n))
+            return;
+        vec_add_scaled(p, r.o, t, r.d);
+        if (what == 1) {
+            const VECTOR3 dpds = { 2, 0, 0 }, dpdt = { 0, 0, 2 };
+            real w = raydiff_footprint(&rd, dpds, dpdt);
+            mipmap_lookup(m, MIPMAP_TRILINEAR, p[X] / 2, p[Z] / 2, w, c);
+            return;
+        }
+        VECTOR3 dndx = { 0, 0, 0 }, dndy = { 0, 0, 0 }, dr;
+        if (what == 3) {
+            vec_scale(dndx, rd.dpdx, 1 / ball_r);
+            vec_scale(dndy, rd.dpdy, 1 / ball_r);
+        }
+        raydiff_reflect(&rd, r.d, n, dndx, dndy);
+        vec_add_scaled(dr, r.d, -2 * SVECTOR3(r.d, n), n);
+        vec_copy(r.o, p);
+        vec_copy(r.d, dr);
+    }
+}
+
+static int mirror_levels(const char *dir)
+{
+    mipmap_t m;
+    if (false_colour_mip(&m))
+        return 1;
+    camera_t cam;
+    svet_error err;
+    const VECTOR3 eye = { 0, REAL_C(1.2), REAL_C(3.5) };
+    const VECTOR3 target = { 0, REAL_C(0.5), -1 }, up = { 0, 1, 0 };
+    int w = 5 * S / 2, h = 3 * S / 2;
+    image_t img;
+    if (camera_init(&cam, eye, target, up, 60, CAMERA_FOV_X, w, h, &err) !=
+            SVET_OK ||
+        image_alloc(&img, w, h + h / 8, 3, &err) != SVET_OK) {
+        fprintf(stderr, "ch10: %s\n", err.msg);
+        mipmap_free(&m);
+        return 1;
+    }
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            real c[3];
+            mirror_pixel(&cam, &m, i, j, c);
+            put(&img, i, j, rad_make(c[0], c[1], c[2]));
+        }
+    /* the key: levels 0 .. 8 left to right under the picture */
+    for (int j = h; j < img.height; j++)
+        for (int i = 0; i < w; i++) {
+            float f[3];
+            level_colour(9 * i / w, f);
+            put(&img, i, j, rad_make(f[0], f[1], f[2]));
+        }
+    int rc = write_ppm(dir, "ch10_mirror_levels.ppm", &img);
+    image_free(&img);
+    mipmap_free(&m);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     double size = 128;
@@ -338,7 +504,7 @@ int main(int argc, char **argv)
     if (checker_mip(&m))
         return 1;
     rc = solids(dir) || bumps(dir) || levels(dir, &m) ||
-         grazing_plots(dir, &m) || noise_csv(dir);
+         grazing_plots(dir, &m) || noise_csv(dir) || mirror_levels(dir);
     mipmap_free(&m);
     return rc ? 1 : 0;
 }

@@ -41,24 +41,36 @@ static real lerp(real t, real a, real b) { return a + t * (b - a); }
 
 /* The gradient picked by the low four bits of a hash: the twelve vectors
  * from the centre of a cube to its edges' midpoints, (1,1,0) ... (0,-1,-1),
- * and four of them again to make sixteen (Perlin 2002, sec. 3). */
-static void gradient(int hash, VECTOR3 g)
-{
-    int h = hash & 15;
-    real su = (h & 1) ? -1 : 1, sv = (h & 2) ? -1 : 1;
-    vec_set(g, 0, 0, 0);
-    g[h < 8 ? X : Y] = su;
-    g[h < 4 ? Y : (h == 12 || h == 14) ? X : Z] = sv;
-}
+ * and four of them again to make sixteen (Perlin 2002, sec. 3): the
+ * components u (grad_u, sign grad_su) and v (grad_v, grad_sv) are +-1,
+ * the third 0. The reference picks them by branches, which a random hash
+ * makes unpredictable; tables pick the same ones without a branch. */
+static const unsigned char grad_u[16] = { 0, 0, 0, 0, 0, 0, 0, 0,
+                                          1, 1, 1, 1, 1, 1, 1, 1 };
+static const unsigned char grad_v[16] = { 1, 1, 1, 1, 2, 2, 2, 2,
+                                          2, 2, 2, 2, 0, 2, 0, 2 };
+static const real grad_su[16] = { 1, -1, 1, -1, 1, -1, 1, -1,
+                                  1, -1, 1, -1, 1, -1, 1, -1 };
+static const real grad_sv[16] = { 1, 1, -1, -1, 1, 1, -1, -1,
+                                  1, 1, -1, -1, 1, 1, -1, -1 };
 
 /* The dot product of that gradient with (x, y, z), in the reference's
- * order of operations so that the value matches it to the last bit. */
+ * order of operations, (+-u) + (+-v), so that the value matches it to the
+ * last bit (u * -1 is -u exactly). */
 static real grad(int hash, real x, real y, real z)
 {
     int h = hash & 15;
-    real u = h < 8 ? x : y;
-    real v = h < 4 ? y : (h == 12 || h == 14) ? x : z;
-    return ((h & 1) == 0 ? u : -u) + ((h & 2) == 0 ? v : -v);
+    const real p[3] = { x, y, z };
+    return p[grad_u[h]] * grad_su[h] + p[grad_v[h]] * grad_sv[h];
+}
+
+/* That gradient as a vector. */
+static void gradient(int hash, VECTOR3 g)
+{
+    int h = hash & 15;
+    vec_set(g, 0, 0, 0);
+    g[grad_u[h]] = grad_su[h];
+    g[grad_v[h]] = grad_sv[h];
 }
 
 /* The lattice cell of one coordinate, modulo 256, and the fraction in it.
