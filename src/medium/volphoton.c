@@ -25,9 +25,6 @@
  */
 #include "medium/volphoton.h"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -111,44 +108,15 @@ static svet_status volphoton_statement(scenefile_ctx *c)
 
 /* --- the photon pass ------------------------------------------------------ */
 
-typedef struct {
-    VECTOR3 pos, dir;
-    RADIANCE power;
-} record_t;
-
-typedef struct {
-    record_t *r;
-    size_t n, cap;
-    bool failed;
-} records_t;
-
-static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
-                 RADIANCE power)
-{
-    if (b->failed)
-        return;
-    if (b->n == b->cap) {
-        size_t cap = b->cap ? 2 * b->cap : 1024;
-        record_t *r = realloc(b->r, cap * sizeof *r);
-        if (!r) {
-            b->failed = true;
-            return;
-        }
-        b->r = r;
-        b->cap = cap;
-    }
-    record_t *q = &b->r[b->n++];
-    vec_copy(q->pos, pos);
-    vec_copy(q->dir, dir);
-    q->power = power;
-}
-
-/* Photon `index`: its walk through media and off surfaces. `events`
- * counts its scatterings and bounces; it is stored only after the first. */
+/* Photon `index` (photon_walk_fn, ctx the global medium): its walk
+ * through media and off surfaces, its records into out[0] (the volume
+ * map's) and out[1] (the surface map's). `events` counts its
+ * scatterings and bounces; it is stored only after the first. */
 static void trace_one(const render_t *r, const photon_emitters_t *em,
-                      const medium_t *global, uint64_t count, uint64_t index, records_t *vol,
-                      records_t *surf)
+                      uint64_t count, uint64_t index, void *ctx,
+                      photon_records_t *out)
 {
+    static const VECTOR3 no_normal = { 0, 0, 0 };
     pcg32_t g;
     rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 0, index);
     ray_t ray;
@@ -156,7 +124,7 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
     const COBJECT *skip[2] = { NULL, NULL };
     if (!photon_emit(r, em, count, &g, &ray, &power, &skip[0]))
         return;
-    const medium_t *med = global;
+    const medium_t *med = ctx;
     const int max_depth = r->scene->render.max_depth;
     int events = 0, crossings = 0;
     for (;;) {
@@ -188,7 +156,7 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
                 VECTOR3 x;
                 vec_add_scaled(x, ray.o, t, dir);
                 if (events > 0)
-                    push(vol, x, dir, power);
+                    photon_records_push(&out[0], x, dir, no_normal, power);
                 const phase_t *ph = &med->phase;
                 if (med->ncomponents > 0) {
                     RADIANCE wc;
@@ -223,103 +191,46 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
         }
         crossings = 0;
         const material_t *m = obj->material;
-        if (!material_is_specular(m) && m->ncomp > 0 && events > 0)
-            push(surf, pp.cross_point, dir, power);
+        if (!material_is_specular(m) && m->ncomp > 0 && events > 0) {
+            VECTOR3 n; /* the side it arrived from, as photon.c's */
+            vec_scale(n, pp.n, SVECTOR3(pp.n, dir) > 0 ? -1 : 1);
+            photon_records_push(&out[1], pp.cross_point, dir, n, power);
+        }
         if (events >= max_depth)
             return;
-        /* the adjoint bounce and roulette of photon.c's trace_one */
-        VECTOR3 wo, wi;
-        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
-        real u[3] = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
-        real urr = pcg32_real(&g);
-        brdf_sample_t bs;
-        if (!material_sample(m, wo, u, &bs))
+        /* the adjoint bounce and roulette of photon tracing; the ray
+         * leaves in ray.d, which decides the medium past a boundary */
+        if (!photon_bounce(m, &pp, &g, &power, &ray, NULL))
             return;
-        real q = real_min(rad_max(bs.weight), REAL_C(1.0));
-        if (!(urr < q))
-            return;
-        power = rad_scale(rad_mul(power, bs.weight), 1 / q);
-        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
-        med = volpath_medium_after(obj, pp.ng, wi, med);
-        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        med = volpath_medium_after(obj, pp.ng, ray.d, med);
         skip[0] = obj;
         events++;
     }
-}
-
-/* photons per chunk, a thread's unit of work; chunks are joined in
- * order, so the maps do not depend on which thread traced which */
-#define CHUNK 4096
-
-/* the records of every chunk, in chunk order, into a balanced map */
-static svet_status build(records_t *chunks, uint64_t nchunks,
-                         photonmap_t *m, svet_error *err)
-{
-    size_t total = 0;
-    for (uint64_t c = 0; c < nchunks; c++) {
-        if (chunks[c].failed)
-            return svet_error_set(err, SVET_ERR_NOMEM,
-                                  "volume photon tracing: out of memory");
-        total += chunks[c].n;
-    }
-    if (total == 0)
-        return SVET_OK;
-    svet_status st = photonmap_init(m, total, err);
-    if (st)
-        return st;
-    for (uint64_t c = 0; c < nchunks; c++)
-        for (size_t i = 0; i < chunks[c].n; i++) {
-            const record_t *rec = &chunks[c].r[i];
-            photonmap_store(m, rec->pos, rec->power, rec->dir, 0);
-        }
-    return photonmap_balance(m, err);
 }
 
 svet_status volphoton_trace(const render_t *r, uint64_t count, int threads,
                             photonmap_t *vol, photonmap_t *surf,
                             svet_error *err)
 {
+    static const char what[] = "volume photon tracing";
     memset(vol, 0, sizeof *vol);
     memset(surf, 0, sizeof *surf);
     vol->balanced = surf->balanced = true; /* empty maps find nothing */
-    if (count == 0 || r->lights.n == 0)
-        return SVET_OK;
-    uint64_t nchunks = (count + CHUNK - 1) / CHUNK;
-    if (nchunks > SIZE_MAX / (2 * sizeof(records_t)))
-        return svet_error_set(err, SVET_ERR_NOMEM, "volume photon tracing: "
-                              "%llu photons are too many",
-                              (unsigned long long)count);
-    photon_emitters_t em;
-    svet_status st = photon_emitters_build(&em, r, err);
+    /* the chunked walk of photon.h: list 0 of every chunk the volume
+     * map's records, list 1 the surface map's, each joined in chunk
+     * order, so the maps do not depend on the thread count */
+    photon_records_t *lists;
+    uint64_t nchunks;
+    svet_status st = photon_trace_records(r, count, threads, 2, trace_one,
+                                          (void *)medpart_global(r->scene),
+                                          what, &lists, &nchunks, err);
     if (st != SVET_OK)
         return st;
-    records_t *chunks = calloc((size_t)(2 * nchunks), sizeof *chunks);
-    if (!chunks) {
-        photon_emitters_free(&em);
-        return svet_error_set(err, SVET_ERR_NOMEM,
-                              "volume photon tracing: out of memory");
-    }
-    const medium_t *global = medpart_global(r->scene);
-#ifdef _OPENMP
-    int nt = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
-#else
-    (void)threads;
-#endif
-    for (long long c = 0; c < (long long)nchunks; c++) {
-        uint64_t i0 = (uint64_t)c * CHUNK;
-        uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;
-        for (uint64_t i = i0; i < i1; i++)
-            trace_one(r, &em, global, count, i, &chunks[c],
-                      &chunks[nchunks + (uint64_t)c]);
-    }
-    photon_emitters_free(&em);
-    st = build(chunks, nchunks, vol, err);
+    st = photon_records_store(lists, nchunks, 0, what, vol, err);
     if (st == SVET_OK)
-        st = build(chunks + nchunks, nchunks, surf, err);
-    for (uint64_t c = 0; c < 2 * nchunks; c++)
-        free(chunks[c].r);
-    free(chunks);
+        st = photon_records_store(lists + nchunks, nchunks, 0, what, surf,
+                                  err);
+    photon_records_free(lists, 2 * nchunks);
     if (st != SVET_OK) {
         photonmap_free(vol);
         photonmap_free(surf);
