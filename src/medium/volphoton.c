@@ -4,9 +4,10 @@
  * Scenes with Participating Media using Photon Maps", SIGGRAPH 1998, and
  * Jensen, "Realistic Image Synthesis Using Photon Mapping", 2001, ch. 10.
  * The first pass traces photons from the lights (photon/photon.h's
- * emission) through the media and stores them where they scatter (a
- * volume map) and where they land on surfaces (a surface map), in the
- * left-balanced kd-tree of ch. 8 (photon/photonmap.h). The second pass,
+ * emission) and from the media that emit through the media and stores
+ * them where they scatter (a volume map) and where they land on surfaces
+ * (a surface map), in the left-balanced kd-tree of ch. 8
+ * (photon/photonmap.h). The second pass,
  * `render integrator volphoton`, marches each camera segment in a medium
  * as Jensen 2001, sec. 10.5 does: at points t_i = (i + u) h (u uniform
  * in [0, 1), one per segment: a randomly shifted rectangle rule, as
@@ -25,11 +26,16 @@
  */
 #include "medium/volphoton.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/bbox.h"
 #include "core/frame.h"
+#include "core/sample.h"
 #include "materials/material.h"
 #include "medpart_data.h"
 #include "photon/photon.h"
@@ -108,23 +114,18 @@ static svet_status volphoton_statement(scenefile_ctx *c)
 
 /* --- the photon pass ------------------------------------------------------ */
 
-/* Photon `index` (photon_walk_fn, ctx the global medium): its walk
- * through media and off surfaces, its records into out[0] (the volume
- * map's) and out[1] (the surface map's). `events` counts its
- * scatterings and bounces; it is stored only after the first. */
-static void trace_one(const render_t *r, const photon_emitters_t *em,
-                      uint64_t count, uint64_t index, void *ctx,
-                      photon_records_t *out)
+/* A photon's walk from ray (power, in med) through media and off
+ * surfaces, drawing from g, its records into out[0] (the volume map's)
+ * and out[1] (the surface map's). `events` counts its scatterings and
+ * bounces; it is stored from the `first`-th on: 1 for a light's photon,
+ * whose first event the camera's light sampling covers, 0 for one a
+ * medium emits, which nothing else carries. */
+static void walk(const render_t *r, pcg32_t *g, ray_t ray, RADIANCE power,
+                 const medium_t *med, const COBJECT *from, int first,
+                 photon_records_t *out)
 {
     static const VECTOR3 no_normal = { 0, 0, 0 };
-    pcg32_t g;
-    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 0, index);
-    ray_t ray;
-    RADIANCE power;
-    const COBJECT *skip[2] = { NULL, NULL };
-    if (!photon_emit(r, em, count, &g, &ray, &power, &skip[0]))
-        return;
-    const medium_t *med = ctx;
+    const COBJECT *skip[2] = { from, NULL };
     const int max_depth = r->scene->render.max_depth;
     int events = 0, crossings = 0;
     for (;;) {
@@ -140,7 +141,7 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
             real t;
             RADIANCE w;
             bool scattered = medium_sample(med, ray.o, dir,
-                                           hit ? h.t * len : VOLPATH_FAR, &g,
+                                           hit ? h.t * len : VOLPATH_FAR, g,
                                            &t, &w);
             if (scattered) {
                 if (events >= max_depth)
@@ -149,21 +150,21 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
                  * grey medium the albedo, the power unchanged (Jensen
                  * 2001, sec. 10.3) */
                 real q = real_min(rad_max(w), REAL_C(1.0));
-                real urr = pcg32_real(&g);
+                real urr = pcg32_real(g);
                 if (!(urr < q))
                     return;
                 power = rad_scale(rad_mul(power, w), 1 / q);
                 VECTOR3 x;
                 vec_add_scaled(x, ray.o, t, dir);
-                if (events > 0)
+                if (events >= first)
                     photon_records_push(&out[0], x, dir, no_normal, power);
                 const phase_t *ph = &med->phase;
                 if (med->ncomponents > 0) {
                     RADIANCE wc;
-                    ph = &medium_scatterer(med, x, pcg32_real(&g), &wc)->phase;
+                    ph = &medium_scatterer(med, x, pcg32_real(g), &wc)->phase;
                     power = rad_mul(power, wc);
                 }
-                real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+                real u[2] = { pcg32_real(g), pcg32_real(g) };
                 VECTOR3 wo;
                 phase_sample(ph, dir, u, wo); /* exact: weight 1 */
                 vec_copy(ray.o, x);
@@ -191,7 +192,8 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
         }
         crossings = 0;
         const material_t *m = obj->material;
-        if (!material_is_specular(m) && m->ncomp > 0 && events > 0) {
+        if (!material_is_specular(m) && m->ncomp > 0 &&
+            events >= first) {
             VECTOR3 n; /* the side it arrived from, as photon.c's */
             vec_scale(n, pp.n, SVECTOR3(pp.n, dir) > 0 ? -1 : 1);
             photon_records_push(&out[1], pp.cross_point, dir, n, power);
@@ -200,12 +202,184 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
             return;
         /* the adjoint bounce and roulette of photon tracing; the ray
          * leaves in ray.d, which decides the medium past a boundary */
-        if (!photon_bounce(m, &pp, &g, &power, &ray, NULL))
+        if (!photon_bounce(m, &pp, g, &power, &ray, NULL))
             return;
         med = volpath_medium_after(obj, pp.ng, ray.d, med);
         skip[0] = obj;
         events++;
     }
+}
+
+/* Photon `index` of a light (photon_walk_fn, ctx the global medium,
+ * where it leaves its light). */
+static void trace_one(const render_t *r, const photon_emitters_t *em,
+                      uint64_t count, uint64_t index, void *ctx,
+                      photon_records_t *out)
+{
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 0, index);
+    ray_t ray;
+    RADIANCE power;
+    const COBJECT *from = NULL;
+    if (photon_emit(r, em, count, &g, &ray, &power, &from))
+        walk(r, &g, ray, power, ctx, from, 1, out);
+}
+
+/* --- photons the media emit ----------------------------------------------- */
+
+/* Where the emitting media are: the box around every boundary with an
+ * emitting medium on a side other than the global one (whose emission
+ * fills all space: the march sees it, no photon carries it), its
+ * volume, and the global medium. */
+typedef struct {
+    bbox_t box;
+    real volume;
+    const medium_t *global;
+} emitting_t;
+
+static bool emitting_of(const render_t *r, emitting_t *e)
+{
+    const scene_t *s = r->scene;
+    e->global = medpart_global(s);
+    bbox_empty(&e->box);
+    bool any = false;
+    for (int i = 0; i < s->nobjects; i++) {
+        const COBJECT *o = s->objects[i];
+        const struct medium *side[2] = { o->inside, o->outside };
+        for (int k = 0; k < 2; k++)
+            if (side[k] && side[k]->m && side[k]->m != e->global &&
+                medium_emits(side[k]->m)) {
+                bbox_t b;
+                o->ops->bounds(o, -1, &b);
+                bbox_union(&e->box, &b);
+                any = true;
+            }
+    }
+    e->volume = 1;
+    for (int a = 0; a < 3; a++)
+        e->volume *= e->box.max[a] - e->box.min[a];
+    return any && e->volume > 0 && isfinite(e->volume);
+}
+
+/* The medium at x: a ray from x along +z, through surfaces that are no
+ * boundary, to the first boundary, whose side it left (medpart.h's
+ * rule); no boundary: the global medium. NULL when caught between
+ * coincident surfaces. */
+static const medium_t *medium_at(const render_t *r, const VECTOR3 x,
+                                 const medium_t *global)
+{
+    ray_t ray;
+    memset(&ray, 0, sizeof ray);
+    vec_copy(ray.o, x);
+    ray.d[Z] = 1;
+    const COBJECT *skip[2] = { NULL, NULL };
+    for (int k = 0; k < VOLPATH_MAX_CROSSINGS; k++) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        if (!r->tracer.intersect(r->tracer.ctx, &ray, 0, (real)INFINITY,
+                                 skip, &h, &obj))
+            return global;
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        if (obj->inside)
+            return SVECTOR3(ray.d, pp.ng) > 0 ? obj->inside->m
+                                              : obj->outside->m;
+        VECTOR3 d = { 0, 0, 1 };
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, d);
+        skip[0] = obj;
+    }
+    return NULL;
+}
+
+/* Emitted photon `index` of `count`: a point x uniform in e's box, kept
+ * where its medium emits, leaving in a direction uniform over the sphere
+ * with the power 4 pi sigma_a(x) L_e V / count (V the box's volume; the
+ * source term's integral over volume and directions, each photon its
+ * share by the two uniform densities); stored from its first event. */
+static void emit_one(const render_t *r, const emitting_t *e, uint64_t count,
+                     uint64_t index, photon_records_t *out)
+{
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 1, index);
+    VECTOR3 x;
+    for (int a = 0; a < 3; a++)
+        x[a] = e->box.min[a] +
+               pcg32_real(&g) * (e->box.max[a] - e->box.min[a]);
+    real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+    const medium_t *med = medium_at(r, x, e->global);
+    if (!med || med == e->global || !medium_emits(med))
+        return;
+    RADIANCE power = rad_scale(medium_source_at(med, x),
+                               4 * REAL_PI * e->volume / (real)count);
+    if (rad_is_black(power))
+        return;
+    ray_t ray;
+    memset(&ray, 0, sizeof ray);
+    vec_copy(ray.o, x);
+    sample_uniform_sphere(ray.d, u);
+    walk(r, &g, ray, power, med, NULL, 0, out);
+}
+
+/* The emitted photons' records, as photon_trace_records lays out the
+ * lights': list j of chunk c at (*lists)[j * *nchunks + c], each chunk
+ * walked by one thread, so that joined in chunk order they do not
+ * depend on the thread count. No emitting medium: *lists NULL. */
+static svet_status emission_records(const render_t *r, uint64_t count,
+                                    int threads, const char *what,
+                                    photon_records_t **lists,
+                                    uint64_t *nchunks, svet_error *err)
+{
+    *lists = NULL;
+    *nchunks = 0;
+    emitting_t e;
+    if (count == 0 || !emitting_of(r, &e))
+        return SVET_OK;
+    uint64_t nc = (count + PHOTON_CHUNK - 1) / PHOTON_CHUNK;
+    if (nc > SIZE_MAX / (2 * sizeof(photon_records_t)))
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: %llu photons are too "
+                              "many", what, (unsigned long long)count);
+    photon_records_t *l = calloc((size_t)(2 * nc), sizeof *l);
+    if (!l)
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", what);
+#ifdef _OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+#else
+    (void)threads;
+#endif
+    for (long long c = 0; c < (long long)nc; c++) {
+        photon_records_t out[2];
+        memset(out, 0, sizeof out);
+        uint64_t i0 = (uint64_t)c * PHOTON_CHUNK;
+        uint64_t i1 = i0 + PHOTON_CHUNK < count ? i0 + PHOTON_CHUNK : count;
+        for (uint64_t i = i0; i < i1; i++)
+            emit_one(r, &e, count, i, out);
+        l[c] = out[0];
+        l[nc + (uint64_t)c] = out[1];
+    }
+    *lists = l;
+    *nchunks = nc;
+    return SVET_OK;
+}
+
+/* Store list `j` (0: volume, 1: surface) of the lights' records and then
+ * the media's into m. */
+static svet_status store(const photon_records_t *lights, uint64_t nl,
+                         const photon_records_t *media, uint64_t nm, int j,
+                         const char *what, photonmap_t *m, svet_error *err)
+{
+    if (nm == 0)
+        return photon_records_store(lights + j * nl, nl, 0, what, m, err);
+    photon_records_t *all = malloc((size_t)(nl + nm) * sizeof *all);
+    if (!all)
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", what);
+    for (uint64_t c = 0; c < nl; c++)
+        all[c] = lights[j * nl + c];
+    for (uint64_t c = 0; c < nm; c++)
+        all[nl + c] = media[j * nm + c];
+    svet_status st = photon_records_store(all, nl + nm, 0, what, m, err);
+    free(all); /* the records themselves stay with their lists */
+    return st;
 }
 
 svet_status volphoton_trace(const render_t *r, uint64_t count, int threads,
@@ -218,19 +392,22 @@ svet_status volphoton_trace(const render_t *r, uint64_t count, int threads,
     vol->balanced = surf->balanced = true; /* empty maps find nothing */
     /* the chunked walk of photon.h: list 0 of every chunk the volume
      * map's records, list 1 the surface map's, each joined in chunk
-     * order, so the maps do not depend on the thread count */
-    photon_records_t *lists;
-    uint64_t nchunks;
+     * order, so the maps do not depend on the thread count; then the
+     * photons the media emit, in the same layout */
+    photon_records_t *lists = NULL, *emitted = NULL;
+    uint64_t nchunks = 0, nemitted = 0;
     svet_status st = photon_trace_records(r, count, threads, 2, trace_one,
                                           (void *)medpart_global(r->scene),
                                           what, &lists, &nchunks, err);
-    if (st != SVET_OK)
-        return st;
-    st = photon_records_store(lists, nchunks, 0, what, vol, err);
     if (st == SVET_OK)
-        st = photon_records_store(lists + nchunks, nchunks, 0, what, surf,
-                                  err);
+        st = emission_records(r, count, threads, what, &emitted, &nemitted,
+                              err);
+    if (st == SVET_OK)
+        st = store(lists, nchunks, emitted, nemitted, 0, what, vol, err);
+    if (st == SVET_OK)
+        st = store(lists, nchunks, emitted, nemitted, 1, what, surf, err);
     photon_records_free(lists, 2 * nchunks);
+    photon_records_free(emitted, 2 * nemitted);
     if (st != SVET_OK) {
         photonmap_free(vol);
         photonmap_free(surf);
