@@ -323,8 +323,10 @@ def main():
     print("Machine: %s, %d cores; Mitsuba %s (scalar_rgb), numpy %s.  "
           % (cpu, os.cpu_count(), mi.__version__, np.__version__))
     print("Command: `make bench-media` (tools/mitsuba/media.py %s --spp %d "
-          "--rounds %d); date %s UTC.  " % (svet, spp, rounds,
-                                            time.strftime("%Y-%m-%d %H:%M", time.gmtime())))
+          "--rounds %d); date %s UTC; load average at the start %.2f %.2f"
+          " %.2f (1, 5, 15 min).  " % ((svet, spp, rounds,
+                                       time.strftime("%Y-%m-%d %H:%M", time.gmtime()))
+                                      + os.getloadavg()))
     print("Both on every core, one run alternating svet and Mitsuba %d times"
           " per scene; samples/s from each one's fastest round (svet's own"
           " render time, Mitsuba's mi.render call); z: region mean"
@@ -364,6 +366,8 @@ def main():
     print("\nAgreement within the noise: %s." % ("yes" if not bad else
           "NO (a scene has more than 2 regions beyond 3 standard errors)"))
     single_scatter_check(svet, tmp)
+    print("\nLoad average at the end: %.2f %.2f %.2f (1, 5, 15 min)."
+          % os.getloadavg())
     return 0
 
 
