@@ -15,8 +15,11 @@
  * segment's start and by h, the single scattering by light sampling
  * (next-event estimation with the shadow ray's transmittance,
  * volpath_direct) and the multiple scattering from the volume map
- * (volphoton_radiance). The volume map holds only photons that have
- * scattered or bounced before, so the two terms do not overlap. At the
+ * (volphoton_radiance). The volume map holds only light's photons that
+ * have scattered or bounced before, so the two terms do not overlap, and
+ * the photons an emitting medium sends from their first event on (the
+ * march adds the emission seen directly, and no light sampling covers
+ * emitted light scattered). At the
  * first surface with a non-delta part the light is the direct light by
  * light sampling plus the surface map's radiance estimate (photon.h's
  * photon_radiance with the `photonmap` statement's k, max_radius and
