@@ -54,7 +54,16 @@ extern const render_method_t volphoton_method;
  * in a sum: medium_scatterer). At surfaces the photon bounces as
  * photon_trace's do. The media are the scene's (medpart.h): a photon
  * leaves its light in the global medium. The scene's max_depth bounds
- * the events. The maps are the same for any `threads` (0: all). Fails
+ * the events. Where a medium inside a boundary emits, `count` photons
+ * more leave the media: photon i from rng_for_sample(seed ^
+ * VOLPHOTON_SEED_SALT, 1, i) at a point x uniform in the box around the
+ * emitting media's boundaries, kept where x's medium emits, in a
+ * direction uniform over the sphere, with power 4 pi sigma_a(x) L_e V /
+ * count (V the box's volume: the source term sigma_a L_e integrated over
+ * volume and directions, pbrt-v4 sec. 11.1.2), and stored from its first
+ * event on, which no light sampling covers (the march adds the emission
+ * seen directly); the global medium's emission, which fills all space,
+ * sends none. The maps are the same for any `threads` (0: all). Fails
  * with SVET_ERR_NOMEM; both maps are then empty. */
 #define VOLPHOTON_SEED_SALT UINT64_C(0x766f6c70686f746e)
 svet_status volphoton_trace(const struct render *r, uint64_t count,

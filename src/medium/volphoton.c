@@ -4,9 +4,10 @@
  * Scenes with Participating Media using Photon Maps", SIGGRAPH 1998, and
  * Jensen, "Realistic Image Synthesis Using Photon Mapping", 2001, ch. 10.
  * The first pass traces photons from the lights (photon/photon.h's
- * emission) through the media and stores them where they scatter (a
- * volume map) and where they land on surfaces (a surface map), in the
- * left-balanced kd-tree of ch. 8 (photon/photonmap.h). The second pass,
+ * emission) and from the media that emit through the media and stores
+ * them where they scatter (a volume map) and where they land on surfaces
+ * (a surface map), in the left-balanced kd-tree of ch. 8
+ * (photon/photonmap.h). The second pass,
  * `render integrator volphoton`, marches each camera segment in a medium
  * as Jensen 2001, sec. 10.5 does: at points t_i = (i + u) h (u uniform
  * in [0, 1), one per segment: a randomly shifted rectangle rule, as
@@ -14,8 +15,11 @@
  * segment's start and by h, the single scattering by light sampling
  * (next-event estimation with the shadow ray's transmittance,
  * volpath_direct) and the multiple scattering from the volume map
- * (volphoton_radiance). The volume map holds only photons that have
- * scattered or bounced before, so the two terms do not overlap. At the
+ * (volphoton_radiance). The volume map holds only light's photons that
+ * have scattered or bounced before, so the two terms do not overlap, and
+ * the photons an emitting medium sends from their first event on (the
+ * march adds the emission seen directly, and no light sampling covers
+ * emitted light scattered). At the
  * first surface with a non-delta part the light is the direct light by
  * light sampling plus the surface map's radiance estimate (photon.h's
  * photon_radiance with the `photonmap` statement's k, max_radius and
@@ -32,7 +36,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/bbox.h"
 #include "core/frame.h"
+#include "core/sample.h"
 #include "materials/material.h"
 #include "medpart_data.h"
 #include "photon/photon.h"
@@ -111,52 +117,18 @@ static svet_status volphoton_statement(scenefile_ctx *c)
 
 /* --- the photon pass ------------------------------------------------------ */
 
-typedef struct {
-    VECTOR3 pos, dir;
-    RADIANCE power;
-} record_t;
-
-typedef struct {
-    record_t *r;
-    size_t n, cap;
-    bool failed;
-} records_t;
-
-static void push(records_t *b, const VECTOR3 pos, const VECTOR3 dir,
-                 RADIANCE power)
+/* A photon's walk from ray (power, in med) through media and off
+ * surfaces, drawing from g, its records into out[0] (the volume map's)
+ * and out[1] (the surface map's). `events` counts its scatterings and
+ * bounces; it is stored from the `first`-th on: 1 for a light's photon,
+ * whose first event the camera's light sampling covers, 0 for one a
+ * medium emits, which nothing else carries. */
+static void walk(const render_t *r, pcg32_t *g, ray_t ray, RADIANCE power,
+                 const medium_t *med, const COBJECT *from, int first,
+                 photon_records_t *out)
 {
-    if (b->failed)
-        return;
-    if (b->n == b->cap) {
-        size_t cap = b->cap ? 2 * b->cap : 1024;
-        record_t *r = realloc(b->r, cap * sizeof *r);
-        if (!r) {
-            b->failed = true;
-            return;
-        }
-        b->r = r;
-        b->cap = cap;
-    }
-    record_t *q = &b->r[b->n++];
-    vec_copy(q->pos, pos);
-    vec_copy(q->dir, dir);
-    q->power = power;
-}
-
-/* Photon `index`: its walk through media and off surfaces. `events`
- * counts its scatterings and bounces; it is stored only after the first. */
-static void trace_one(const render_t *r, const photon_emitters_t *em,
-                      const medium_t *global, uint64_t count, uint64_t index, records_t *vol,
-                      records_t *surf)
-{
-    pcg32_t g;
-    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 0, index);
-    ray_t ray;
-    RADIANCE power;
-    const COBJECT *skip[2] = { NULL, NULL };
-    if (!photon_emit(r, em, count, &g, &ray, &power, &skip[0]))
-        return;
-    const medium_t *med = global;
+    static const VECTOR3 no_normal = { 0, 0, 0 };
+    const COBJECT *skip[2] = { from, NULL };
     const int max_depth = r->scene->render.max_depth;
     int events = 0, crossings = 0;
     for (;;) {
@@ -172,7 +144,7 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
             real t;
             RADIANCE w;
             bool scattered = medium_sample(med, ray.o, dir,
-                                           hit ? h.t * len : VOLPATH_FAR, &g,
+                                           hit ? h.t * len : VOLPATH_FAR, g,
                                            &t, &w);
             if (scattered) {
                 if (events >= max_depth)
@@ -181,21 +153,21 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
                  * grey medium the albedo, the power unchanged (Jensen
                  * 2001, sec. 10.3) */
                 real q = real_min(rad_max(w), REAL_C(1.0));
-                real urr = pcg32_real(&g);
+                real urr = pcg32_real(g);
                 if (!(urr < q))
                     return;
                 power = rad_scale(rad_mul(power, w), 1 / q);
                 VECTOR3 x;
                 vec_add_scaled(x, ray.o, t, dir);
-                if (events > 0)
-                    push(vol, x, dir, power);
+                if (events >= first)
+                    photon_records_push(&out[0], x, dir, no_normal, power);
                 const phase_t *ph = &med->phase;
                 if (med->ncomponents > 0) {
                     RADIANCE wc;
-                    ph = &medium_scatterer(med, x, pcg32_real(&g), &wc)->phase;
+                    ph = &medium_scatterer(med, x, pcg32_real(g), &wc)->phase;
                     power = rad_mul(power, wc);
                 }
-                real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+                real u[2] = { pcg32_real(g), pcg32_real(g) };
                 VECTOR3 wo;
                 phase_sample(ph, dir, u, wo); /* exact: weight 1 */
                 vec_copy(ray.o, x);
@@ -223,103 +195,222 @@ static void trace_one(const render_t *r, const photon_emitters_t *em,
         }
         crossings = 0;
         const material_t *m = obj->material;
-        if (!material_is_specular(m) && m->ncomp > 0 && events > 0)
-            push(surf, pp.cross_point, dir, power);
+        if (!material_is_specular(m) && m->ncomp > 0 &&
+            events >= first) {
+            VECTOR3 n; /* the side it arrived from, as photon.c's */
+            vec_scale(n, pp.n, SVECTOR3(pp.n, dir) > 0 ? -1 : 1);
+            photon_records_push(&out[1], pp.cross_point, dir, n, power);
+        }
         if (events >= max_depth)
             return;
-        /* the adjoint bounce and roulette of photon.c's trace_one */
-        VECTOR3 wo, wi;
-        frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
-        real u[3] = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
-        real urr = pcg32_real(&g);
-        brdf_sample_t bs;
-        if (!material_sample(m, wo, u, &bs))
+        /* the adjoint bounce and roulette of photon tracing; the ray
+         * leaves in ray.d, which decides the medium past a boundary */
+        if (!photon_bounce(m, &pp, g, &power, &ray, NULL))
             return;
-        real q = real_min(rad_max(bs.weight), REAL_C(1.0));
-        if (!(urr < q))
-            return;
-        power = rad_scale(rad_mul(power, bs.weight), 1 / q);
-        frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
-        med = volpath_medium_after(obj, pp.ng, wi, med);
-        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
+        med = volpath_medium_after(obj, pp.ng, ray.d, med);
         skip[0] = obj;
         events++;
     }
 }
 
-/* photons per chunk, a thread's unit of work; chunks are joined in
- * order, so the maps do not depend on which thread traced which */
-#define CHUNK 4096
-
-/* the records of every chunk, in chunk order, into a balanced map */
-static svet_status build(records_t *chunks, uint64_t nchunks,
-                         photonmap_t *m, svet_error *err)
+/* Photon `index` of a light (photon_walk_fn, ctx the global medium,
+ * where it leaves its light). */
+static void trace_one(const render_t *r, const photon_emitters_t *em,
+                      uint64_t count, uint64_t index, void *ctx,
+                      photon_records_t *out)
 {
-    size_t total = 0;
-    for (uint64_t c = 0; c < nchunks; c++) {
-        if (chunks[c].failed)
-            return svet_error_set(err, SVET_ERR_NOMEM,
-                                  "volume photon tracing: out of memory");
-        total += chunks[c].n;
-    }
-    if (total == 0)
-        return SVET_OK;
-    svet_status st = photonmap_init(m, total, err);
-    if (st)
-        return st;
-    for (uint64_t c = 0; c < nchunks; c++)
-        for (size_t i = 0; i < chunks[c].n; i++) {
-            const record_t *rec = &chunks[c].r[i];
-            photonmap_store(m, rec->pos, rec->power, rec->dir, 0);
-        }
-    return photonmap_balance(m, err);
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 0, index);
+    ray_t ray;
+    RADIANCE power;
+    const COBJECT *from = NULL;
+    if (photon_emit(r, em, count, &g, &ray, &power, &from))
+        walk(r, &g, ray, power, ctx, from, 1, out);
 }
 
-svet_status volphoton_trace(const render_t *r, uint64_t count, int threads,
-                            photonmap_t *vol, photonmap_t *surf,
-                            svet_error *err)
+/* --- photons the media emit ----------------------------------------------- */
+
+/* Where the emitting media are: the box around every boundary with an
+ * emitting medium on a side other than the global one (whose emission
+ * fills all space: the march sees it, no photon carries it), its
+ * volume, and the global medium. */
+typedef struct {
+    bbox_t box;
+    real volume;
+    const medium_t *global;
+} emitting_t;
+
+static bool emitting_of(const render_t *r, emitting_t *e)
 {
-    memset(vol, 0, sizeof *vol);
-    memset(surf, 0, sizeof *surf);
-    vol->balanced = surf->balanced = true; /* empty maps find nothing */
-    if (count == 0 || r->lights.n == 0)
-        return SVET_OK;
-    uint64_t nchunks = (count + CHUNK - 1) / CHUNK;
-    if (nchunks > SIZE_MAX / (2 * sizeof(records_t)))
-        return svet_error_set(err, SVET_ERR_NOMEM, "volume photon tracing: "
-                              "%llu photons are too many",
-                              (unsigned long long)count);
-    photon_emitters_t em;
-    svet_status st = photon_emitters_build(&em, r, err);
-    if (st != SVET_OK)
-        return st;
-    records_t *chunks = calloc((size_t)(2 * nchunks), sizeof *chunks);
-    if (!chunks) {
-        photon_emitters_free(&em);
-        return svet_error_set(err, SVET_ERR_NOMEM,
-                              "volume photon tracing: out of memory");
+    const scene_t *s = r->scene;
+    e->global = medpart_global(s);
+    bbox_empty(&e->box);
+    bool any = false;
+    for (int i = 0; i < s->nobjects; i++) {
+        const COBJECT *o = s->objects[i];
+        const struct medium *side[2] = { o->inside, o->outside };
+        for (int k = 0; k < 2; k++)
+            if (side[k] && side[k]->m && side[k]->m != e->global &&
+                medium_emits(side[k]->m)) {
+                bbox_t b;
+                o->ops->bounds(o, -1, &b);
+                bbox_union(&e->box, &b);
+                any = true;
+            }
     }
-    const medium_t *global = medpart_global(r->scene);
+    e->volume = 1;
+    for (int a = 0; a < 3; a++)
+        e->volume *= e->box.max[a] - e->box.min[a];
+    return any && e->volume > 0 && isfinite(e->volume);
+}
+
+/* The medium at x: a ray from x along +z, through surfaces that are no
+ * boundary, to the first boundary, whose side it left (medpart.h's
+ * rule); no boundary: the global medium. NULL when caught between
+ * coincident surfaces. */
+static const medium_t *medium_at(const render_t *r, const VECTOR3 x,
+                                 const medium_t *global)
+{
+    ray_t ray;
+    memset(&ray, 0, sizeof ray);
+    vec_copy(ray.o, x);
+    ray.d[Z] = 1;
+    const COBJECT *skip[2] = { NULL, NULL };
+    for (int k = 0; k < VOLPATH_MAX_CROSSINGS; k++) {
+        hit_t h;
+        const COBJECT *obj = NULL;
+        if (!r->tracer.intersect(r->tracer.ctx, &ray, 0, (real)INFINITY,
+                                 skip, &h, &obj))
+            return global;
+        PATHPOINT pp;
+        cobject_fill(obj, &ray, &h, &pp);
+        if (obj->inside)
+            return SVECTOR3(ray.d, pp.ng) > 0 ? obj->inside->m
+                                              : obj->outside->m;
+        VECTOR3 d = { 0, 0, 1 };
+        ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, d);
+        skip[0] = obj;
+    }
+    return NULL;
+}
+
+/* Emitted photon `index` of `count`: a point x uniform in e's box, kept
+ * where its medium emits, leaving in a direction uniform over the sphere
+ * with the power 4 pi sigma_a(x) L_e V / count (V the box's volume; the
+ * source term's integral over volume and directions, each photon its
+ * share by the two uniform densities); stored from its first event. */
+static void emit_one(const render_t *r, const emitting_t *e, uint64_t count,
+                     uint64_t index, photon_records_t *out)
+{
+    pcg32_t g;
+    rng_for_sample(&g, r->scene->render.seed ^ VOLPHOTON_SEED_SALT, 1, index);
+    VECTOR3 x;
+    for (int a = 0; a < 3; a++)
+        x[a] = e->box.min[a] +
+               pcg32_real(&g) * (e->box.max[a] - e->box.min[a]);
+    real u[2] = { pcg32_real(&g), pcg32_real(&g) };
+    const medium_t *med = medium_at(r, x, e->global);
+    if (!med || med == e->global || !medium_emits(med))
+        return;
+    RADIANCE power = rad_scale(medium_source_at(med, x),
+                               4 * REAL_PI * e->volume / (real)count);
+    if (rad_is_black(power))
+        return;
+    ray_t ray;
+    memset(&ray, 0, sizeof ray);
+    vec_copy(ray.o, x);
+    sample_uniform_sphere(ray.d, u);
+    walk(r, &g, ray, power, med, NULL, 0, out);
+}
+
+/* The emitted photons' records, as photon_trace_records lays out the
+ * lights': list j of chunk c at (*lists)[j * *nchunks + c], each chunk
+ * walked by one thread, so that joined in chunk order they do not
+ * depend on the thread count. No emitting medium: *lists NULL. */
+static svet_status emission_records(const render_t *r, uint64_t count,
+                                    int threads, const char *what,
+                                    photon_records_t **lists,
+                                    uint64_t *nchunks, svet_error *err)
+{
+    *lists = NULL;
+    *nchunks = 0;
+    emitting_t e;
+    if (count == 0 || !emitting_of(r, &e))
+        return SVET_OK;
+    uint64_t nc = (count + PHOTON_CHUNK - 1) / PHOTON_CHUNK;
+    if (nc > SIZE_MAX / (2 * sizeof(photon_records_t)))
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: %llu photons are too "
+                              "many", what, (unsigned long long)count);
+    photon_records_t *l = calloc((size_t)(2 * nc), sizeof *l);
+    if (!l)
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", what);
 #ifdef _OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
 #else
     (void)threads;
 #endif
-    for (long long c = 0; c < (long long)nchunks; c++) {
-        uint64_t i0 = (uint64_t)c * CHUNK;
-        uint64_t i1 = i0 + CHUNK < count ? i0 + CHUNK : count;
+    for (long long c = 0; c < (long long)nc; c++) {
+        photon_records_t out[2];
+        memset(out, 0, sizeof out);
+        uint64_t i0 = (uint64_t)c * PHOTON_CHUNK;
+        uint64_t i1 = i0 + PHOTON_CHUNK < count ? i0 + PHOTON_CHUNK : count;
         for (uint64_t i = i0; i < i1; i++)
-            trace_one(r, &em, global, count, i, &chunks[c],
-                      &chunks[nchunks + (uint64_t)c]);
+            emit_one(r, &e, count, i, out);
+        l[c] = out[0];
+        l[nc + (uint64_t)c] = out[1];
     }
-    photon_emitters_free(&em);
-    st = build(chunks, nchunks, vol, err);
+    *lists = l;
+    *nchunks = nc;
+    return SVET_OK;
+}
+
+/* Store list `j` (0: volume, 1: surface) of the lights' records and then
+ * the media's into m. */
+static svet_status store(const photon_records_t *lights, uint64_t nl,
+                         const photon_records_t *media, uint64_t nm, int j,
+                         const char *what, photonmap_t *m, svet_error *err)
+{
+    if (nm == 0)
+        return photon_records_store(lights + j * nl, nl, 0, what, m, err);
+    photon_records_t *all = malloc((size_t)(nl + nm) * sizeof *all);
+    if (!all)
+        return svet_error_set(err, SVET_ERR_NOMEM, "%s: out of memory", what);
+    for (uint64_t c = 0; c < nl; c++)
+        all[c] = lights[j * nl + c];
+    for (uint64_t c = 0; c < nm; c++)
+        all[nl + c] = media[j * nm + c];
+    svet_status st = photon_records_store(all, nl + nm, 0, what, m, err);
+    free(all); /* the records themselves stay with their lists */
+    return st;
+}
+
+svet_status volphoton_trace(const render_t *r, uint64_t count, int threads,
+                            photonmap_t *vol, photonmap_t *surf,
+                            svet_error *err)
+{
+    static const char what[] = "volume photon tracing";
+    memset(vol, 0, sizeof *vol);
+    memset(surf, 0, sizeof *surf);
+    vol->balanced = surf->balanced = true; /* empty maps find nothing */
+    /* the chunked walk of photon.h: list 0 of every chunk the volume
+     * map's records, list 1 the surface map's, each joined in chunk
+     * order, so the maps do not depend on the thread count; then the
+     * photons the media emit, in the same layout */
+    photon_records_t *lists = NULL, *emitted = NULL;
+    uint64_t nchunks = 0, nemitted = 0;
+    svet_status st = photon_trace_records(r, count, threads, 2, trace_one,
+                                          (void *)medpart_global(r->scene),
+                                          what, &lists, &nchunks, err);
     if (st == SVET_OK)
-        st = build(chunks + nchunks, nchunks, surf, err);
-    for (uint64_t c = 0; c < 2 * nchunks; c++)
-        free(chunks[c].r);
-    free(chunks);
+        st = emission_records(r, count, threads, what, &emitted, &nemitted,
+                              err);
+    if (st == SVET_OK)
+        st = store(lists, nchunks, emitted, nemitted, 0, what, vol, err);
+    if (st == SVET_OK)
+        st = store(lists, nchunks, emitted, nemitted, 1, what, surf, err);
+    photon_records_free(lists, 2 * nchunks);
+    photon_records_free(emitted, 2 * nemitted);
     if (st != SVET_OK) {
         photonmap_free(vol);
         photonmap_free(surf);

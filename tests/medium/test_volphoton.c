@@ -5,7 +5,10 @@
  * k/(k-1) times the density; the medium furnace (an albedo-1 sphere
  * under an environment of radiance 1 renders 1 in every pixel, within
  * the estimator's bias bound and noise) for g = -0.5, 0 and 0.8; the
- * smoky box against volumetric path tracing by region means; maps and
+ * fixed-radius estimate's bias on photons of a quadratic density against
+ * its closed form a R^2 / 5, growing with the radius R; the smoky box
+ * and a glowing sphere (photons the medium emits) against volumetric
+ * path tracing by region means; maps and
  * images the same bits for 1 and 2 threads; the statement's messages.
  */
 #include "testutil.h"
@@ -100,6 +103,81 @@ START_TEST(the_volume_estimate_on_uniform_photons_is_k_over_k_minus_1)
                   mean, exact, tol);
     /* and it is not the estimate without the k/(k-1) factor */
     ck_assert(tol < exact / (k - 1));
+    photonmap_free(&m);
+}
+END_TEST
+
+/* N photons of power 1/N in the unit cube with density in z proportional
+ * to 1 + a (z - 1/2)^2 (its mean over [0, 1] is 1 + a/12), directions
+ * uniform over the sphere, isotropic phase: the estimate with r fixed at
+ * rmax (k above any count in the ball) averages the density over the
+ * ball, so its mean at a point of z = 1/2 is
+ *   n0 (1 + a R^2 / 5) / (4 pi),   n0 = N / (1 + a/12)
+ * (the mean of (z - 1/2)^2 over a ball of radius R is R^2 / 5): a bias
+ * of a R^2 / 5 of the answer n0 / (4 pi) there, growing as the radius
+ * squared. The count in a ball is Poisson (N large) with mean c = n0 (4/3)
+ * pi R^3 (1 + a R^2 / 5); over M points whose balls are disjoint the
+ * mean's relative standard deviation is 1 / sqrt(M c), and the tolerance
+ * 4 of those. At the two larger radii the bias is more than 4 of them
+ * (checked), so an estimate without it, or with another volume, fails. */
+START_TEST(the_volume_estimates_bias_grows_as_the_radius_squared)
+{
+    const size_t n = 240000;
+    const double a = 48, PI_D = 3.14159265358979323846;
+    photonmap_t m;
+    svet_error e;
+    ck_assert_int_eq(photonmap_init(&m, n, &e), SVET_OK);
+    pcg32_t g;
+    rng_for_sample(&g, 12, 0, 0);
+    RADIANCE power = rad_grey(REAL_C(1.0) / (real)n);
+    for (size_t i = 0; i < n; i++) {
+        /* z by rejection under the density's largest value, 1 + a/4 */
+        real z;
+        do
+            z = pcg32_real(&g);
+        while (!((double)pcg32_real(&g) * (1 + a / 4) <
+                 1 + a * (double)((z - REAL_C(0.5)) * (z - REAL_C(0.5)))));
+        VECTOR3 p = { pcg32_real(&g), pcg32_real(&g), z };
+        real c = 1 - 2 * pcg32_real(&g), phi = 2 * REAL_PI * pcg32_real(&g);
+        real sn = sqrt(real_max(0, 1 - c * c));
+        VECTOR3 d = { sn * cos(phi), sn * sin(phi), c };
+        ck_assert(photonmap_store(&m, p, power, d, 0));
+    }
+    ck_assert_int_eq(photonmap_balance(&m, &e), SVET_OK);
+    medium_t med = medium_homogeneous(rad_grey(0), rad_grey(1));
+    const VECTOR3 dir = { 0, 0, 1 };
+    /* the flux density n0 P / (4 pi), P = 1 / N the photons' power */
+    const double n0 = (double)n / (1 + a / 12);
+    const double answer = n0 / (double)n / (4 * PI_D);
+    static const double radii[3] = { 0.05, 0.1, 0.15 };
+    double measured[3];
+    for (int ri = 0; ri < 3; ri++) {
+        const double R = radii[ri];
+        /* points 2R apart on z = 1/2, their balls inside the cube */
+        double sum = 0;
+        int pts = 0;
+        for (double x = R; x <= 1 - R + 1e-9; x += 2 * R)
+            for (double y = R; y <= 1 - R + 1e-9; y += 2 * R) {
+                VECTOR3 q = { (real)x, (real)y, REAL_C(0.5) };
+                RADIANCE L = volphoton_radiance(&m, &med, q, dir,
+                                                PHOTON_MAX_K, (real)R);
+                sum += (double)L.g;
+                pts++;
+            }
+        double bias = a * R * R / 5;
+        double count = n0 * 4.0 / 3 * PI_D * R * R * R * (1 + bias);
+        ck_assert(count < 0.85 * PHOTON_MAX_K); /* r stays rmax */
+        double rel_sd = 1 / sqrt(pts * count);
+        measured[ri] = sum / pts / answer - 1;
+        ck_assert_msg(fabs(measured[ri] - bias) < 4 * rel_sd,
+                      "R = %g: relative bias %g, expected a R^2 / 5 = %g "
+                      "(tol %g, %d points)", R, measured[ri], bias,
+                      4 * rel_sd, pts);
+        if (ri > 0)
+            ck_assert(bias > 4 * rel_sd);
+    }
+    /* and it falls as the radius shrinks */
+    ck_assert(measured[2] > measured[1] && measured[1] > measured[0]);
     photonmap_free(&m);
 }
 END_TEST
@@ -313,6 +391,50 @@ START_TEST(the_smoky_box_agrees_with_volpath)
 }
 END_TEST
 
+/* A glowing sphere (sigma_a 0.5, sigma_s 1.5, emission L_e per channel,
+ * HG g 0.3) with no light: the radiance seen is its emission along the
+ * camera ray plus that emission scattered once or more, which only the
+ * photons the medium emits carry. Against volumetric path tracing by
+ * region means, as the smoky box; the sphere's regions must be tight
+ * (standard deviation below 5 per cent of the mean) for the test to see
+ * the scattered part, about half of the radiance at the centre. */
+#define GLOW(method, spp, seed) \
+    "camera position 0 0 4 target 0 0 0 fov 32 width 16 height 16\n" \
+    "render spp " spp " maxdepth 100 integrator " method " seed " seed "\n" \
+    "material black lambert rho 0\n" \
+    "medium glow homogeneous sigma_a 0.5 sigma_s 1.5 emission 1 0.5 2 " \
+    "phase hg g 0.3\n" \
+    "sphere centre 0 0 0 radius 1 material black medium glow invisible\n" \
+    "volphoton photons 400000 k 50 max_radius 0.06 step 0.05\n"
+START_TEST(an_emitting_medium_agrees_with_volpath)
+{
+    image_t r1, r2, a, b;
+    render_text(GLOW("volpath", "256", "1"), 0, &r1, NULL);
+    render_text(GLOW("volpath", "256", "2"), 0, &r2, NULL);
+    render_text(GLOW("volphoton", "16", "1"), 0, &a, NULL);
+    render_text(GLOW("volphoton", "16", "2"), 0, &b, NULL);
+    int tight = 0;
+    for (int ch = 0; ch < 3; ch++) {
+        double mr[NREGION], vr[NREGION], mp[NREGION], vp[NREGION];
+        region_means(&r1, &r2, ch, mr, vr);
+        region_means(&a, &b, ch, mp, vp);
+        for (int i = 0; i < NREGION; i++) {
+            double sd = sqrt(vr[i] + vp[i]);
+            ck_assert_msg(fabs(mp[i] - mr[i]) < 4 * sd,
+                          "channel %d, region %d: volphoton %g, volpath %g "
+                          "(sd %g)", ch, i, mp[i], mr[i], sd);
+            tight += sd < 0.05 * mr[i];
+        }
+    }
+    /* the four central regions at least, in every channel */
+    ck_assert_int_ge(tight, 3 * 4);
+    image_free(&r1);
+    image_free(&r2);
+    image_free(&a);
+    image_free(&b);
+}
+END_TEST
+
 /* --- determinism and the statement ----------------------------------------- */
 
 /* Photon i draws from its own stream and the chunks join in order; the
@@ -394,8 +516,10 @@ Suite *test_suite(void)
     tcase_set_timeout(tc, 300);
     tcase_add_test(tc,
                    the_volume_estimate_on_uniform_photons_is_k_over_k_minus_1);
+    tcase_add_test(tc, the_volume_estimates_bias_grows_as_the_radius_squared);
     tcase_add_test(tc, a_scattering_sphere_in_a_furnace_renders_one);
     tcase_add_test(tc, the_smoky_box_agrees_with_volpath);
+    tcase_add_test(tc, an_emitting_medium_agrees_with_volpath);
     tcase_add_test(tc, one_thread_and_two_give_the_same_bits);
     tcase_add_test(tc, bad_volphoton_keys_name_file_and_line);
     suite_add_tcase(s, tc);
