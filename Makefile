@@ -500,8 +500,9 @@ ab-render: $(BUILD)/svet
 # `make bench-scale [SCALE_SPP=4096] [THREADS=2] [SCALE_SCENE=F]
 # [SCALE_OPTS="--set integrator=irradiance"]`: the Cornell box (or F)
 # split into 2, 4 and 8 parts by samples and merged, against one render
-# (tools/bench-scale.sh; bench/results/scale.md). At 4096 samples it
-# needs an otherwise idle machine: rates are what it measures.
+# (tools/bench-scale.sh; bench/results/scale.md), in wall and CPU
+# seconds (/usr/bin/time): on a shared machine the CPU ratio is the one
+# that measures the split.
 .PHONY: bench-scale
 bench-scale: $(BUILD)/svet
 	sh tools/bench-scale.sh $(BUILD)/svet $(or $(SCALE_SPP),4096) \
