@@ -509,6 +509,16 @@ bench-scale: $(BUILD)/svet
 	    $(or $(THREADS),2) $(or $(SCALE_SCENE),scenes/cbox.scn) \
 	    "$(SCALE_OPTS)"
 
+# `make bench-prepass [PREPASS_SPP=16] [THREADS=2]`: the set-up and
+# sampling seconds of the three pre-pass scenes (photon maps, irradiance
+# cache, volume photon map) and what N parts cost with the pre-pass
+# repeated in every part or computed once (tools/bench-prepass.sh;
+# bench/results/scale.md).
+.PHONY: bench-prepass
+bench-prepass: $(BUILD)/svet
+	sh tools/bench-prepass.sh $(BUILD)/svet $(or $(PREPASS_SPP),16) \
+	    $(or $(THREADS),2)
+
 # `make slurm-check`: a one-node Slurm on this machine runs
 # tools/slurm/*.sbatch and the merge is compared with a single render
 # (tools/slurm-check.sh; needs slurm-wlm and munge; not in CI).

@@ -73,8 +73,9 @@ void cmd_render_help(FILE *f)
 "  -h, --help              this text\n"
 "\n"
 "Progress with an ETA goes to stderr when it is a terminal; otherwise one\n"
-"summary line (time, set-up time: acceleration structure and a method's\n"
-"pre-pass, samples per second, rays per second) at the end.\n"
+"summary line (wall and CPU seconds of the sampling and of the set-up:\n"
+"acceleration structure and a method's pre-pass; samples per second, rays\n"
+"per second) at the end.\n"
 "The image depends only on the scene, the seed and the sample count: the\n"
 "same for any number of threads or passes.\n"
 "\n"
@@ -553,7 +554,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         goto done;
     /* the set-up's time (acceleration structure, lights, a method's
      * pre-pass) is in the summary: every part of a split render pays it */
-    const double t_setup = cmd_now();
+    const double t_setup = cmd_now(), c_setup = cmd_cpu_now();
     if (scene_validate(scene, &err) != SVET_OK ||
         render_init(&r, scene, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);
@@ -562,6 +563,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
     }
     r_live = true;
     const double setup_secs = cmd_now() - t_setup;
+    const double setup_cpu = cmd_cpu_now() - c_setup;
     if (scene->render.subsample_step > 0 &&
         (o->part || o->checkpoint || o->resume)) {
         /* app. F refines on every pixel's final value: a part of the
@@ -659,6 +661,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
                       o->part || o->checkpoint ? &part : NULL };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
                       !o->quiet && isatty(STDERR_FILENO) };
+    const double c_sampling = cmd_cpu_now();
     bool interrupted = false;
     long written = o->resume ? -1 : first; /* the samples on disk */
     for (long k = 1; k <= npass; k++) {
@@ -693,6 +696,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         }
     }
     double secs = cmd_now() - pr.t0;
+    double cpu_secs = cmd_cpu_now() - c_sampling;
     if (pr.tty)
         fputc('\n', stderr);
     if (r.spp_done == first && !o->resume) {
@@ -713,12 +717,16 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
     if (!o->quiet) {
         double samples = (double)r.spp_done * (double)scene->camera.width *
                          (double)scene->camera.height;
+        /* CPU seconds (all threads) beside wall seconds: on a shared
+         * machine they count only this process's work */
         fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s "
-                        "after %.2f s of set-up: %.3g "
+                        "(%.2f CPU-s) after %.2f s (%.2f CPU-s) of "
+                        "set-up: %.3g "
                         "samples/s, %.3g rays/s; %s%s%s; wrote %s and "
                         "%s%s%s\n",
                 scene_path, scene->camera.width, scene->camera.height,
-                r.spp_done, secs, setup_secs, samples / secs,
+                r.spp_done, secs, cpu_secs, setup_secs, setup_cpu,
+                samples / secs,
                 (double)r.stats.rays / secs,
                 r.method ? r.method->describe : "", r.method ? "; " : "",
                 r.accel_choice, exr, png,
