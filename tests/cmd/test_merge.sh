@@ -109,7 +109,45 @@ grep -qx "exr float" $T/m2.exr.part || no "a float part file is not float"
     no "the merged --half EXR is not smaller than the float one"
 $S merge $T/hm.exr -o $T/hmm.exr || no "merge of a merged --half image"
 cmp -s $T/hfull.exr $T/hmm.exr || no "a merge of the --half merge differs"
-refuse "half and float parts" "one EXR is half, the other float" merge $T/h0.exr $T/p2-1.exr -o $T/x.exr
+# --half changes the EXR's pixel type only: a --half part holds the sums
+# of the float part of the same samples (the float merge above is the
+# single render's), its header but the 'exr' line the same
+$S render $A --samples 0:5 -o $T/f0.exr || no "float part 0:5"
+sed -n '7p' $T/f0.exr.part | grep -qx "exr float" || no "line 7 of a float part is not 'exr float'"
+sed '7d' $T/h0.exr.part > $T/h0.body; sed '7d' $T/f0.exr.part > $T/f0.body
+cmp -s $T/h0.body $T/f0.body || no "a --half part's sums are not the float part's"
+# the comparisons above can fail: a half merge of wrong sums (the colour
+# sums of pixel (20, 15) zeroed in one part), and half parts relabelled
+# float, differ from the single --half render; relabelled they are the
+# float render's bytes
+awk 'NR == 8 + 15 * 40 + 20 { $1 = 0; $2 = 0; $3 = 0 } { print }' \
+    $T/h1.exr.part > $T/hz.exr.part; cp $T/h1.exr $T/hz.exr
+$S merge $T/h0.exr $T/hz.exr -o $T/hzm.exr || no "merge of a --half part with a zeroed pixel"
+cmp -s $T/hfull.exr $T/hzm.exr && no "a --half merge of a zeroed pixel has the single render's bytes"
+for k in 0 1; do
+    sed '7s/^exr half$/exr float/' $T/h$k.exr.part > $T/hf$k.exr.part
+    cp $T/h$k.exr $T/hf$k.exr
+done
+$S merge $T/hf0.exr $T/hf1.exr -o $T/hfm.exr || no "merge of --half parts relabelled float"
+cmp -s $T/hfull.exr $T/hfm.exr && no "half parts relabelled float merge to the --half render's bytes"
+cmp -s $T/full.exr $T/hfm.exr || no "half parts relabelled float: not the float render's bytes"
+# mixing half and float parts is refused whichever comes first, naming
+# both files, and writes nothing; so is a pixel type that is neither
+nothing() { # WHAT: no x.exr, x.png or x.exr.part left by a refusal
+    for e in .exr .png .exr.part; do
+        [ -e $T/x$e ] && no "$1: wrote x$e"
+    done
+}
+rm -f $T/x.exr $T/x.png $T/x.exr.part
+refuse "half and float parts" "h0.exr and .*p2-1.exr: one EXR is half, the other float" merge $T/h0.exr $T/p2-1.exr -o $T/x.exr
+nothing "half and float parts"
+refuse "float and half parts" "p2-0.exr and .*h1.exr: one EXR is half, the other float" merge $T/p2-0.exr $T/h1.exr -o $T/x.exr
+nothing "float and half parts"
+refuse "a merged --half image and a float part" "one EXR is half, the other float" merge $T/hm.exr $T/f0.exr -o $T/x.exr
+nothing "a merged --half image and a float part"
+sed '7s/^exr half$/exr quarter/' $T/h1.exr.part > $T/hq.exr.part; cp $T/h1.exr $T/hq.exr
+refuse "an unknown pixel type" "no 'exr half' or 'exr float' line" merge $T/h0.exr $T/hq.exr -o $T/x.exr
+nothing "an unknown pixel type"
 refuse "a gap" "samples 4:9 of pixel (0, 0) are missing" merge $T/p3-0.exr $T/p3-2.exr -o $T/x.exr
 refuse "an overlap" "overlap another part" merge $T/p2-0.exr $T/p2-0.exr -o $T/x.exr
 refuse "a missing crop" "pixel (20, 0) is in no part" merge $T/c0:20,0:15.exr -o $T/x.exr
