@@ -4,8 +4,12 @@
  * (PNG, ch. 6) side by side. SIGINT or SIGTERM abandons the current pass
  * within a tile's work and writes the last whole one (the image of that
  * many samples); a second signal ends the program at once. An animation
- * (animation.h) renders frame by frame, each to its own files.
- * Tests: tests/cmd/test_cmd_render.c, tests/cmd/test_frames.sh
+ * (animation.h) renders frame by frame, each to its own files. A part of
+ * a split render (--samples, --crop) writes its exact sums for svet merge,
+ * and photon's maps can be saved once and read by every part
+ * (--save-prepass, --load-prepass).
+ * Tests: tests/cmd/test_cmd_render.c, tests/cmd/test_frames.sh,
+ * tests/cmd/test_merge.sh
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>

@@ -5,8 +5,10 @@
  * `photon` (direct light by ch. 5's light sampling, caustics from the
  * caustic map, indirect diffuse light by final gathering from the global
  * map, optionally from irradiance precomputed at a subset of its photons,
- * Christensen 1999; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011).
- * Tests: tests/photon/test_photon.c
+ * Christensen 1999; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011);
+ * photon's maps saved to a file and read back for split renders.
+ * Tests: tests/photon/test_photon.c; the saved maps:
+ * tests/cmd/test_merge.sh
  */
 #include "photon/photon.h"
 

@@ -3,8 +3,10 @@
  * pass abandoned and undone when asked (render_pass_until: Ctrl-C), and
  * the camera rays of 8 x 8 pixels given to the tracer at once where it
  * takes packets (the grids of ch. 7: chapters/ch07/README.md), and the
- * pass of app. F's subsampling through the program's subsample_ops.
- * Tests: tests/render/test_render.c, tests/render/test_subsample.c
+ * pass of app. F's subsampling through the program's subsample_ops; a
+ * method's pre-pass computed or read from a file (render_init_prepass).
+ * Tests: tests/render/test_render.c, tests/render/test_subsample.c,
+ * tests/cmd/test_merge.sh (the saved pre-pass)
  */
 #include "render/render.h"
 
