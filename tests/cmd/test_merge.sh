@@ -107,14 +107,16 @@ $S render $P --samples 1:4 -o $T/s3.exr || no "photon part 1:4"
 $S render $P --samples 1:4 --load-prepass $T/maps -o $T/s4.exr || no "--load-prepass part 1:4"
 cmp -s $T/s3.exr.part $T/s4.exr.part || no "a part of the saved pre-pass differs from one that traced it"
 # refusals: another seed's or setting's scene, a file that is not a
-# pre-pass or is cut short, a method without a saved pre-pass, both
-# options at once; none writes an image
+# pre-pass, is cut short or is of another real type, a method without a
+# saved pre-pass, both options at once; none writes an image
 rm -f $T/x.exr $T/x.png $T/x.exr.part
 refuse "a pre-pass of another seed" "the pre-pass of another scene, seed or settings" render $P --seed 5 --load-prepass $T/maps -o $T/x.exr
 refuse "a pre-pass of another setting" "the pre-pass of another scene, seed or settings" render $P --set maxdepth=3 --load-prepass $T/maps -o $T/x.exr
 refuse "a part file as a pre-pass" "not a pre-pass file" render $P --load-prepass $T/s0.exr.part -o $T/x.exr
 head -c 5000 $T/maps > $T/cutmaps
 refuse "a truncated pre-pass" "cutmaps: a photon map of [0-9]* photons truncated" render $P --load-prepass $T/cutmaps -o $T/x.exr
+sed '3s/^real .*/real quad/' $T/maps > $T/quadmaps
+refuse "a pre-pass of another real type" "a pre-pass of a quad build, this one is" render $P --load-prepass $T/quadmaps -o $T/x.exr
 sed '4s/.*/photon maps 2/' $T/maps > $T/twomaps
 refuse "a pre-pass of another layout" "not the pre-pass of integrator photon" render $P --load-prepass $T/twomaps -o $T/x.exr
 refuse "ppm's pre-pass" "integrator ppm does not save its pre-pass" render $P --set integrator=ppm --load-prepass $T/maps -o $T/x.exr
