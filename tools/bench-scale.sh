@@ -70,7 +70,7 @@ s1=$(single 1) && [ -n "$s1" ] || exit 1
 cmp -s $T/full0.exr $T/full1.exr || { echo "bench-scale: the two single renders differ" >&2; exit 1; }
 echo "| parts | wall s (parts + merge) | over the single, wall | CPU s (parts + merge) | over the single, CPU | merge wall s | merge CPU s | bytes of one part file | merged = single | load average (1 min) at start, end |"
 echo "|---:|---:|---:|---:|---:|---:|---:|---:|:---|:---|"
-echo "$s0 $s1 $l0 $l1" | awk '{ printf "| 1 (single render, mean of %s / %s CPU s before and %s / %s after) | %.2f | 1 | %.2f | 1 | | | | | %s, %s |\n", $1, $2, $3, $4, ($1 + $3) / 2, ($2 + $4) / 2, $5, $6 }'
+echo "$s0 $s1 $l0 $l1" | awk '{ printf "| 1 (single render, mean of %s s / %s CPU-s before and %s s / %s CPU-s after) | %.2f | 1 | %.2f | 1 | | | | | %s, %s |\n", $1, $2, $3, $4, ($1 + $3) / 2, ($2 + $4) / 2, $5, $6 }'
 printf '%s' "$rows" | awk -v sw=$(echo "$s0 $s1" | awk '{ print ($1 + $3) / 2 }') \
     -v sc=$(echo "$s0 $s1" | awk '{ print ($2 + $4) / 2 }') '{
     w = $2 + $4; c = $3 + $5
