@@ -502,13 +502,24 @@ ab-render: $(BUILD)/svet
 # `make bench-scale [SCALE_SPP=4096] [THREADS=2] [SCALE_SCENE=F]
 # [SCALE_OPTS="--set integrator=irradiance"]`: the Cornell box (or F)
 # split into 2, 4 and 8 parts by samples and merged, against one render
-# (tools/bench-scale.sh; bench/results/scale.md). At 4096 samples it
-# needs an otherwise idle machine: rates are what it measures.
+# (tools/bench-scale.sh; bench/results/scale.md), in wall and CPU
+# seconds (/usr/bin/time): on a shared machine the CPU ratio is the one
+# that measures the split.
 .PHONY: bench-scale
 bench-scale: $(BUILD)/svet
 	sh tools/bench-scale.sh $(BUILD)/svet $(or $(SCALE_SPP),4096) \
 	    $(or $(THREADS),2) $(or $(SCALE_SCENE),scenes/cbox.scn) \
 	    "$(SCALE_OPTS)"
+
+# `make bench-prepass [PREPASS_SPP=16] [THREADS=2]`: the set-up and
+# sampling seconds of the three pre-pass scenes (photon maps, irradiance
+# cache, volume photon map) and what N parts cost with the pre-pass
+# repeated in every part or computed once (tools/bench-prepass.sh;
+# bench/results/scale.md).
+.PHONY: bench-prepass
+bench-prepass: $(BUILD)/svet
+	sh tools/bench-prepass.sh $(BUILD)/svet $(or $(PREPASS_SPP),16) \
+	    $(or $(THREADS),2)
 
 # `make slurm-check`: a one-node Slurm on this machine runs
 # tools/slurm/*.sbatch and the merge is compared with a single render

@@ -45,6 +45,8 @@ typedef struct {
     int crop[4];                 /* --crop X0:X1,Y0:Y1 */
     bool cropped, part;          /* --crop given; --crop or --samples */
     bool resume;                 /* --resume */
+    const char *save_prepass;    /* --save-prepass FILE, or NULL */
+    const char *load_prepass;    /* --load-prepass FILE, or NULL */
     long frame_a, frame_b;       /* --frame K (K:K+1) or --frames A:B, the
                                     frames A..B-1; frame_b 0: not given */
     bool frames_range;           /* the frames came as --frames A:B */

@@ -4,8 +4,12 @@
  * (PNG, ch. 6) side by side. SIGINT or SIGTERM abandons the current pass
  * within a tile's work and writes the last whole one (the image of that
  * many samples); a second signal ends the program at once. An animation
- * (animation.h) renders frame by frame, each to its own files.
- * Tests: tests/cmd/test_cmd_render.c, tests/cmd/test_frames.sh
+ * (animation.h) renders frame by frame, each to its own files. A part of
+ * a split render (--samples, --crop) writes its exact sums for svet merge,
+ * and photon's maps can be saved once and read by every part
+ * (--save-prepass, --load-prepass).
+ * Tests: tests/cmd/test_cmd_render.c, tests/cmd/test_frames.sh,
+ * tests/cmd/test_merge.sh
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
@@ -66,6 +70,11 @@ void cmd_render_help(FILE *f)
 "      --frames A:B        of an animation: frames A..B-1 (default: all)\n"
 "      --frame-count       print the number of frames (0: no animation)\n"
 "      --half              write the EXR as half floats (default: float)\n"
+"      --save-prepass FILE write the photon maps (integrator photon) to FILE\n"
+"      --load-prepass FILE read them from FILE instead of tracing them: the\n"
+"                          same bits; FILE must be of the same scene, seed\n"
+"                          and settings, from a build of the same real\n"
+"                          type (float, double), else it is refused\n"
 "      --set KEY=VALUE     any scene setting, as scenefile_override() takes:\n"
 "                          maxdepth, integrator, roulette, accel, tonemap, ...\n"
 "      --strict            refuse a scene that reading warns about (exit 2)\n"
@@ -73,8 +82,9 @@ void cmd_render_help(FILE *f)
 "  -h, --help              this text\n"
 "\n"
 "Progress with an ETA goes to stderr when it is a terminal; otherwise one\n"
-"summary line (time, set-up time: acceleration structure and a method's\n"
-"pre-pass, samples per second, rays per second) at the end.\n"
+"summary line (wall and CPU seconds of the sampling and of the set-up:\n"
+"acceleration structure and a method's pre-pass; samples per second, rays\n"
+"per second) at the end.\n"
 "The image depends only on the scene, the seed and the sample count: the\n"
 "same for any number of threads or passes.\n"
 "\n"
@@ -369,6 +379,8 @@ static const cmd_option_t options[] = {
     { "--frame", NULL, true, CMD_CALL, 0, opt_frames },
     { "--frames", NULL, true, CMD_CALL, 0, opt_frames },
     { "--frame-count", NULL, false, CMD_SET_TRUE, AT(frame_count), NULL },
+    { "--save-prepass", NULL, true, CMD_SET_FILE, AT(save_prepass), NULL },
+    { "--load-prepass", NULL, true, CMD_SET_FILE, AT(load_prepass), NULL },
     { NULL, NULL, false, CMD_SET_TRUE, 0, NULL }
 };
 #undef AT
@@ -513,6 +525,89 @@ static int frame_names(const cmd_render_args_t *o, const scene_t *s, int k,
     return rc;
 }
 
+/* The first lines of a saved pre-pass: what it is of (cmd_part_identity)
+ * and the build's real type, whose tracing made it */
+#define PREPASS_HEAD "svet-prepass 1\nidentity %016llx\nreal %s\n"
+
+/* --save-prepass, --load-prepass: refused for an animation (each frame
+ * has a pre-pass of its own) and together; for --load-prepass the file
+ * opened at its pre-pass in *pre, once its identity and real type are
+ * the scene's. The exit code. */
+static int prepass_check(const cmd_render_args_t *o, const scene_t *scene,
+                         int frame, FILE **pre)
+{
+    svet_error err;
+    svet_error_clear(&err);
+    if (o->load_prepass && o->save_prepass)
+        return cmd_error("render", SVET_EXIT_USAGE, "--save-prepass and "
+                         "--load-prepass: one of them at a time");
+    if (frame >= 0)
+        return cmd_error("render", SVET_EXIT_USAGE, "%s: an animation: "
+                         "--save-prepass and --load-prepass take one "
+                         "frame's scene", o->scene);
+    if (render_check_prepass(scene, &err) != SVET_OK)
+        return cmd_error("render", SVET_EXIT_USAGE, "%s", err.msg);
+    if (!o->load_prepass)
+        return SVET_EXIT_OK;
+    unsigned long long id, fid;
+    char real_name[16];
+    if (cmd_part_identity(o->scene, scene, &o->so, &id, &err) != SVET_OK)
+        return cmd_error("render", SVET_EXIT_INPUT, "%s", err.msg);
+    FILE *f;
+    if (fileio_open_read(o->load_prepass, &f, &err) != SVET_OK)
+        return cmd_error("render", SVET_EXIT_INPUT, "%s", err.msg);
+    if (fscanf(f, "svet-prepass 1 identity %llx real %15s", &fid,
+               real_name) != 2 || fgetc(f) != '\n') {
+        fclose(f);
+        return cmd_error("render", SVET_EXIT_INPUT, "%s: not a pre-pass "
+                         "file of svet render --save-prepass",
+                         o->load_prepass);
+    }
+    if (fid != id) {
+        fclose(f);
+        return cmd_error("render", SVET_EXIT_USAGE, "%s: the pre-pass of "
+                         "another scene, seed or settings (identity "
+                         "%016llx, this scene's %016llx); nothing was "
+                         "written", o->load_prepass, fid, id);
+    }
+    if (strcmp(real_name, REAL_NAME)) {
+        fclose(f);
+        return cmd_error("render", SVET_EXIT_USAGE, "%s: a pre-pass of a "
+                         "%s build, this one is %s; nothing was written",
+                         o->load_prepass, real_name, REAL_NAME);
+    }
+    *pre = f;
+    return SVET_EXIT_OK;
+}
+
+/* --save-prepass: r's pre-pass to the file, replaced only when whole */
+static int prepass_save(const cmd_render_args_t *o, const scene_t *scene,
+                        const render_t *r)
+{
+    svet_error err;
+    svet_error_clear(&err);
+    unsigned long long id;
+    if (cmd_part_identity(o->scene, scene, &o->so, &id, &err) != SVET_OK)
+        return cmd_error("render", SVET_EXIT_INPUT, "%s", err.msg);
+    fileio_t out;
+    if (fileio_begin(&out, o->save_prepass, &err) != SVET_OK)
+        return cmd_error("render", SVET_EXIT_OUTPUT, "%s", err.msg);
+    svet_status st = SVET_OK;
+    if (fprintf(out.f, PREPASS_HEAD, id, REAL_NAME) < 0)
+        st = svet_error_set(&err, SVET_ERR_IO, "a write failed");
+    if (st == SVET_OK)
+        st = render_save_prepass(r, out.f, &err);
+    if (st != SVET_OK) {
+        fileio_abort(&out);
+        return cmd_error("render", st == SVET_ERR_UNSUPPORTED
+                         ? SVET_EXIT_USAGE : SVET_EXIT_OUTPUT, "%s: %s",
+                         o->save_prepass, err.msg);
+    }
+    if (fileio_commit(&out, &err) != SVET_OK)
+        return cmd_error("render", SVET_EXIT_OUTPUT, "%s", err.msg);
+    return SVET_EXIT_OK;
+}
+
 /* Render the loaded scene (frame `frame` of its animation, or -1) to the
  * outputs o names, expanded for the frame; the exit code. */
 static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
@@ -553,15 +648,34 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         goto done;
     /* the set-up's time (acceleration structure, lights, a method's
      * pre-pass) is in the summary: every part of a split render pays it */
-    const double t_setup = cmd_now();
-    if (scene_validate(scene, &err) != SVET_OK ||
-        render_init(&r, scene, &err) != SVET_OK) {
+    const double t_setup = cmd_now(), c_setup = cmd_cpu_now();
+    if (scene_validate(scene, &err) != SVET_OK) {
         fprintf(stderr, "svet render: %s: %s\n", scene_path, err.msg);
         rc = SVET_EXIT_INPUT;
         goto done;
     }
+    FILE *pre = NULL;
+    if (o->load_prepass || o->save_prepass) {
+        rc = prepass_check(o, scene, frame, &pre);
+        if (rc != SVET_EXIT_OK)
+            goto done;
+    }
+    const bool loaded = pre != NULL;
+    svet_status ist = render_init_prepass(&r, scene, pre, &err);
+    if (pre)
+        fclose(pre);
+    if (ist != SVET_OK) {
+        fprintf(stderr, "svet render: %s: %s%s%s\n", scene_path,
+                loaded ? o->load_prepass : "", loaded ? ": " : "", err.msg);
+        rc = SVET_EXIT_INPUT;
+        goto done;
+    }
     r_live = true;
+    if (o->save_prepass &&
+        (rc = prepass_save(o, scene, &r)) != SVET_EXIT_OK)
+        goto done;
     const double setup_secs = cmd_now() - t_setup;
+    const double setup_cpu = cmd_cpu_now() - c_setup;
     if (scene->render.subsample_step > 0 &&
         (o->part || o->checkpoint || o->resume)) {
         /* app. F refines on every pixel's final value: a part of the
@@ -659,6 +773,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
                       o->part || o->checkpoint ? &part : NULL };
     progress_t pr = { cmd_now(), 0, 0, npass, 0, 0, total,
                       !o->quiet && isatty(STDERR_FILENO) };
+    const double c_sampling = cmd_cpu_now();
     bool interrupted = false;
     long written = o->resume ? -1 : first; /* the samples on disk */
     for (long k = 1; k <= npass; k++) {
@@ -693,6 +808,7 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
         }
     }
     double secs = cmd_now() - pr.t0;
+    double cpu_secs = cmd_cpu_now() - c_sampling;
     if (pr.tty)
         fputc('\n', stderr);
     if (r.spp_done == first && !o->resume) {
@@ -713,12 +829,16 @@ static int render_loaded(const cmd_render_args_t *o, scene_t *scene,
     if (!o->quiet) {
         double samples = (double)r.spp_done * (double)scene->camera.width *
                          (double)scene->camera.height;
+        /* CPU seconds (all threads) beside wall seconds: on a shared
+         * machine they count only this process's work */
         fprintf(stderr, "svet render: %s: %dx%d, %ld spp in %.2f s "
-                        "after %.2f s of set-up: %.3g "
+                        "(%.2f CPU-s) after %.2f s (%.2f CPU-s) of "
+                        "set-up: %.3g "
                         "samples/s, %.3g rays/s; %s%s%s; wrote %s and "
                         "%s%s%s\n",
                 scene_path, scene->camera.width, scene->camera.height,
-                r.spp_done, secs, setup_secs, samples / secs,
+                r.spp_done, secs, cpu_secs, setup_secs, setup_cpu,
+                samples / secs,
                 (double)r.stats.rays / secs,
                 r.method ? r.method->describe : "", r.method ? "; " : "",
                 r.accel_choice, exr, png,

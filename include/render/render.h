@@ -16,6 +16,7 @@
 #ifndef SVET_RENDER_H
 #define SVET_RENDER_H
 
+#include <stdio.h>
 #include <signal.h>
 #include <stdbool.h>
 
@@ -93,6 +94,23 @@ typedef struct render {
  * unusable camera, SVET_ERR_UNSUPPORTED for an accel the features do not
  * offer, SVET_ERR_NOMEM. */
 svet_status render_init(render_t *r, const scene_t *s, svet_error *err);
+
+/* render_init with the method's pre-pass read from f (at its position)
+ * instead of computed: what render_save_prepass wrote for the same scene
+ * and seed (the caller checks that; the file holds no identity of its
+ * own). f NULL is render_init. SVET_ERR_UNSUPPORTED for a scene without
+ * a method or with one that does not save its pre-pass (scenepart.h),
+ * the method's load failure else. */
+svet_status render_init_prepass(render_t *r, const scene_t *s, FILE *f,
+                                svet_error *err);
+
+/* SVET_OK when s's method saves its pre-pass, else SVET_ERR_UNSUPPORTED
+ * with the reason (no method, or one without save and load). */
+svet_status render_check_prepass(const scene_t *s, svet_error *err);
+
+/* Writes r's pre-pass (render_init_prepass reads it) to f at its
+ * position. SVET_ERR_UNSUPPORTED as above, SVET_ERR_IO. */
+svet_status render_save_prepass(const render_t *r, FILE *f, svet_error *err);
 
 /* Add samples [spp_done, spp_end) to every pixel with `threads` threads
  * (0 = all cores), calling progress (may be NULL) after each tile. With

@@ -17,6 +17,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -203,6 +204,15 @@ typedef struct render_method {
      * log without a newline (the irradiance cache's records and lookups),
      * into buf of size bytes; may be NULL. */
     void (*report)(const void *state, char *buf, size_t size);
+    /* The pre-pass to a file and back (both NULL for a method that does
+     * not save it): save writes what prepare computed to f, load makes
+     * from it the state prepare would have made for the same scene and
+     * seed, bit for bit, so that the parts of a split render can read one
+     * pre-pass (render_init_prepass). load fails with the reason for a
+     * file of another method or layout. */
+    svet_status (*save)(const void *state, FILE *f, svet_error *err);
+    svet_status (*load)(void **state, const struct render *r, FILE *f,
+                        svet_error *err);
 } render_method_t;
 
 /* Called once the whole file is read (may be NULL): what only the whole

@@ -608,7 +608,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
 
 const render_method_t irr_method = {
     "irradiance", "irradiance cache (ch. 9): Ward's records with gradients",
-    prepare, NULL, li, state_free, report
+    prepare, NULL, li, state_free, report, NULL, NULL
 };
 
 static const render_method_t *const methods[] = { &irr_method, NULL };

@@ -5,8 +5,10 @@
  * `photon` (direct light by ch. 5's light sampling, caustics from the
  * caustic map, indirect diffuse light by final gathering from the global
  * map, optionally from irradiance precomputed at a subset of its photons,
- * Christensen 1999; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011).
- * Tests: tests/photon/test_photon.c
+ * Christensen 1999; Jensen 2001, ch. 9) and `ppm` (Knaus & Zwicker 2011);
+ * photon's maps saved to a file and read back for split renders.
+ * Tests: tests/photon/test_photon.c; the saved maps:
+ * tests/cmd/test_merge.sh
  */
 #include "photon/photon.h"
 
@@ -18,6 +20,7 @@
 
 #include "core/frame.h"
 #include "core/sample.h"
+#include "photon/photonsave.h"
 #include "render/integrator.h"
 #include "render/light.h"
 #include "render/render.h"
@@ -706,6 +709,47 @@ static svet_status prepare_ppm(void **out, const render_t *r, int threads,
     return prepare(out, r, threads, true, err);
 }
 
+/* photon's pre-pass to a file: the global map, the caustic map and the
+ * precomputed irradiance, each as photonsave.h writes a map */
+static svet_status save_photon(const void *state, FILE *f, svet_error *err)
+{
+    const state_t *s = state;
+    svet_status st = SVET_OK;
+    if (fprintf(f, "photon maps 3\n") < 0)
+        return svet_error_set(err, SVET_ERR_IO, "photon: a write failed");
+    const photonmap_t *maps[] = { &s->global, &s->caustic, &s->irr };
+    for (int k = 0; k < 3 && st == SVET_OK; k++)
+        st = photonmap_write(maps[k], f, err);
+    return st;
+}
+
+/* the state prepare_photon makes, with the maps save_photon wrote */
+static svet_status load_photon(void **out, const render_t *r, FILE *f,
+                               svet_error *err)
+{
+    state_t *s = calloc(1, sizeof *s);
+    if (!s)
+        return svet_error_set(err, SVET_ERR_NOMEM, "photon: out of memory");
+    photon_settings_of(r->scene, &s->set);
+    s->global.balanced = s->caustic.balanced = s->irr.balanced = true;
+    int nmaps = 0;
+    svet_status st = SVET_OK;
+    if (fscanf(f, "photon maps %d", &nmaps) != 1 || nmaps != 3 ||
+        fgetc(f) != '\n')
+        st = svet_error_set(err, SVET_ERR_PARSE,
+                            "not the pre-pass of integrator photon (no "
+                            "'photon maps 3' line)");
+    photonmap_t *maps[] = { &s->global, &s->caustic, &s->irr };
+    for (int k = 0; k < 3 && st == SVET_OK; k++)
+        st = photonmap_read(maps[k], f, err);
+    if (st != SVET_OK) {
+        state_free(s);
+        return st;
+    }
+    *out = s;
+    return SVET_OK;
+}
+
 /* ppm: the maps of sample indices [s0, s1), map i from stream 2 + i, so
  * that sample i sees the same map however the samples are split into
  * passes (render.h) */
@@ -905,11 +949,11 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
 
 const render_method_t photon_method = {
     "photon", "photon maps (ch. 8): global and caustic maps, final gathering",
-    prepare_photon, NULL, li, state_free, NULL
+    prepare_photon, NULL, li, state_free, NULL, save_photon, load_photon
 };
 const render_method_t photon_ppm_method = {
     "ppm", "progressive photon maps (Knaus & Zwicker 2011): a map per sample",
-    prepare_ppm, begin_ppm, li, state_free, NULL
+    prepare_ppm, begin_ppm, li, state_free, NULL, NULL, NULL
 };
 
 static const render_method_t *const methods[] = { &photon_method,

@@ -3,8 +3,10 @@
  * pass abandoned and undone when asked (render_pass_until: Ctrl-C), and
  * the camera rays of 8 x 8 pixels given to the tracer at once where it
  * takes packets (the grids of ch. 7: chapters/ch07/README.md), and the
- * pass of app. F's subsampling through the program's subsample_ops.
- * Tests: tests/render/test_render.c, tests/render/test_subsample.c
+ * pass of app. F's subsampling through the program's subsample_ops; a
+ * method's pre-pass computed or read from a file (render_init_prepass).
+ * Tests: tests/render/test_render.c, tests/render/test_subsample.c,
+ * tests/cmd/test_merge.sh (the saved pre-pass)
  */
 #include "render/render.h"
 
@@ -66,9 +68,42 @@ static svet_status tracer_init(render_t *r, const scene_t *s,
     return SVET_OK;
 }
 
+svet_status render_check_prepass(const scene_t *s, svet_error *err)
+{
+    if (!s->render.method)
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "a saved pre-pass: the integrator has no "
+                              "pre-pass");
+    if (!s->render.method->save || !s->render.method->load)
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "a saved pre-pass: integrator %s does not "
+                              "save its pre-pass (photon does)",
+                              s->render.method->name);
+    return SVET_OK;
+}
+
+svet_status render_save_prepass(const render_t *r, FILE *f, svet_error *err)
+{
+    svet_status st = render_check_prepass(r->scene, err);
+    if (st != SVET_OK)
+        return st;
+    return r->method->save(r->method_state, f, err);
+}
+
 svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
 {
+    return render_init_prepass(r, s, NULL, err);
+}
+
+svet_status render_init_prepass(render_t *r, const scene_t *s, FILE *f,
+                                svet_error *err)
+{
     memset(r, 0, sizeof *r);
+    if (f) {
+        svet_status saves = render_check_prepass(s, err);
+        if (saves != SVET_OK)
+            return saves;
+    }
     r->scene = s;
     const scene_camera_t *c = &s->camera;
     camera_fov_axis axis = c->fov_axis == SCENE_FOV_Y ? CAMERA_FOV_Y
@@ -103,7 +138,9 @@ svet_status render_init(render_t *r, const scene_t *s, svet_error *err)
     if (s->render.method) {
         r->method = s->render.method;
         r->packets = false;
-        st = r->method->prepare(&r->method_state, r, s->render.threads, err);
+        st = f ? r->method->load(&r->method_state, r, f, err)
+               : r->method->prepare(&r->method_state, r, s->render.threads,
+                                    err);
         if (st != SVET_OK) {
             r->method_state = NULL;
             render_free(r);

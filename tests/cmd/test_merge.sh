@@ -4,7 +4,9 @@
 # EXR, PNG and variance bit for bit (an independent reference: the one-pass
 # render), every refusal prints its message, and --resume after SIGINT,
 # SIGTERM or SIGKILL ends on the uninterrupted render's bits; the photon
-# and ppm methods merge too; --half parts merge to a --half render.
+# and ppm methods merge too, and the photon maps saved once and read by
+# every part (--save-prepass, --load-prepass) give the same bits; --half
+# parts merge to a --half render.
 # Usage: sh tests/cmd/test_merge.sh build/float/svet
 set -u
 S=${1:?usage: test_merge.sh SVET}
@@ -12,6 +14,17 @@ T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 A="scenes/cbox.scn --spp 14 --set width=40 --set height=30 -q --threads 2"
 fail=0
 no() { echo "FAIL: $*"; fail=1; }
+refuse() { # WHAT MESSAGE ARGS...
+    what=$1; msg=$2; shift 2
+    if "$S" "$@" 2>$T/err; then no "$what accepted"; fi
+    grep -q "$msg" $T/err || no "$what: no '$msg' in: $(cat $T/err)"
+}
+nothing() { # WHAT: no x.exr, x.png or x.exr.part left by a refusal
+    for e in .exr .png .exr.part; do
+        if [ -e $T/x$e ]; then no "$1: wrote x$e"; fi
+    done
+    rm -f $T/x.exr $T/x.png $T/x.exr.part
+}
 $S render $A -o $T/full.exr --variance $T/fullv.exr || no "single render"
 split() { # N: N sample ranges of 14
     n=$1; list=""; i=0
@@ -79,6 +92,38 @@ for m in photon ppm; do
     $S merge $T/a$m.exr $T/b$m.exr -o $T/m$m.exr || no "$m: merge"
     cmp -s $T/f$m.exr $T/m$m.exr || no "$m: 2 parts by samples: EXR differs"
 done
+# the photon maps saved once (--save-prepass) and read by the parts
+# (--load-prepass): the parts merge to the single render's bits, which
+# traced its maps itself; a part that reads them is the part that traces
+# them, byte for byte
+P="scenes/caustic.scn --spp 4 --set resolution=48x32 --set integrator=photon -q"
+$S render $P --samples 0:1 --save-prepass $T/maps -o $T/s0.exr || no "--save-prepass"
+head -3 $T/maps | grep -q "^identity [0-9a-f]*$" || no "the saved pre-pass has no identity line"
+$S render $P --samples 1:3 --load-prepass $T/maps -o $T/s1.exr || no "--load-prepass part 1:3"
+$S render $P --samples 3:4 --load-prepass $T/maps --threads 1 -o $T/s2.exr || no "--load-prepass part 3:4"
+$S merge $T/s0.exr $T/s1.exr $T/s2.exr -o $T/sm.exr || no "merge of parts of a saved pre-pass"
+cmp -s $T/fphoton.exr $T/sm.exr || no "saved pre-pass: the merge differs from the single render"
+$S render $P --samples 1:4 -o $T/s3.exr || no "photon part 1:4"
+$S render $P --samples 1:4 --load-prepass $T/maps -o $T/s4.exr || no "--load-prepass part 1:4"
+cmp -s $T/s3.exr.part $T/s4.exr.part || no "a part of the saved pre-pass differs from one that traced it"
+# refusals: another seed's or setting's scene, a file that is not a
+# pre-pass, is cut short or is of another real type, a method without a
+# saved pre-pass, both options at once; none writes an image
+rm -f $T/x.exr $T/x.png $T/x.exr.part
+refuse "a pre-pass of another seed" "the pre-pass of another scene, seed or settings" render $P --seed 5 --load-prepass $T/maps -o $T/x.exr
+refuse "a pre-pass of another setting" "the pre-pass of another scene, seed or settings" render $P --set maxdepth=3 --load-prepass $T/maps -o $T/x.exr
+refuse "a part file as a pre-pass" "not a pre-pass file" render $P --load-prepass $T/s0.exr.part -o $T/x.exr
+head -c 5000 $T/maps > $T/cutmaps
+refuse "a truncated pre-pass" "cutmaps: a photon map of [0-9]* photons truncated" render $P --load-prepass $T/cutmaps -o $T/x.exr
+sed '3s/^real .*/real quad/' $T/maps > $T/quadmaps
+refuse "a pre-pass of another real type" "a pre-pass of a quad build, this one is" render $P --load-prepass $T/quadmaps -o $T/x.exr
+sed '4s/.*/photon maps 2/' $T/maps > $T/twomaps
+refuse "a pre-pass of another layout" "not the pre-pass of integrator photon" render $P --load-prepass $T/twomaps -o $T/x.exr
+refuse "ppm's pre-pass" "integrator ppm does not save its pre-pass" render $P --set integrator=ppm --load-prepass $T/maps -o $T/x.exr
+refuse "path's pre-pass" "the integrator has no pre-pass" render $A --save-prepass $T/x.pre -o $T/x.exr
+refuse "both pre-pass options" "one of them at a time" render $P --save-prepass $T/x.pre --load-prepass $T/maps -o $T/x.exr
+nothing "the pre-pass refusals"
+[ -e $T/x.pre ] && no "a refused --save-prepass wrote its file"
 $S render scenes/caustic.scn --spp 1 --set resolution=16x12 -o $T/d.exr 2>&1 |
     grep -q "; photon maps (ch. 8): " || no "the summary names the method"
 for c in 0:20,0:15 20:40,0:15 0:20,15:30 20:40,15:30; do
@@ -89,11 +134,6 @@ $S merge $T/c0:20,0:15.exr $T/c20:40,0:15.exr $T/c0:20,15:30.exr \
 cmp -s $T/full.exr $T/mc.exr || no "4 crops: EXR differs"
 cmp -s $T/full.png $T/mc.png || no "4 crops: PNG differs"
 cmp -s $T/fullv.exr $T/mcv.exr || no "4 crops: variance differs"
-refuse() { # WHAT MESSAGE ARGS...
-    what=$1; msg=$2; shift 2
-    if "$S" "$@" 2>$T/err; then no "$what accepted"; fi
-    grep -q "$msg" $T/err || no "$what: no '$msg' in: $(cat $T/err)"
-}
 # --half parts merge to a single --half render's bytes (half floats; an
 # independent check: the part file says so and the EXR is smaller), and
 # half and float parts together are refused
@@ -109,7 +149,46 @@ grep -qx "exr float" $T/m2.exr.part || no "a float part file is not float"
     no "the merged --half EXR is not smaller than the float one"
 $S merge $T/hm.exr -o $T/hmm.exr || no "merge of a merged --half image"
 cmp -s $T/hfull.exr $T/hmm.exr || no "a merge of the --half merge differs"
-refuse "half and float parts" "one EXR is half, the other float" merge $T/h0.exr $T/p2-1.exr -o $T/x.exr
+# --half changes the EXR's pixel type only: a --half part holds the sums
+# of the float part of the same samples (the float merge above is the
+# single render's), its header but the 'exr' line the same
+$S render $A --samples 0:5 -o $T/f0.exr || no "float part 0:5"
+sed -n '7p' $T/f0.exr.part | grep -qx "exr float" || no "line 7 of a float part is not 'exr float'"
+sed '7d' $T/h0.exr.part > $T/h0.body; sed '7d' $T/f0.exr.part > $T/f0.body
+cmp -s $T/h0.body $T/f0.body || no "a --half part's sums are not the float part's"
+# the comparisons above can fail: a half merge of wrong sums (the colour
+# sums of pixel (20, 15) zeroed in one part), and half parts relabelled
+# float, differ from the single --half render; relabelled they are the
+# float render's bytes
+awk 'NR == 8 + 15 * 40 + 20 { $1 = 0; $2 = 0; $3 = 0 } { print }' \
+    $T/h1.exr.part > $T/hz.exr.part; cp $T/h1.exr $T/hz.exr
+$S merge $T/h0.exr $T/hz.exr -o $T/hzm.exr || no "merge of a --half part with a zeroed pixel"
+cmp -s $T/hfull.exr $T/hzm.exr && no "a --half merge of a zeroed pixel has the single render's bytes"
+for k in 0 1; do
+    sed '7s/^exr half$/exr float/' $T/h$k.exr.part > $T/hf$k.exr.part
+    cp $T/h$k.exr $T/hf$k.exr
+done
+$S merge $T/hf0.exr $T/hf1.exr -o $T/hfm.exr || no "merge of --half parts relabelled float"
+cmp -s $T/hfull.exr $T/hfm.exr && no "half parts relabelled float merge to the --half render's bytes"
+cmp -s $T/full.exr $T/hfm.exr || no "half parts relabelled float: not the float render's bytes"
+# mixing half and float parts is refused whichever comes first, naming
+# both files, and writes nothing; so is a pixel type that is neither.
+# The parts of each pair make the whole sample range, so the pixel type
+# is the only reason to refuse them.
+$S render $A --samples 5:14 -o $T/f1.exr || no "float part 5:14"
+$S render $A --half --samples 0:2 -o $T/ha.exr || no "--half part 0:2"
+$S render $A --half --samples 2:5 -o $T/hb.exr || no "--half part 2:5"
+$S merge $T/ha.exr $T/hb.exr -o $T/hab.exr || no "merge of --half parts 0:2, 2:5"
+rm -f $T/x.exr $T/x.png $T/x.exr.part
+refuse "half and float parts" "h0.exr and .*f1.exr: one EXR is half, the other float" merge $T/h0.exr $T/f1.exr -o $T/x.exr
+nothing "half and float parts"
+refuse "float and half parts" "f0.exr and .*h1.exr: one EXR is half, the other float" merge $T/f0.exr $T/h1.exr -o $T/x.exr
+nothing "float and half parts"
+refuse "a merged --half image and a float part" "hab.exr and .*f1.exr: one EXR is half, the other float" merge $T/hab.exr $T/f1.exr -o $T/x.exr
+nothing "a merged --half image and a float part"
+sed '7s/^exr half$/exr quarter/' $T/h1.exr.part > $T/hq.exr.part; cp $T/h1.exr $T/hq.exr
+refuse "an unknown pixel type" "no 'exr half' or 'exr float' line" merge $T/h0.exr $T/hq.exr -o $T/x.exr
+nothing "an unknown pixel type"
 refuse "a gap" "samples 4:9 of pixel (0, 0) are missing" merge $T/p3-0.exr $T/p3-2.exr -o $T/x.exr
 refuse "an overlap" "overlap another part" merge $T/p2-0.exr $T/p2-0.exr -o $T/x.exr
 refuse "a missing crop" "pixel (20, 0) is in no part" merge $T/c0:20,0:15.exr -o $T/x.exr
