@@ -479,16 +479,24 @@ bench-media: build/float/svet
 # `make bitcheck [BASE=COMMIT]`: every scenes/*.scn renders to the same
 # bytes with SIMD=on and SIMD=off, at 1 and 2 threads, in float and in
 # double (tools/bitcheck.sh, 64 x 64 at 8 spp); with BASE, also the same
-# as that commit's build.
-bitcheck:
-	$(MAKE) REAL=float SIMD=on build/float/svet
-	$(MAKE) REAL=float SIMD=off build/float-plain/svet
-	$(MAKE) REAL=double SIMD=on build/double/svet
-	$(MAKE) REAL=double SIMD=off build/double-plain/svet
-	REAL=float BASE=$(BASE) sh tools/bitcheck.sh build/float/svet \
-	    build/float-plain/svet
-	REAL=double BASE=$(BASE) sh tools/bitcheck.sh build/double/svet \
-	    build/double-plain/svet
+# as that commit's build. With make -j the four builds, and then the float
+# and the double check, run side by side (a one-thread render leaves a
+# core free); each check writes a log of its own under build/bitcheck/,
+# and the two logs are printed whole, float first.
+BITCHECK_BUILDS := float float-plain double double-plain
+.PHONY: $(BITCHECK_BUILDS:%=bitcheck-build-%) bitcheck-float bitcheck-double
+$(BITCHECK_BUILDS:%=bitcheck-build-%): bitcheck-build-%:
+	$(MAKE) REAL=$(word 1,$(subst -, ,$*)) \
+	    SIMD=$(if $(findstring plain,$*),off,on) build/$*/svet
+bitcheck-float bitcheck-double: bitcheck-%: bitcheck-build-% \
+                                            bitcheck-build-%-plain
+	@mkdir -p build/bitcheck
+	@REAL=$* BASE=$(BASE) sh tools/bitcheck.sh build/$*/svet \
+	    build/$*-plain/svet >build/bitcheck/$*.log 2>&1; \
+	    echo $$? >build/bitcheck/$*.rc
+bitcheck: bitcheck-float bitcheck-double
+	@r=0; for x in float double; do cat build/bitcheck/$$x.log; \
+	    [ "$$(cat build/bitcheck/$$x.rc)" = 0 ] || r=1; done; exit $$r
 
 # `make ab-render BASE=COMMIT [THREADS=1,2] [PAIRS=6] [SPP=16]`: the
 # Cornell box's camera samples per second against commit BASE's,

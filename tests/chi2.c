@@ -237,11 +237,13 @@ static const double gl_w[5] = { 0.2369268850561891, 0.4786286704993665,
                                 0.5688888888888889, 0.4786286704993665,
                                 0.2369268850561891 };
 
-static double pdf_at(cubature_t *q, double c, double phi)
+/* The pdf at cos theta = c, with sin theta = s and the azimuth's cosine
+ * and sine given (a cell's nodes share them, see gl_cell). */
+static double pdf_at_cs(cubature_t *q, double c, double s, double cp,
+                        double sp)
 {
-    double s = sqrt(fmax(0.0, (1.0 - c) * (1.0 + c)));
     VECTOR3 w;
-    vec_set(w, (real)(s * cos(phi)), (real)(s * sin(phi)), (real)c);
+    vec_set(w, (real)(s * cp), (real)(s * sp), (real)c);
     double p = q->pdf(q->ctx, w);
     q->evals++;
     if (!(p >= 0) || !isfinite(p)) {
@@ -251,17 +253,30 @@ static double pdf_at(cubature_t *q, double c, double phi)
     return p;
 }
 
+static double sin_of_cos(double c)
+{
+    return sqrt(fmax(0.0, (1.0 - c) * (1.0 + c)));
+}
+
 /* Tensor-product Gauss-Legendre over [c0, c1] x [p0, p1]; the solid angle
- * element is dcos(theta) dphi, so no Jacobian. */
+ * element is dcos(theta) dphi, so no Jacobian. The 5 x 5 nodes take their
+ * sines and cosines from 5 values of theta and 5 of phi. */
 static double gl_cell(cubature_t *q, double c0, double c1, double p0, double p1)
 {
     double hc = 0.5 * (c1 - c0), mc = 0.5 * (c1 + c0);
     double hp = 0.5 * (p1 - p0), mp = 0.5 * (p1 + p0);
+    double cp[5], sp[5];
+    for (int j = 0; j < 5; j++) {
+        double phi = mp + hp * gl_x[j];
+        cp[j] = cos(phi);
+        sp[j] = sin(phi);
+    }
     double sum = 0;
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < 5; i++) {
+        double c = mc + hc * gl_x[i], s = sin_of_cos(c);
         for (int j = 0; j < 5; j++)
-            sum += gl_w[i] * gl_w[j] *
-                   pdf_at(q, mc + hc * gl_x[i], mp + hp * gl_x[j]);
+            sum += gl_w[i] * gl_w[j] * pdf_at_cs(q, c, s, cp[j], sp[j]);
+    }
     return sum * hc * hp;
 }
 

@@ -5,7 +5,7 @@
  */
 #include "scenecheck.h"
 
-#include <check.h>
+#include "testutil.h"
 #include <string.h>
 
 #include "render/allparts.h"
