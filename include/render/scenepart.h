@@ -203,6 +203,9 @@ typedef struct render_method {
      * log without a newline (the irradiance cache's records and lookups),
      * into buf of size bytes; may be NULL. */
     void (*report)(const void *state, char *buf, size_t size);
+    /* Whether li takes `render light indirect` (scene.h's scene_light):
+     * render_init refuses that setting for a method without it. */
+    bool indirect_light;
 } render_method_t;
 
 /* Called once the whole file is read (may be NULL): what only the whole
