@@ -154,21 +154,30 @@ indirect_text() {
         pl=$(printf '%s\n' "$indcounts" |
              awk -F'|' -v l=" $l " '$2 == l { gsub(/[ %]/, "", $6); print $6 }')
         first=$(awk -F, -v e="$inde" '/^#/ || $1 == "method" { next }
-                    $2 > 0 && $16 <= e + 0 { print $3; exit }' "$ind/$l.csv")
-        printf '%s %s %s %s %s\n' "$l" "${ratio#* }" "${pl:-100}" \
+                    $2 > 0 && $16 <= e + 0 { print $3 " " $2; exit }' \
+                    "$ind/$l.csv")
+        # records per lookup at that image's spp: the lookups grow with
+        # the samples (one per camera sample that meets a diffuse surface)
+        fpl=$(printf '%s\n' "$indcounts" |
+              awk -F'|' -v l=" $l " -v n="${first#* }" -v c="$count_spp" '
+                  $2 == l && n + 0 > 0 { printf "%.3g", 100 * $3 / ($4 * n / c) }')
+        first=${first% *}
+        printf '%s %s %s %s %s %s\n' "$l" "${ratio#* }" "${pl:-100}" \
             "${first:--}" "$(awk -v t="$rtime" -v f="${first:-0}" 'BEGIN {
-                if (f > 0) printf "%.1f", t / f; else print "-" }')"
+                if (f > 0) printf "%.1f", t / f; else print "-" }')" \
+            "${fpl:-100}"
     done)
     indwords=$(printf '%s\n' "$indsummary" | awk '{
         printf "%s`%s`: %s, efficiency ratio %s, %s %% of the lookups as " \
                "records", (NR > 1 ? "; " : ""), $1,
                ($5 == "-" ? "no image at or below it within the budgets" \
                  : sprintf("its first image at or below it after %.3g %s, " \
-                           "at least %s times as fast", $4, u, $5)),
+                           "at least %s times as fast (records %s %% of " \
+                           "that image'"'"'s lookups)", $4, u, $5, $6)),
                $2, $3 }' u="$unit")
     indverdict=$(printf '%s\n' "$indsummary" | awk '{
         s = $5;
-        if (s != "-" && s + 0 >= 10 && $3 + 0 <= 1) ok = 1;
+        if (s != "-" && s + 0 >= 10 && $3 + 0 <= 1 && $6 + 0 <= 1) ok = 1;
         else if (s != "-" && s + 0 >= 10) fast = 1 }
         END { if (ok) print "holds";
               else if (fast) print "is reached in speed only with more " \
