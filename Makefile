@@ -429,8 +429,10 @@ tradeoffs-media: build/float/svet
 
 # `make tradeoffs-irradiance`: the irradiance cache's a, M x N, gradients
 # and clamping, and app. F's subsampling, against the path tracer on the
-# Cornell box (tools/tradeoffs-irradiance.sh; writes
-# docs/tradeoffs-irradiance.md, about 15 minutes on 2 cores).
+# Cornell box, on the whole image and on the indirect diffuse light alone
+# (tools/tradeoffs-irradiance.sh; writes docs/tradeoffs-irradiance.md,
+# about 20 minutes on 2 cores; ONLY=indirect runs the indirect section
+# alone and puts it into the existing document).
 .PHONY: tradeoffs-irradiance
 tradeoffs-irradiance: build/float/svet
 	sh tools/tradeoffs-irradiance.sh

@@ -30,6 +30,8 @@ typedef struct {
     bool roulette;
     int roulette_depth;
     real ao_distance;           /* 0 = unlimited */
+    bool indirect;              /* `render light indirect` (scene.h): the
+                                   indirect diffuse light alone */
 } integrator_t;
 
 /* Per-thread counters. */

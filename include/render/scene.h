@@ -67,6 +67,15 @@ typedef enum {
                                     a delta bounce (ch. 5's comparison) */
 } scene_integrator;
 
+/* Which light the image shows (`render light`). */
+typedef enum {
+    SCENE_LIGHT_ALL = 0,     /* everything the integrator computes */
+    SCENE_LIGHT_INDIRECT = 1 /* the indirect diffuse light alone: what the
+                                first non-specular vertex's non-delta parts
+                                reflect of light that did not come straight
+                                from an emitter */
+} scene_light;
+
 typedef enum {
     SCENE_ACCEL_AUTO = 0,  /* the renderer chooses from the scene (ch. 7) */
     SCENE_ACCEL_BRUTE = 1, /* test every object */
@@ -116,6 +125,9 @@ typedef struct {
     scene_integrator integrator;
     real ao_distance;      /* AO: occluders farther than this are ignored;
                               0 = unlimited */
+    scene_light light;     /* all, or the indirect diffuse light alone
+                              (the path tracer's modes and the methods
+                              whose indirect_light is set) */
     int threads;           /* 0 = every core */
     double time_limit;     /* seconds of rendering; 0 = none. The image
                               stops after the pass that exceeds it */

@@ -213,6 +213,9 @@ typedef struct render_method {
     svet_status (*save)(const void *state, FILE *f, svet_error *err);
     svet_status (*load)(void **state, const struct render *r, FILE *f,
                         svet_error *err);
+    /* Whether li takes `render light indirect` (scene.h's scene_light):
+     * render_init refuses that setting for a method without it. */
+    bool indirect_light;
 } render_method_t;
 
 /* Called once the whole file is read (may be NULL): what only the whole

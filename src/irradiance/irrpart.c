@@ -549,7 +549,13 @@ bool irr_pixel_irradiance(const void *state, const render_t *r, int x,
  * surface with a non-delta part, direct light by light sampling; on a
  * cacheable one (Lambert and delta parts) the cache's E rho_d / pi, its
  * delta parts followed; on any other the path continues by BSDF sampling,
- * its emitters then not counted (light sampling has them). */
+ * its emitters then not counted (light sampling has them).
+ * With `render light indirect` (scene.h) only the indirect diffuse light
+ * stays: nothing before the first surface with a non-delta part, and
+ * there no direct light; on a cacheable one the cache's E rho_d / pi and
+ * nothing else, on any other what its non-delta BSDF sample brings back
+ * but the emitter that sample hits (as the path tracer's
+ * integrator.c does). */
 static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
                    long sample, pcg32_t *g, integrator_stats_t *st)
 {
@@ -560,7 +566,9 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
     RADIANCE L = rad_grey(0), beta = rad_grey(1);
     ray_t ray = *camera;
     const COBJECT *skip[2] = { NULL, NULL };
-    bool count_emitted = true;
+    const bool indirect_only = sc->render.light == SCENE_LIGHT_INDIRECT;
+    bool count_emitted = !indirect_only;
+    bool first = indirect_only; /* the first non-delta surface is ahead */
     for (int depth = 0;; depth++) {
         hit_t h;
         const COBJECT *obj = NULL;
@@ -582,7 +590,8 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
         frame_to_local(wo, pp.out, pp.u, pp.v, pp.n);
         bool surface = !material_is_specular(m) && m->ncomp > 0;
         bool cached = surface && cacheable(m);
-        if (surface)
+        const bool first_surface = first && surface;
+        if (surface && !first_surface)
             L = rad_add(L, rad_mul(beta, integrator_direct(&r->integrator,
                                                            &pp, m, wo, false,
                                                            g, st)));
@@ -590,15 +599,20 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
             RADIANCE e = indirect(s, r, &pp, g, st);
             L = rad_add(L, rad_mul(beta, rad_scale(rad_mul(m->params.rho_d, e),
                                                    1 / REAL_PI)));
+            if (first_surface)
+                break;
         }
         real u[3] = { pcg32_real(g), pcg32_real(g), pcg32_real(g) };
         brdf_sample_t bs;
-        if (!material_sample(m, wo, u, &bs) || (cached && !bs.delta))
+        if (!material_sample(m, wo, u, &bs) || (cached && !bs.delta) ||
+            (first_surface && bs.delta))
             break;
         beta = rad_mul(beta, bs.weight);
         if (rad_is_black(beta))
             break;
-        count_emitted = bs.delta;
+        count_emitted = bs.delta && !first;
+        if (first_surface)
+            first = false;
         frame_to_world(wi, bs.wi, pp.u, pp.v, pp.n);
         ray_spawn(&ray, pp.cross_point, pp.p_error, pp.ng, wi);
         skip[0] = obj;
@@ -608,7 +622,7 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
 
 const render_method_t irr_method = {
     "irradiance", "irradiance cache (ch. 9): Ward's records with gradients",
-    prepare, NULL, li, state_free, report, NULL, NULL
+    prepare, NULL, li, state_free, report, NULL, NULL, true
 };
 
 static const render_method_t *const methods[] = { &irr_method, NULL };

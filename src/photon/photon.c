@@ -949,11 +949,11 @@ static RADIANCE li(const void *state, const render_t *r, const ray_t *camera,
 
 const render_method_t photon_method = {
     "photon", "photon maps (ch. 8): global and caustic maps, final gathering",
-    prepare_photon, NULL, li, state_free, NULL, save_photon, load_photon
+    prepare_photon, NULL, li, state_free, NULL, save_photon, load_photon, false
 };
 const render_method_t photon_ppm_method = {
     "ppm", "progressive photon maps (Knaus & Zwicker 2011): a map per sample",
-    prepare_ppm, begin_ppm, li, state_free, NULL, NULL, NULL
+    prepare_ppm, begin_ppm, li, state_free, NULL, NULL, NULL, false
 };
 
 static const render_method_t *const methods[] = { &photon_method,

@@ -12,6 +12,11 @@
  * counts where it is the better strategy. Delta components (mirror, glass)
  * and point lights can be reached by only one strategy, which then gets
  * weight 1.
+ * `render light indirect` keeps the indirect diffuse light alone: at the
+ * first non-specular vertex neither the light sample nor the emitter its
+ * BSDF sample hits counts (nor what the camera saw before it), so what
+ * remains is that vertex's reflection of light that has bounced at least
+ * once more - the part the irradiance cache of ch. 9 computes.
  * Tests: tests/render/test_integrator.c
  */
 #include "render/integrator.h"
@@ -35,6 +40,7 @@ void integrator_init(integrator_t *it, const scene_t *s,
     it->roulette = s->render.roulette;
     it->roulette_depth = s->render.roulette_depth;
     it->ao_distance = s->render.ao_distance;
+    it->indirect = s->render.light == SCENE_LIGHT_INDIRECT;
 }
 
 real integrator_mis_weight(real a, real b)
@@ -241,6 +247,9 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
     bool diff = dops != NULL;
     if (diff)
         dops->camera(it->scene->raydiff_ctx, &r, &rdiff);
+    /* with it->indirect: 0 until the first non-specular vertex, 1 on the
+     * ray that leaves it, 2 after; light found counts only at 2 */
+    int stage = it->indirect ? 0 : 2;
 
     for (int depth = 0;; depth++) {
         hit_t h;
@@ -253,7 +262,7 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         /* Light found by this ray: counted in full from the camera and
          * after a delta bounce; after a sampled bounce weighted against
          * light sampling. */
-        bool count = depth == 0 || prev_delta || bsdf_hits;
+        bool count = (depth == 0 || prev_delta || bsdf_hits) && stage == 2;
         if (!hit) {
             if (it->scene->has_environment && count) {
                 VECTOR3 d;
@@ -289,6 +298,8 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
                 L = rad_add(L, rad_scale(rad_mul(beta, Le), w));
             }
         }
+        if (stage == 1)
+            stage = 2;
         if (depth >= max_depth)
             break;
 
@@ -303,7 +314,9 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         const bool two = m->transmits;
         VECTOR3 wo;
         frame_to_local(wo, pp->out, pp->u, pp->v, pp->n);
-        if (nee && !material_is_specular(m)) {
+        /* the first non-specular vertex of `light indirect` */
+        const bool first_diffuse = stage == 0 && !material_is_specular(m);
+        if (nee && !material_is_specular(m) && !first_diffuse) {
             const integrator_scatter_t sc = { m, wo, two, NULL, NULL };
             RADIANCE Ld = direct_light(it, pp, &sc, bsdf_hits, NULL, NULL, g,
                                        st);
@@ -319,6 +332,12 @@ static RADIANCE li(const integrator_t *it, const ray_t *camera,
         brdf_sample_t bs;
         if (!material_sample(m, wo, u, &bs))
             break;
+        if (first_diffuse) {
+            /* only its non-delta parts' reflection is the diffuse light */
+            if (bs.delta)
+                break;
+            stage = 1;
+        }
         beta = rad_mul(beta, bs.weight);
         VECTOR3 wi;
         frame_to_world(wi, bs.wi, pp->u, pp->v, pp->n);

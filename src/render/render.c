@@ -132,6 +132,20 @@ svet_status render_init_prepass(render_t *r, const scene_t *s, FILE *f,
                               "subsample: this program was built without "
                               "the subsampling of app. F");
     }
+    /* the indirect diffuse light alone: the path tracer's modes but
+     * ambient occlusion, and the methods that say they separate it */
+    if (s->render.light == SCENE_LIGHT_INDIRECT &&
+        (s->render.method ? !s->render.method->indirect_light
+                          : s->render.integrator == SCENE_INTEGRATOR_AO)) {
+        render_free(r);
+        return svet_error_set(err, SVET_ERR_UNSUPPORTED,
+                              "'render light indirect': integrator %s does "
+                              "not separate the indirect diffuse light (path, "
+                              "nee, bsdf, direct and the methods that do: "
+                              "irradiance)",
+                              s->render.method ? s->render.method->name
+                                               : "ao");
+    }
     integrator_init(&r->integrator, s, &r->lights, r->tracer);
     /* a rendering method of Part II (scenepart.h): its pre-pass now,
      * camera rays one at a time (it traces them itself) */

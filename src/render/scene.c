@@ -42,6 +42,7 @@ void scene_init(scene_t *s)
     r->seed = 0;
     r->integrator = SCENE_INTEGRATOR_PATH;
     r->ao_distance = 0;
+    r->light = SCENE_LIGHT_ALL;
     r->threads = 0;
     r->time_limit = 0;
     r->passes = 1;

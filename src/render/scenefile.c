@@ -897,12 +897,13 @@ static svet_status st_camera(ctx_t *c)
 
 static const char *const integrators[] = { "path", "direct", "bsdf", "ao",
                                            "nee", NULL };
+static const char *const lights_shown[] = { "all", "indirect", NULL };
 static const char *const accels[] = { "auto", "brute", "grid", "hgrid",
                                       NULL };
 
 enum { R_SPP, R_MAXDEPTH, R_ROULETTE, R_RRDEPTH, R_SEED, R_INTEGRATOR,
        R_AO_DISTANCE, R_THREADS, R_TIME_LIMIT, R_PASSES, R_CHECKPOINT,
-       R_ACCEL, R_PACKETS, R_N };
+       R_ACCEL, R_PACKETS, R_LIGHT, R_N };
 static const spec_t render_spec[R_N] = {
     [R_SPP] = { "spp", V_INT, 0, 1, SCENE_MAX_SPP, NULL },
     [R_MAXDEPTH] = { "maxdepth", V_INT, 0, 0, SCENE_MAX_DEPTH, NULL },
@@ -917,6 +918,7 @@ static const spec_t render_spec[R_N] = {
     [R_CHECKPOINT] = { "checkpoint", V_ONOFF, 0, 0, 0, NULL },
     [R_ACCEL] = { "accel", V_WORD, 0, 0, 0, accels },
     [R_PACKETS] = { "packets", V_ONOFF, 0, 0, 0, NULL },
+    [R_LIGHT] = { "light", V_WORD, 0, 0, 0, lights_shown },
 };
 
 /* `integrator WORD`: one of ch. 5's (integrators[]) or a rendering method
@@ -1050,6 +1052,8 @@ static svet_status st_render(ctx_t *c)
     }
     if (v[R_PACKETS].set)
         r->packets = v[R_PACKETS].on;
+    if (v[R_LIGHT].set)
+        r->light = (scene_light)v[R_LIGHT].i;
     return SVET_OK;
 }
 
@@ -2590,6 +2594,7 @@ static const struct {
     { "checkpoint", "render", "checkpoint" },
     { "accel", "render", "accel" },
     { "packets", "render", "packets" },
+    { "light", "render", "light" },
     { "subsample.step", "render subsample", "step" },
     { "subsample.threshold", "render subsample", "threshold" },
     { "width", "camera", "width" },

@@ -12,6 +12,10 @@
  *    point, facing it: E = pi Le a^2 / (h^2 + a^2), L = rho E / pi, by every
  *    strategy (path with MIS, direct, BSDF only, light sampling only);
  *  - an emitter seen directly, from the front and from the back;
+ *  - `render light indirect`: inside the closed sphere above the indirect
+ *    light is the total less the direct rho I / (pi R^2), 1 - 1/2 = 1/2,
+ *    with MIS and by light sampling alone; on the plane under a point
+ *    light, with nothing to bounce from, it is exactly 0;
  *  - Russian roulette keeps the expected throughput.
  * Statistical tolerances are 5 standard errors of the estimate (the
  * standard error measured from the same samples): a correct estimator
@@ -181,6 +185,64 @@ START_TEST(diffuse_plane_under_a_point_light_follows_the_inverse_square_law)
 }
 END_TEST
 
+START_TEST(indirect_light_alone)
+{
+    scene_t s;
+    scene_init(&s);
+    VECTOR3 c = { 0, 0, 0 };
+    add(&s, sphere_new(c, 1, NULL), REAL_C(0.5));
+    ck_assert_int_eq(scene_add_point_light(&s, c, rad_grey(REAL_PI), NULL),
+                     SVET_OK);
+    s.render.max_depth = 40;
+    s.render.light = SCENE_LIGHT_INDIRECT;
+    lightset_t ls;
+    ck_assert_int_eq(lightset_build(&ls, &s, NULL), SVET_OK);
+    ray_t r = { { REAL_C(0.2), REAL_C(0.1), 0 }, { 0, REAL_C(0.6), REAL_C(-0.8) } };
+    const scene_integrator modes[] = { SCENE_INTEGRATOR_PATH,
+                                       SCENE_INTEGRATOR_NEE };
+    for (int k = 0; k < 2; k++) {
+        s.render.integrator = modes[k];
+        integrator_t it;
+        integrator_init(&it, &s, &ls, tracer_brute(&s));
+        double mean, se;
+        estimate(&it, &r, 40000, 13 + (uint64_t)k, &mean, &se);
+        ck_assert_msg(fabs(mean - 0.5) <= 5 * se + 1e-5, "mode %d: L = %g +- "
+                      "%g, not 1/2", (int)modes[k], mean, se);
+        ck_assert(se < 0.02);
+    }
+    lightset_free(&ls);
+    scene_free(&s);
+
+    /* a plane under a point light: its light is all direct */
+    scene_init(&s);
+    VECTOR3 up = { 0, 0, 1 }, lp = { 0, 0, 2 };
+    add(&s, disk_new(c, up, 100, NULL), REAL_C(0.7));
+    ck_assert_int_eq(scene_add_point_light(&s, lp, rad_grey(5), NULL), SVET_OK);
+    s.render.max_depth = 5;
+    ck_assert_int_eq(lightset_build(&ls, &s, NULL), SVET_OK);
+    for (int ind = 0; ind < 2; ind++) {
+        s.render.light = ind ? SCENE_LIGHT_INDIRECT : SCENE_LIGHT_ALL;
+        integrator_t it;
+        integrator_init(&it, &s, &ls, tracer_brute(&s));
+        for (int i = 0; i < 64; i++) {
+            ray_t q = { { REAL_C(0.1) * (real)i + 1, REAL_C(0.5), 3 },
+                        { -1, REAL_C(-0.5), -3 } };
+            pcg32_t g;
+            rng_for_sample(&g, 6, (uint64_t)i, 0);
+            integrator_stats_t st = { 0, 0 };
+            RADIANCE L = integrator_li(&it, &q, &g, &st);
+            if (ind)
+                ck_assert_msg(L.r == 0 && L.g == 0 && L.b == 0,
+                              "ray %d: indirect light %g", i, (double)L.g);
+            else
+                ck_assert(L.g > 0);
+        }
+    }
+    lightset_free(&ls);
+    scene_free(&s);
+}
+END_TEST
+
 START_TEST(disk_light_over_a_diffuse_point_by_every_strategy)
 {
     /* E on the axis of a disk of radius a at height h: pi Le a^2/(h^2+a^2)
@@ -323,6 +385,7 @@ Suite *test_suite(void)
     tcase_add_test(tc, diffuse_plane_under_a_point_light_follows_the_inverse_square_law);
     tcase_add_test(tc, disk_light_over_a_diffuse_point_by_every_strategy);
     tcase_add_test(tc, emitter_seen_directly_from_front_and_back);
+    tcase_add_test(tc, indirect_light_alone);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -107,7 +107,7 @@ static void glow_state_free(void *state)
 
 static const render_method_t glow_method = {
     "glow", "a constant that grows with the sample index", glow_prepare,
-    glow_begin, glow_li, glow_state_free, NULL, NULL, NULL
+    glow_begin, glow_li, glow_state_free, NULL, NULL, NULL, false
 };
 static const render_method_t *const glow_methods[] = { &glow_method, NULL };
 /* `glowmap NAME FILE`: a name and a file path relative to the scene */
