@@ -353,6 +353,32 @@ static void region_means(const image_t *a, const image_t *b, int ch,
         }
 }
 
+/* Two volphoton renders a, b against two volpath renders r1, r2 (other
+ * seeds) by region means: every region within 4 standard deviations of
+ * the difference in every channel, and at least min_tight of the
+ * region-channels tight (standard deviation below `tight` of the mean),
+ * so that the agreement says something. */
+static void agrees_with_volpath(const image_t *r1, const image_t *r2,
+                                const image_t *a, const image_t *b,
+                                double tight, int min_tight)
+{
+    ck_assert_int_eq(a->width / REGION * (a->height / REGION), NREGION);
+    int n_tight = 0;
+    for (int ch = 0; ch < 3; ch++) {
+        double mr[NREGION], vr[NREGION], mp[NREGION], vp[NREGION];
+        region_means(r1, r2, ch, mr, vr);
+        region_means(a, b, ch, mp, vp);
+        for (int i = 0; i < NREGION; i++) {
+            double sd = sqrt(vr[i] + vp[i]);
+            ck_assert_msg(fabs(mp[i] - mr[i]) < 4 * sd,
+                          "channel %d, region %d: volphoton %g, volpath %g "
+                          "(sd %g)", ch, i, mp[i], mr[i], sd);
+            n_tight += sd < tight * mr[i];
+        }
+    }
+    ck_assert_int_ge(n_tight, min_tight);
+}
+
 /* Volumetric path tracing is unbiased; the volume photon map's bias (the
  * blur of its estimates, k/(k-1), the surface map's) is below its noise
  * at 400 000 photons and these radii. Each region's mean of the two
@@ -368,22 +394,8 @@ START_TEST(the_smoky_box_agrees_with_volpath)
     render_text(SMOKY("volpath", "512", "2", ""), 0, &r2, NULL);
     render_text(SMOKY("volphoton", "16", "1", SMOKY_VP), 0, &a, NULL);
     render_text(SMOKY("volphoton", "16", "2", SMOKY_VP), 0, &b, NULL);
-    ck_assert_int_eq(a.width / REGION * (a.height / REGION), NREGION);
-    int tight = 0;
-    for (int ch = 0; ch < 3; ch++) {
-        double mr[NREGION], vr[NREGION], mp[NREGION], vp[NREGION];
-        region_means(&r1, &r2, ch, mr, vr);
-        region_means(&a, &b, ch, mp, vp);
-        for (int i = 0; i < NREGION; i++) {
-            double sd = sqrt(vr[i] + vp[i]);
-            ck_assert_msg(fabs(mp[i] - mr[i]) < 4 * sd,
-                          "channel %d, region %d: volphoton %g, volpath %g "
-                          "(sd %g)", ch, i, mp[i], mr[i], sd);
-            tight += sd < 0.1 * mr[i];
-        }
-    }
     /* all but the two regions of the light in the three channels */
-    ck_assert_int_ge(tight, 3 * (NREGION - 2));
+    agrees_with_volpath(&r1, &r2, &a, &b, 0.1, 3 * (NREGION - 2));
     image_free(&r1);
     image_free(&r2);
     image_free(&a);
@@ -413,21 +425,8 @@ START_TEST(an_emitting_medium_agrees_with_volpath)
     render_text(GLOW("volpath", "256", "2"), 0, &r2, NULL);
     render_text(GLOW("volphoton", "16", "1"), 0, &a, NULL);
     render_text(GLOW("volphoton", "16", "2"), 0, &b, NULL);
-    int tight = 0;
-    for (int ch = 0; ch < 3; ch++) {
-        double mr[NREGION], vr[NREGION], mp[NREGION], vp[NREGION];
-        region_means(&r1, &r2, ch, mr, vr);
-        region_means(&a, &b, ch, mp, vp);
-        for (int i = 0; i < NREGION; i++) {
-            double sd = sqrt(vr[i] + vp[i]);
-            ck_assert_msg(fabs(mp[i] - mr[i]) < 4 * sd,
-                          "channel %d, region %d: volphoton %g, volpath %g "
-                          "(sd %g)", ch, i, mp[i], mr[i], sd);
-            tight += sd < 0.05 * mr[i];
-        }
-    }
     /* the four central regions at least, in every channel */
-    ck_assert_int_ge(tight, 3 * 4);
+    agrees_with_volpath(&r1, &r2, &a, &b, 0.05, 3 * 4);
     image_free(&r1);
     image_free(&r2);
     image_free(&a);
