@@ -336,7 +336,8 @@ static int report(int nfiles, const char *const *files, converge_metric m, doubl
            "%s of %.3g that the baseline (%s) reaches at %.3g %s; the "
            "reference's noise removed; efficiency 1/(variance x time) with "
            "the %s variance. ~ marks a value extrapolated by MSE = bias^2 + "
-           "c/t.\n\n", converge_clock_name(clock0),
+           "c/t; <= a method whose first point already reaches the error "
+           "(its time to it is at most that point's).\n\n", converge_clock_name(clock0),
            clock0 == CONVERGE_CPU ? " (CPU-seconds, all threads together)"
                                   : "",
            T, unit, what, E, s[0].method, T, unit,
@@ -353,9 +354,23 @@ static int report(int nfiles, const char *const *files, converge_metric m, doubl
         double bias, eff = converge_efficiency(last, m);
         bool biased = converge_biased(p, s[i].n, m, &bias);
         char ts[64], sp[64], bs[64];
-        fmt_time(ts, sizeof ts, t, ht, unit);
+        /* reached at the first point already: the 1/t law read backwards
+         * would leave out a method's fixed cost (a pre-pass), so the
+         * report says only that the first point reaches the error */
+        bool first = ht == CONVERGE_EXTRAPOLATED && t < p[0].seconds;
+        if (first && t >= p[0].seconds * (1 - 1e-9)) {
+            first = false; /* the first point itself, up to rounding */
+            t = p[0].seconds;
+            ht = CONVERGE_MEASURED;
+        }
+        if (first) {
+            t = p[0].seconds;
+            snprintf(ts, sizeof ts, "<= %.3g %s", t, unit);
+        } else {
+            fmt_time(ts, sizeof ts, t, ht, unit);
+        }
         if (isfinite(t) && t > 0 && isfinite(t0))
-            snprintf(sp, sizeof sp, "%.2f", t0 / t);
+            snprintf(sp, sizeof sp, "%s%.2f", first ? ">= " : "", t0 / t);
         else
             snprintf(sp, sizeof sp, "-");
         if (biased)

@@ -550,12 +550,41 @@ START_TEST(converge_clock_is_named_in_the_csv_and_refused_when_mixed)
 }
 END_TEST
 
+/* A series whose first point already reaches the baseline's error: the
+ * report gives the first point's time as a bound ("<= 0.5", speed-up
+ * ">= 2") instead of the 1/t law read backwards (0.00125 s, 800 times),
+ * which would leave out a method's fixed cost. Hand-made, unbiased
+ * series: the baseline's MSE 0.04 at 1 s, so E = 0.2 at T = 1. */
+#define CONV_ROW(m, spp, t, v)                                            \
+    m "," #spp "," #t ",100," "0,0," #v "," #v ",0,0,0,1,"                 \
+    #v "," #v ",0,0,0,1\n"
+START_TEST(converge_report_bounds_a_time_before_the_first_point)
+{
+    const char *head = "method,spp,seconds,rays,rmse,psnr,mse,variance,"
+                       "ref_variance,rmse_noref,bias2,efficiency,relmse,"
+                       "relvariance,ref_relvariance,relrmse_noref,relbias2,"
+                       "relefficiency\n";
+    char a[1024], b[1024], text[1024];
+    snprintf(text, sizeof text, "%s" CONV_ROW("slow", 1, 1, 0.04)
+             CONV_ROW("slow", 4, 4, 0.01), head);
+    write_text(a, sizeof a, "slow.csv", text);
+    snprintf(text, sizeof text, "%s" CONV_ROW("fast", 1, 0.5, 0.0001)
+             CONV_ROW("fast", 2, 1, 0.00005), head);
+    write_text(b, sizeof b, "fast.csv", text);
+    expect(0, "| fast | 2 | 0.00707 | <= 0.5 s | >= 2.00 |",
+           "converge --report '%s' '%s'", a, b);
+    expect(0, "| slow | 4 | 0.2 | 1 s | 1.00 |", "converge --report '%s' '%s'",
+           a, b);
+}
+END_TEST
+
 Suite *test_suite(void)
 {
     Suite *s = suite_create("svet");
     TCase *tc = tcase_create("core");
     tcase_set_timeout(tc, 30);
     tcase_add_test(tc, help_and_usage_errors_have_their_exit_codes);
+    tcase_add_test(tc, converge_report_bounds_a_time_before_the_first_point);
     tcase_add_test(tc, diff_prints_the_metrics_of_a_known_difference);
     tcase_add_test(tc, diff_writes_an_error_image);
     tcase_add_test(tc, diff_decodes_a_png_compared_with_a_linear_image);
