@@ -118,14 +118,21 @@ START_TEST(furnace_sphere_looks_exactly_its_albedo)
 }
 END_TEST
 
+/* A closed sphere of radius 1 and albedo 0.5 with a point light of
+ * intensity 1 (power 4 pi) at its centre. */
+static void closed_sphere(scene_t *s)
+{
+    scene_init(s);
+    VECTOR3 c = { 0, 0, 0 };
+    add(s, sphere_new(c, 1, NULL), REAL_C(0.5));
+    ck_assert_int_eq(scene_add_point_light(s, c, rad_grey(REAL_PI), NULL),
+                     SVET_OK);
+}
+
 START_TEST(point_light_inside_a_closed_sphere_gives_radiance_one)
 {
     scene_t s;
-    scene_init(&s);
-    VECTOR3 c = { 0, 0, 0 };
-    add(&s, sphere_new(c, 1, NULL), REAL_C(0.5));
-    ck_assert_int_eq(scene_add_point_light(&s, c, rad_grey(REAL_PI), NULL),
-                     SVET_OK);
+    closed_sphere(&s);
     /* Truncating after D events loses rho^(D+1) of the total: 2^-41 here */
     s.render.max_depth = 40;
     s.render.roulette = true;
@@ -188,11 +195,7 @@ END_TEST
 START_TEST(indirect_light_alone)
 {
     scene_t s;
-    scene_init(&s);
-    VECTOR3 c = { 0, 0, 0 };
-    add(&s, sphere_new(c, 1, NULL), REAL_C(0.5));
-    ck_assert_int_eq(scene_add_point_light(&s, c, rad_grey(REAL_PI), NULL),
-                     SVET_OK);
+    closed_sphere(&s);
     s.render.max_depth = 40;
     s.render.light = SCENE_LIGHT_INDIRECT;
     lightset_t ls;
@@ -215,7 +218,7 @@ START_TEST(indirect_light_alone)
 
     /* a plane under a point light: its light is all direct */
     scene_init(&s);
-    VECTOR3 up = { 0, 0, 1 }, lp = { 0, 0, 2 };
+    VECTOR3 c = { 0, 0, 0 }, up = { 0, 0, 1 }, lp = { 0, 0, 2 };
     add(&s, disk_new(c, up, 100, NULL), REAL_C(0.7));
     ck_assert_int_eq(scene_add_point_light(&s, lp, rad_grey(5), NULL), SVET_OK);
     s.render.max_depth = 5;
