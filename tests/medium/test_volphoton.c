@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "core/rng.h"
+#include "core/sample.h"
 #include "medium/volphoton.h"
 #include "photon/photon.h"
 #include "render/allparts.h"
@@ -52,6 +53,13 @@ static void render_text(const char *text, int threads, image_t *img,
 
 /* --- the estimate on uniform photons ------------------------------------- */
 
+/* A direction uniform over the sphere, from g. */
+static void random_direction(pcg32_t *g, VECTOR3 d)
+{
+    const real u[2] = { pcg32_real(g), pcg32_real(g) };
+    sample_uniform_sphere(d, u);
+}
+
 /* N photons of power P uniform in the unit cube, each travelling in a
  * direction uniform over the sphere, stand for a flux density n P per
  * unit volume (n = N) spread evenly over directions: with an isotropic
@@ -74,9 +82,8 @@ START_TEST(the_volume_estimate_on_uniform_photons_is_k_over_k_minus_1)
     RADIANCE power = rad_grey(REAL_C(1.0) / (real)n);
     for (size_t i = 0; i < n; i++) {
         VECTOR3 p = { pcg32_real(&g), pcg32_real(&g), pcg32_real(&g) };
-        real z = 1 - 2 * pcg32_real(&g), phi = 2 * REAL_PI * pcg32_real(&g);
-        real s = sqrt(real_max(0, 1 - z * z));
-        VECTOR3 d = { s * cos(phi), s * sin(phi), z };
+        VECTOR3 d;
+        random_direction(&g, d);
         ck_assert(photonmap_store(&m, p, power, d, 0));
     }
     ck_assert_int_eq(photonmap_balance(&m, &e), SVET_OK);
@@ -138,9 +145,8 @@ START_TEST(the_volume_estimates_bias_grows_as_the_radius_squared)
         while (!((double)pcg32_real(&g) * (1 + a / 4) <
                  1 + a * (double)((z - REAL_C(0.5)) * (z - REAL_C(0.5)))));
         VECTOR3 p = { pcg32_real(&g), pcg32_real(&g), z };
-        real c = 1 - 2 * pcg32_real(&g), phi = 2 * REAL_PI * pcg32_real(&g);
-        real sn = sqrt(real_max(0, 1 - c * c));
-        VECTOR3 d = { sn * cos(phi), sn * sin(phi), c };
+        VECTOR3 d;
+        random_direction(&g, d);
         ck_assert(photonmap_store(&m, p, power, d, 0));
     }
     ck_assert_int_eq(photonmap_balance(&m, &e), SVET_OK);
