@@ -420,8 +420,9 @@ reference:
 tradeoffs-photon: build/float/svet
 	sh tools/tradeoffs-photon.sh
 
-# `make tradeoffs-media`: volpath's and volsingle's error against time on
-# the smoky Cornell box and the cloud (tools/tradeoffs-media.sh; writes
+# `make tradeoffs-media`: volpath's, volsingle's and volphoton's error
+# against time on the smoky Cornell box and the cloud
+# (tools/tradeoffs-media.sh; writes
 # docs/tradeoffs-media.md, about 15 minutes on 2 cores).
 .PHONY: tradeoffs-media
 tradeoffs-media: build/float/svet

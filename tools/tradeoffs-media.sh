@@ -7,7 +7,9 @@
 # renders the scene as shipped (the baseline) and with one knob changed
 # (Russian roulette off; a lower maxdepth, biased by design), and
 # single scattering by ray marching (`render integrator volsingle`) at
-# the march steps of STEPS, at the sample counts of SPP_LIST; `svet
+# the march steps of STEPS, at the sample counts of SPP_LIST, and the
+# volume photon map (`render integrator volphoton`) with the photon
+# counts of PHOTONS at the sample counts of VP_SPP_LIST; `svet
 # converge --report` turns each series into a table. The times are
 # CPU-seconds by default (`svet converge --clock cpu`, all threads
 # together), which the machine's other jobs hardly change. Writes
@@ -15,6 +17,7 @@
 # usage: sh tools/tradeoffs-media.sh   (environment: SVET (build/float/svet),
 #        CLOCK (cpu, or wall),
 #        SPP_LIST (1,2,4,...,128), STEPS (0.1 0.05 0.025), THREADS (0),
+#        PHOTONS (50000 200000), VP_SPP_LIST (1,2,4,...,32),
 #        REF_SPP (2048), OUT, DOC,
 #        DOC_ONLY=1 to write the document from the last run's series)
 set -eu
@@ -24,6 +27,8 @@ spps=${SPP_LIST:-1,2,4,8,16,32,64,128}
 threads=${THREADS:-0}
 refspp=${REF_SPP:-2048}
 steps=${STEPS:-0.1 0.05 0.025}
+photons=${PHOTONS:-50000 200000}
+vpspps=${VP_SPP_LIST:-1,2,4,8,16,32}
 out=${OUT:-out/tradeoffs-media}
 doc=${DOC:-docs/tradeoffs-media.md}
 [ -x "$svet" ] || { echo "tradeoffs-media: no $svet (make first)" >&2; exit 1; }
@@ -53,13 +58,18 @@ for name in $names; do
     for h in $steps; do
         set -- "$@" "volsingle-step=$h --set integrator=volsingle --set volsingle.step=$h"
     done
+    for n in $photons; do
+        set -- "$@" "volphoton-photons=$n --set integrator=volphoton --set volphoton.photons=$n"
+    done
     for m in "$@"; do
         # shellcheck disable=SC2086 # the label, then the settings
         set -- $m
         label=$1; shift
+        # the volume photon map's pre-pass is in every point of its series
+        case $label in volphoton-*) list=$vpspps ;; *) list=$spps ;; esac
         echo "tradeoffs-media: $name: $label" >&2
         "$svet" converge "$scene" --ref "$out/$name-ref.exr" --seed 1 \
-            --spp-list "$spps" --clock "$clock" --threads "$threads" \
+            --spp-list "$list" --clock "$clock" --threads "$threads" \
             --out "$out/$name" \
             --label "$label" --no-plot -q "$@" >/dev/null
     done
@@ -67,6 +77,9 @@ for name in $names; do
         "$out/$name/maxdepth=2.csv"
     for h in $steps; do
         set -- "$@" "$out/$name/volsingle-step=$h.csv"
+    done
+    for n in $photons; do
+        set -- "$@" "$out/$name/volphoton-photons=$n.csv"
     done
     "$svet" converge --report "$@" > "$out/$name.md"
 done
@@ -80,7 +93,7 @@ else
 fi
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
 {
-    echo "# Media (ch. 11): volumetric path tracing, error against time"
+    echo "# Media (ch. 11): the estimators, error against time"
     echo
     echo "Written by \`make tradeoffs-media\` (tools/tradeoffs-media.sh) on"
     echo "$(date -u +%Y-%m-%d) UTC, $cpu, $(nproc) cores, threads $threads, in"
@@ -104,6 +117,11 @@ cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
     echo "reference, its error levelling off at the light of the paths that"
     echo "scatter more than once in the medium; a smaller step costs time"
     echo "per sample and lowers the march's noise, not that bias."
+    echo "\`volphoton-photons=N\` is \`render integrator volphoton\` (the"
+    echo "volume photon map, Jensen & Christensen 1998) with N photons from"
+    echo "the lights and the scene's other volphoton keys at their defaults"
+    echo "(scenes/README.md), at $vpspps spp; each point's time"
+    echo "includes its photon pass."
     for name in smoky-cbox cloud; do
         echo
         echo "## $name (scenes/$name.scn)"
