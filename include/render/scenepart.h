@@ -304,6 +304,10 @@ typedef struct scene_part {
     /* resolves a name given to `emit` (may be NULL: refused, unless
      * another part offers this) */
     scene_part_emit_fn emit_name;
+    /* whether the part's data emits light the core does not see (a
+     * medium's emission), so that "nothing emits light" is not said of
+     * a scene lit that way (may be NULL: it emits nothing) */
+    bool (*emits)(const struct scene *s);
 } scene_part_t;
 
 /* The method `name` among the parts features offers, or NULL. */

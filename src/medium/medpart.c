@@ -457,6 +457,23 @@ static svet_status finish(scenefile_ctx *c)
     return SVET_OK;
 }
 
+/* Whether a medium the scene uses (a boundary's side, or the global
+ * medium) emits (medium_emits). */
+static bool emits(const scene_t *s)
+{
+    const medpart_data_t *d = scene_part_data(s, "medium");
+    if (!d)
+        return false;
+    if (d->global >= 0 && medium_emits(&d->media[d->global]->m))
+        return true;
+    for (int i = 0; i < d->nsides; i++) {
+        int k = d->sides[i]->index == -2 ? d->global : d->sides[i]->index;
+        if (k >= 0 && medium_emits(&d->media[k]->m))
+            return true;
+    }
+    return false;
+}
+
 /* --- `volsingle step H` ----------------------------------------------------- */
 
 enum { VS_STEP, VS_N };
@@ -498,6 +515,7 @@ const scene_part_t medium_part = {
     .statements = statements,
     .methods = methods,
     .finish = finish,
+    .emits = emits,
     .shape_keys = shape_spec,
     .nshape_keys = B_N,
     .shape = shape_keys,

@@ -2449,13 +2449,16 @@ static svet_status whole_scene(ctx_t *c)
         if (st)
             return st;
     }
-    if (s->render.integrator != SCENE_INTEGRATOR_AO && !anything_emits(s))
-        scene_warn(&s->warnings, "%s: warning: nothing emits light (no "
-                   "'light', 'emit' or 'environment' above black): the "
-                   "image will be black", c->name);
-    precision_warnings(c);
     const scene_part_t *const *parts = c->features ? c->features->parts
                                                    : NULL;
+    bool emits = anything_emits(s);
+    for (int i = 0; !emits && parts && parts[i]; i++)
+        emits = parts[i]->emits && parts[i]->emits(s);
+    if (s->render.integrator != SCENE_INTEGRATOR_AO && !emits)
+        scene_warn(&s->warnings, "%s: warning: nothing emits light (no "
+                   "'light', 'emit', 'environment' or emitting medium above "
+                   "black): the image will be black", c->name);
+    precision_warnings(c);
     for (int i = 0; parts && parts[i]; i++)
         if (parts[i]->finish) {
             svet_status st = parts[i]->finish(c);

@@ -67,6 +67,43 @@ START_TEST(media_and_boundaries_parse)
 }
 END_TEST
 
+/* A scene lit only by a medium's emission is not "dark": the warning
+ * counts a used medium that emits (inside a boundary, globally, or as a
+ * component of a mix), and still comes for one defined but unused. */
+static long dark_warnings(const char *text)
+{
+    scene_t s;
+    scenecheck_parse_ok(&s, text);
+    long n = 0;
+    for (long i = 0; i < s.warnings.n && i < SCENE_MAX_WARNINGS; i++)
+        n += strstr(s.warnings.msg[i], "nothing emits light") != NULL;
+    scene_free(&s);
+    return n;
+}
+
+START_TEST(an_emitting_medium_lights_the_scene)
+{
+#define GLOWS "medium glow homogeneous sigma_a 1 emission 0 0 2\n"
+    ck_assert_int_eq(dark_warnings(HEAD GLOWS "sphere centre 0 0 0 radius 1 "
+                                   "material m medium glow invisible\n"), 0);
+    ck_assert_int_eq(dark_warnings(HEAD "medium glow homogeneous sigma_a 1 "
+                                   "emission 0 0 2 global\n"
+                                   "sphere centre 0 0 0 radius 1 material "
+                                   "m\n"), 0);
+    ck_assert_int_eq(dark_warnings(HEAD GLOWS "medium dust homogeneous "
+                                   "sigma_s 1\nmedium both mix glow dust\n"
+                                   "sphere centre 0 0 0 radius 1 material m "
+                                   "medium both invisible\n"), 0);
+    /* defined but not used, or used but black: dark */
+    ck_assert_int_eq(dark_warnings(HEAD GLOWS "sphere centre 0 0 0 radius 1 "
+                                   "material m\n"), 1);
+    ck_assert_int_eq(dark_warnings(HEAD "medium dust homogeneous sigma_s 1\n"
+                                   "sphere centre 0 0 0 radius 1 material m "
+                                   "medium dust invisible\n"), 1);
+#undef GLOWS
+}
+END_TEST
+
 /* `medium NAME mix A B ...`: the components are copies of the named
  * media, the global flag anywhere on the line. */
 START_TEST(a_mix_sums_named_media)
@@ -476,6 +513,7 @@ Suite *test_suite(void)
     TCase *tc = tcase_create("core");
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, media_and_boundaries_parse);
+    tcase_add_test(tc, an_emitting_medium_lights_the_scene);
     tcase_add_test(tc, bad_media_name_file_line_and_column);
     tcase_add_test(tc, a_mix_sums_named_media);
     tcase_add_test(tc, bad_vol_files_are_refused);

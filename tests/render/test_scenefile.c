@@ -254,8 +254,9 @@ END_TEST
 START_TEST(a_scene_without_light_parses_with_a_warning)
 {
     static const char *const dark =
-        "t.scn: warning: nothing emits light (no 'light', 'emit' or "
-        "'environment' above black): the image will be black";
+        "t.scn: warning: nothing emits light (no 'light', 'emit', "
+        "'environment' or emitting medium above black): the image will be "
+        "black";
     scene_t s;
     parse_ok(&s, M "sphere centre 0 0 0 radius 1 material m\n");
     ck_assert_int_eq(s.nobjects, 1);
